@@ -1,0 +1,145 @@
+#pragma once
+// Shared pieces of sss-bench: options, statistics, records and the BenchmarkContext that owns
+// the GL context. Each thesis table is one run*Table(BenchmarkContext&) function that appends
+// Records; the report writers know nothing about individual tables.
+
+#include <sss/sss.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+// The thesis measured everything in a 1200 x 680 viewport (digest §1).
+inline constexpr int kThesisWidth = 1200;
+inline constexpr int kThesisHeight = 680;
+
+struct Options {
+    bool quick = false;
+    std::optional<std::filesystem::path> jsonPath;
+    std::optional<std::filesystem::path> markdownPath;  // default: jsonPath with .md
+    std::filesystem::path dataDir;                       // empty: no data sets available
+    int warmup = 3;
+    int runs = 10;
+    int width = kThesisWidth;
+    int height = kThesisHeight;
+    std::vector<std::string> only;  // model names to run; empty = all
+    std::string note;               // free text about the machine, copied into the reports
+    std::filesystem::path imageDir; // if set, the verified image of each row is saved there
+};
+
+struct Stats {
+    double medianMs = 0.0;
+    double minMs = 0.0;
+    double maxMs = 0.0;
+    double meanMs = 0.0;
+    double stddevMs = 0.0;  // sample standard deviation (n - 1); 0 for a single run
+    int runs = 0;
+};
+
+/// Summary of frame times in milliseconds. Throws std::invalid_argument if samples is empty.
+Stats summarize(std::vector<double> samples);
+
+/// One timed configuration and the image check that followed it.
+struct Measurement {
+    Stats stats;
+    std::vector<double> samplesMs;
+    double coverage = 0.0;  // fraction of pixels that differ from the background
+};
+
+/// One row of a results table. Table-specific values (mesh size, K, ...) go in `details`,
+/// which the JSON writer merges into the record, and in the short `dataSize`/`params` strings
+/// the Markdown writer shows.
+struct Record {
+    std::string table;  // "baseline", later "5.3", "5.4", "5.5"
+    std::string model;  // "bunny", "bonsai", ...
+    std::string mode;   // "blinn-phong", "emission-absorption", "gradient", ...
+    std::string dataSize;  // "35947 v / 69451 tri", "256x256x256"
+    std::string params;    // e.g. "tf=bonsai"
+    int width = 0;
+    int height = 0;
+    Measurement measurement;
+    nlohmann::ordered_json details = nlohmann::ordered_json::object();
+    std::optional<double> thesisMs;  // GTX 660 time of the same row (thesis viewport only)
+};
+
+/// A data set the run could not use; reported, never a failure.
+struct Skipped {
+    std::string table;
+    std::string model;
+    std::string path;
+    std::string reason;
+};
+
+/// A measurement whose output failed verification (empty image, GL errors): exit code 1.
+class BenchFailure : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Owns the headless GL context, the render target and the timer that every table shares,
+/// and collects the results.
+class BenchmarkContext {
+public:
+    /// Creates a non-debug EGL context (debug output slows drivers down) unless SSS_GL_DEBUG=1.
+    explicit BenchmarkContext(Options options);
+    ~BenchmarkContext();
+
+    const Options& options() const { return m_options; }
+    const sss::ContextInfo& glInfo() const { return m_gl->info(); }
+    sss::TimingMethod timingMethod() const { return m_timer->method(); }
+    std::string timingMethodName() const;
+    /// When the run started, ISO 8601 UTC (shared by both reports).
+    const std::string& startedAt() const { return m_startedAt; }
+
+    /// True if --only is empty or names `model`.
+    bool wanted(std::string_view model) const;
+    /// Path of a data set below the data directory, or nullopt (and a Skipped entry, with a
+    /// note on stderr) if it does not exist.
+    std::optional<std::filesystem::path> findData(const std::string& table, const std::string& model,
+                                                  const std::filesystem::path& relative);
+
+    /// Times `render` (which draws into the target it is given) after clearing the target to
+    /// the background: options().warmup untimed frames, then options().runs timed ones. Then
+    /// reads the image back once and throws BenchFailure if it is empty, has non-finite
+    /// pixels, or the debug context saw GL errors. `id` names the case in messages and in the
+    /// file name of the saved image (--images), e.g. "baseline-bunny-blinn-phong".
+    Measurement measure(const std::function<void(sss::RenderTarget&)>& render, const std::string& id);
+
+    void addRecord(Record record);
+    void addSkipped(Skipped skipped);
+    const std::vector<Record>& records() const { return m_records; }
+    const std::vector<Skipped>& skipped() const { return m_skipped; }
+
+private:
+    Options m_options;
+    std::string m_startedAt;
+    // Declared first so it is destroyed last: the target and timer hold GL objects.
+    std::unique_ptr<sss::EglContext> m_gl;
+    std::unique_ptr<sss::RenderTarget> m_target;
+    std::unique_ptr<sss::GpuTimer> m_timer;
+    std::vector<Record> m_records;
+    std::vector<Skipped> m_skipped;
+};
+
+/// Fixed view set-up shared by all tables: a camera framed on `bounds` from slightly above and
+/// to the side, and one directional light coming from over the viewer's left shoulder.
+sss::Camera framedCamera(const sss::Bounds& bounds);
+sss::DirectionalLight keyLight(const sss::Camera& camera);
+
+// ---- tables -----------------------------------------------------------------------------------
+
+/// Scattering-off baselines: Blinn-Phong meshes and emission-absorption / gradient volumes
+/// (the "Blinn-Phong" column of Table 5.3 and the EA columns of Table 5.4).
+void runBaselineTable(BenchmarkContext& bench);
+
+// ---- reports ----------------------------------------------------------------------------------
+
+nlohmann::ordered_json toJson(const BenchmarkContext& bench);
+std::string toMarkdown(const BenchmarkContext& bench);

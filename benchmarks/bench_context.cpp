@@ -1,0 +1,134 @@
+#include "bench.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <iostream>
+
+namespace {
+
+// A dark, opaque background that no lit surface or classified voxel reproduces exactly, so
+// "differs from the background" means "something was drawn".
+constexpr glm::vec4 kBackground{0.08f, 0.08f, 0.10f, 1.0f};
+
+// Below this fraction of drawn pixels the object is considered missing; a framed object
+// covers far more than this even at 320 x 180.
+constexpr double kMinCoverage = 0.001;
+
+double drawnFraction(const sss::Image& image, const std::string& what) {
+    const std::vector<float>& px = image.data();
+    std::size_t drawn = 0;
+    for (std::size_t i = 0; i < px.size(); i += 4) {
+        bool differs = false;
+        for (std::size_t c = 0; c < 4; ++c) {
+            if (!std::isfinite(px[i + c]))
+                throw BenchFailure(what + ": the image has non-finite pixels");
+            differs = differs || std::abs(px[i + c] - kBackground[static_cast<glm::length_t>(c)]) > 1.0f / 255.0f;
+        }
+        drawn += differs ? 1 : 0;
+    }
+    return static_cast<double>(drawn) / static_cast<double>(px.size() / 4);
+}
+
+std::string isoDateUtc() {
+    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &utc);
+    return buf;
+}
+
+}  // namespace
+
+BenchmarkContext::BenchmarkContext(Options options) : m_options(std::move(options)), m_startedAt(isoDateUtc()) {
+    // Not a debug context: KHR_debug output slows drivers and would be billed to the frames.
+    // SSS_GL_DEBUG=1 still switches it on, and then measure() also checks the error count.
+    m_gl = sss::EglContext::create({.debug = false});
+    m_target = std::make_unique<sss::RenderTarget>(m_options.width, m_options.height);
+    m_timer = std::make_unique<sss::GpuTimer>(*m_gl);
+}
+
+BenchmarkContext::~BenchmarkContext() = default;
+
+std::string BenchmarkContext::timingMethodName() const {
+    return timingMethod() == sss::TimingMethod::GlTimerQuery ? "gl-timer-query" : "cpu-clock-around-glFinish";
+}
+
+bool BenchmarkContext::wanted(std::string_view model) const {
+    return m_options.only.empty() ||
+           std::find(m_options.only.begin(), m_options.only.end(), model) != m_options.only.end();
+}
+
+std::optional<std::filesystem::path> BenchmarkContext::findData(const std::string& table, const std::string& model,
+                                                                const std::filesystem::path& relative) {
+    const std::filesystem::path path = m_options.dataDir.empty() ? relative : m_options.dataDir / relative;
+    std::error_code ec;
+    if (!m_options.dataDir.empty() && std::filesystem::is_regular_file(path, ec)) return path;
+    const std::string reason = m_options.dataDir.empty() ? "no data directory (use --data-dir or SSS_DATA_DIR)"
+                                                         : "file not found";
+    std::cerr << "sss-bench: skipping " << model << " (" << path.string() << "): " << reason << "\n";
+    addSkipped({table, model, path.string(), reason});
+    return std::nullopt;
+}
+
+Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget&)>& render, const std::string& id) {
+    sss::RenderTarget& target = *m_target;
+    // Warm-up frames are not timed: the first one compiles shaders and uploads lookup tables.
+    for (int i = 0; i < m_options.warmup; ++i) {
+        target.clear(kBackground);
+        render(target);
+    }
+    sss::finishGpuWork();
+
+    Measurement m;
+    m.samplesMs.reserve(static_cast<std::size_t>(m_options.runs));
+    for (int i = 0; i < m_options.runs; ++i) {
+        m_timer->begin();
+        target.clear(kBackground);
+        render(target);
+        m.samplesMs.push_back(m_timer->endMilliseconds());
+    }
+    m.stats = summarize(m.samplesMs);
+
+    // Verify once, after timing, so the read-back is not billed to any frame.
+    const sss::Image image = target.readColor();
+    if (!m_options.imageDir.empty()) {
+        std::filesystem::create_directories(m_options.imageDir);
+        image.savePng(m_options.imageDir / (id + ".png"));
+    }
+    m.coverage = drawnFraction(image, id);
+    if (m.coverage < kMinCoverage)
+        throw BenchFailure(id + ": the rendered image is empty (" + std::to_string(m.coverage * 100.0) +
+                           "% of pixels differ from the background)");
+    if (m_gl->info().debug && m_gl->debugMessages().errors > 0)
+        throw BenchFailure(id + ": OpenGL reported errors: " + m_gl->lastDebugError());
+    return m;
+}
+
+void BenchmarkContext::addRecord(Record record) {
+    const Stats& s = record.measurement.stats;
+    std::cerr << "sss-bench: " << record.table << " " << record.model << " " << record.mode << ": median "
+              << s.medianMs << " ms (min " << s.minMs << ", max " << s.maxMs << ", " << s.runs << " runs)\n";
+    m_records.push_back(std::move(record));
+}
+
+void BenchmarkContext::addSkipped(Skipped skipped) { m_skipped.push_back(std::move(skipped)); }
+
+sss::Camera framedCamera(const sss::Bounds& bounds) {
+    sss::Camera camera;
+    camera.setYaw(25.0f);
+    camera.setPitch(15.0f);
+    camera.frame(bounds);
+    return camera;
+}
+
+sss::DirectionalLight keyLight(const sss::Camera& camera) {
+    sss::DirectionalLight light;
+    // Travels away from the viewer, rightwards and downwards: lit from the upper left.
+    light.direction = glm::normalize(camera.forward() + 0.5f * camera.right() - 0.6f * camera.up());
+    return light;
+}

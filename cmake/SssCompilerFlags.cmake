@@ -1,0 +1,13 @@
+# INTERFACE targets carrying compiler flags, instead of global CMAKE_CXX_FLAGS.
+add_library(sss_warnings INTERFACE)
+target_compile_options(sss_warnings INTERFACE
+  $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion>
+  $<$<AND:$<CXX_COMPILER_ID:GNU,Clang>,$<BOOL:${SSS_WARNINGS_AS_ERRORS}>>:-Werror>)
+
+add_library(sss_sanitize INTERFACE)
+if(SSS_SANITIZE)
+  target_compile_options(sss_sanitize INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                                -fno-sanitize-recover=undefined)
+  target_link_options(sss_sanitize INTERFACE -fsanitize=address,undefined)
+endif()
+install(TARGETS sss_warnings sss_sanitize EXPORT sssTargets)

@@ -1,0 +1,339 @@
+// sss-render: renders a mesh and/or a volume headless to a PNG and prints the timing.
+// Run `sss-render --help` for the options. Exit codes: 0 ok, 1 runtime failure, 2 bad usage.
+#include <sss/sss.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: sss-render [--mesh PATH] [--volume PATH] [options] --out FILE.png
+
+Renders a triangle mesh (.obj) and/or a scalar volume (.raw) headless with OpenGL 4.5 (EGL).
+PATH may also be a procedural asset: procedural:sphere | procedural:torus | procedural:slab
+(meshes), procedural:blobs | procedural:shell | procedural:bucky (volumes).
+Relative paths not found as given are looked up in the data directory (and its meshes/ and
+volumes/ folders): --data-dir, else $SSS_DATA_DIR, else ../shared/data if it exists.
+
+input:
+  --mesh PATH               triangle mesh (.obj)
+  --volume PATH             raw volume; dims/type parsed from names like bonsai_256x256x256_uint8.raw
+  --dims XxYxZ              volume dimensions (overrides the name)
+  --type uint8|uint16       voxel type (overrides the name; default uint8)
+  --spacing X,Y,Z           voxel spacing (default 1,1,1)
+  --data-dir DIR            where to look for relative paths
+output:
+  --out FILE.png            output image (default: sss-render.png)
+  --size WxH                image size (default: 1200x680, the thesis viewport)
+  --background R,G,B        background colour in [0,1] (default: 0.1,0.1,0.12)
+  --repeat N                render N times and report median/min/max (default: 1)
+shading:
+  --mode MODE               blinn-phong (mesh), emission-absorption or gradient (volume);
+                            default: blinn-phong for a mesh, emission-absorption for a volume.
+                            With both a mesh and a volume, MODE is the volume's; the mesh is
+                            drawn in blinn-phong and cuts the volume's rays.
+  --color R,G,B             mesh diffuse colour (default: 0.8,0.75,0.7)
+  --shininess S             mesh Blinn-Phong exponent (default: 40)
+  --tf NAME                 transfer-function preset (default: ramp); names: see --list-tf
+  --list-tf                 print the transfer-function presets and exit
+  --step VOXELS             ray step in voxels (default: 1)
+  --early-termination A     stop rays at this opacity, (0,1] (default: 0.99)
+  --no-jitter               no per-pixel ray offset
+camera and light:
+  --yaw DEG --pitch DEG     orbit angles around the scene centre (default: 30, 20)
+  --zoom F                  distance factor after framing the scene (default: 1)
+  --fov DEG                 vertical field of view (default: 45)
+  --ortho                   orthographic projection
+  --light-dir X,Y,Z         direction the light travels (default: -1,-1,-1)
+  --light-color R,G,B       light colour (default: 1,1,1)
+  --light-intensity I       light intensity (default: 1)
+  --point-light X,Y,Z       use a point light at this position instead
+  --help                    this text
+)";
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct Args {
+    std::string mesh, volume, out = "sss-render.png", mode, tf = "ramp", dataDir;
+    std::optional<glm::ivec3> dims;
+    std::optional<sss::VoxelType> type;
+    std::optional<glm::vec3> spacing;
+    int width = 1200, height = 680, repeat = 1;
+    glm::vec3 background{0.1f, 0.1f, 0.12f};
+    glm::vec3 color{0.8f, 0.75f, 0.7f};
+    float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f;
+    bool jitter = true, ortho = false, listTf = false;
+    float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
+    glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
+    float lightIntensity = 1.0f;
+    std::optional<glm::vec3> pointLight;
+};
+
+float parseFloat(const std::string& option, const std::string& text) {
+    try {
+        size_t used = 0;
+        const float v = std::stof(text, &used);
+        if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(option + ": expected a number, got \"" + text + "\"");
+}
+
+int parseInt(const std::string& option, const std::string& text) {
+    try {
+        size_t used = 0;
+        const int v = std::stoi(text, &used);
+        if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(option + ": expected an integer, got \"" + text + "\"");
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+    std::vector<std::string> parts;
+    std::stringstream ss(text);
+    std::string part;
+    while (std::getline(ss, part, separator)) parts.push_back(part);
+    return parts;
+}
+
+glm::vec3 parseVec3(const std::string& option, const std::string& text) {
+    const auto parts = split(text, ',');
+    if (parts.size() != 3) throw UsageError(option + ": expected X,Y,Z, got \"" + text + "\"");
+    return {parseFloat(option, parts[0]), parseFloat(option, parts[1]), parseFloat(option, parts[2])};
+}
+
+Args parseArgs(int argc, char** argv) {
+    Args a;
+    for (int i = 1; i < argc; ++i) {
+        const std::string opt = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw UsageError(opt + ": missing value");
+            return argv[++i];
+        };
+        if (opt == "--help" || opt == "-h") {
+            std::cout << kUsage;
+            std::exit(0);
+        } else if (opt == "--mesh") a.mesh = value();
+        else if (opt == "--volume") a.volume = value();
+        else if (opt == "--out") a.out = value();
+        else if (opt == "--mode") a.mode = value();
+        else if (opt == "--tf") a.tf = value();
+        else if (opt == "--list-tf") a.listTf = true;
+        else if (opt == "--data-dir") a.dataDir = value();
+        else if (opt == "--dims") {
+            const std::string v = value();
+            const auto parts = split(v, 'x');
+            if (parts.size() != 3) throw UsageError("--dims: expected XxYxZ, got \"" + v + "\"");
+            a.dims = glm::ivec3(parseInt(opt, parts[0]), parseInt(opt, parts[1]), parseInt(opt, parts[2]));
+        } else if (opt == "--type") {
+            const std::string v = value();
+            if (v == "uint8") a.type = sss::VoxelType::UInt8;
+            else if (v == "uint16") a.type = sss::VoxelType::UInt16;
+            else throw UsageError("--type: expected uint8 or uint16, got \"" + v + "\"");
+        } else if (opt == "--spacing") a.spacing = parseVec3(opt, value());
+        else if (opt == "--size") {
+            const std::string v = value();
+            const auto parts = split(v, 'x');
+            if (parts.size() != 2) throw UsageError("--size: expected WxH, got \"" + v + "\"");
+            a.width = parseInt(opt, parts[0]);
+            a.height = parseInt(opt, parts[1]);
+            if (a.width <= 0 || a.height <= 0 || a.width > 16384 || a.height > 16384)
+                throw UsageError("--size: width and height must be in 1..16384, got \"" + v + "\"");
+        } else if (opt == "--background") a.background = parseVec3(opt, value());
+        else if (opt == "--repeat") {
+            a.repeat = parseInt(opt, value());
+            if (a.repeat < 1) throw UsageError("--repeat: must be >= 1");
+        } else if (opt == "--color") a.color = parseVec3(opt, value());
+        else if (opt == "--shininess") a.shininess = parseFloat(opt, value());
+        else if (opt == "--step") a.step = parseFloat(opt, value());
+        else if (opt == "--early-termination") a.earlyTermination = parseFloat(opt, value());
+        else if (opt == "--no-jitter") a.jitter = false;
+        else if (opt == "--yaw") a.yaw = parseFloat(opt, value());
+        else if (opt == "--pitch") a.pitch = parseFloat(opt, value());
+        else if (opt == "--zoom") {
+            a.zoom = parseFloat(opt, value());
+            if (!(a.zoom > 0.0f)) throw UsageError("--zoom: must be > 0");
+        } else if (opt == "--fov") a.fov = parseFloat(opt, value());
+        else if (opt == "--ortho") a.ortho = true;
+        else if (opt == "--light-dir") a.lightDir = parseVec3(opt, value());
+        else if (opt == "--light-color") a.lightColor = parseVec3(opt, value());
+        else if (opt == "--light-intensity") a.lightIntensity = parseFloat(opt, value());
+        else if (opt == "--point-light") a.pointLight = parseVec3(opt, value());
+        else throw UsageError("unknown option \"" + opt + "\" (see --help)");
+    }
+    if (a.listTf) return a;
+    if (a.mesh.empty() && a.volume.empty()) throw UsageError("nothing to render: give --mesh PATH and/or --volume PATH");
+    if (a.mode.empty()) a.mode = a.volume.empty() ? "blinn-phong" : "emission-absorption";
+    const bool meshMode = a.mode == "blinn-phong";
+    const bool volumeMode = a.mode == "emission-absorption" || a.mode == "gradient";
+    if (!meshMode && !volumeMode)
+        throw UsageError("--mode: unknown mode \"" + a.mode + "\" (blinn-phong, emission-absorption, gradient)");
+    if (meshMode && a.mesh.empty()) throw UsageError("--mode blinn-phong needs --mesh");
+    if (volumeMode && a.volume.empty()) throw UsageError("--mode " + a.mode + " needs --volume");
+    if (meshMode && !a.volume.empty())
+        throw UsageError("--mode blinn-phong is a mesh mode; with --volume give the volume's mode");
+    return a;
+}
+
+fs::path dataDirectory(const Args& a) {
+    if (!a.dataDir.empty()) return a.dataDir;
+    if (const char* env = std::getenv("SSS_DATA_DIR"); env && *env) return env;
+    if (fs::is_directory("../shared/data")) return "../shared/data";
+    return {};
+}
+
+// A path as given if it exists, else the first match in the data directory.
+fs::path resolveInput(const std::string& path, const fs::path& dataDir, const char* subfolder) {
+    const fs::path given(path);
+    if (fs::exists(given) || given.is_absolute() || dataDir.empty()) return given;
+    for (const fs::path& candidate : {dataDir / given, dataDir / subfolder / given})
+        if (fs::exists(candidate)) return candidate;
+    return given;  // the loader reports the missing file by the name the user gave
+}
+
+std::optional<std::string> proceduralName(const std::string& path) {
+    const std::string prefix = "procedural:";
+    if (path.rfind(prefix, 0) == 0) return path.substr(prefix.size());
+    return std::nullopt;
+}
+
+sss::Mesh loadMesh(const Args& a, const fs::path& dataDir) {
+    if (auto name = proceduralName(a.mesh)) {
+        if (*name == "sphere") return sss::makeUvSphere();
+        if (*name == "torus") return sss::makeTorus();
+        if (*name == "slab") return sss::makeSlab();
+        throw UsageError("--mesh: unknown procedural mesh \"" + *name + "\" (sphere, torus, slab)");
+    }
+    return sss::Mesh::load(resolveInput(a.mesh, dataDir, "meshes"));
+}
+
+sss::Volume loadVolume(const Args& a, const fs::path& dataDir) {
+    if (auto name = proceduralName(a.volume)) {
+        if (*name == "blobs") return sss::makeBlobsVolume();
+        if (*name == "shell") return sss::makeShellVolume();
+        if (*name == "bucky") return sss::makeBuckyLikeVolume();
+        throw UsageError("--volume: unknown procedural volume \"" + *name + "\" (blobs, shell, bucky)");
+    }
+    sss::RawLoadOptions options;
+    options.dims = a.dims;
+    options.type = a.type;
+    options.spacing = a.spacing;
+    return sss::Volume::loadRaw(resolveInput(a.volume, dataDir, "volumes"), options);
+}
+
+int run(const Args& a) {
+    if (a.listTf) {
+        for (const std::string& name : sss::TransferFunction::presetNames()) std::cout << name << "\n";
+        return 0;
+    }
+    const fs::path dataDir = dataDirectory(a);
+    // Load and validate everything before touching GL, so bad input fails fast and clearly.
+    std::optional<sss::Mesh> mesh;
+    std::optional<sss::Volume> volume;
+    std::optional<sss::TransferFunction> tf;
+    if (!a.mesh.empty()) mesh = loadMesh(a, dataDir);
+    if (!a.volume.empty()) {
+        volume = loadVolume(a, dataDir);
+        tf = sss::TransferFunction::preset(a.tf);
+    }
+    sss::Light light = a.pointLight ? sss::Light(sss::PointLight{*a.pointLight, a.lightColor, a.lightIntensity})
+                                    : sss::Light(sss::DirectionalLight{a.lightDir, a.lightColor, a.lightIntensity});
+    sss::validateLight(light, "--light");
+
+    sss::Bounds sceneBounds;
+    if (mesh) {
+        sceneBounds.extend(mesh->bounds().min);
+        sceneBounds.extend(mesh->bounds().max);
+    }
+    if (volume) {
+        sceneBounds.extend(volume->worldBounds().min);
+        sceneBounds.extend(volume->worldBounds().max);
+    }
+    sss::Camera camera;
+    camera.setFovY(a.fov);
+    camera.frame(sceneBounds);
+    camera.setYaw(a.yaw);
+    camera.setPitch(a.pitch);
+    camera.setDistance(camera.distance() * a.zoom);
+    camera.setOrthoHeight(2.0f * sceneBounds.radius() * 1.1f);
+    camera.setProjectionType(a.ortho ? sss::Projection::Orthographic : sss::Projection::Perspective);
+
+    auto context = sss::EglContext::create();
+    sss::RenderTarget target(a.width, a.height);
+
+    std::optional<sss::MeshScatteringRenderer> meshRenderer;
+    if (mesh) {
+        meshRenderer.emplace();
+        meshRenderer->setMesh(*mesh);
+        meshRenderer->setMaterial({.diffuse = a.color, .shininess = a.shininess});
+        meshRenderer->setLights({light});
+    }
+    std::optional<sss::VolumeScatteringRenderer> volumeRenderer;
+    if (volume) {
+        volumeRenderer.emplace(sss::VolumeRenderOptions{
+            .shading = a.mode == "gradient" ? sss::VolumeShading::Gradient : sss::VolumeShading::EmissionAbsorption,
+            .stepSize = a.step,
+            .earlyTermination = a.earlyTermination,
+            .jitter = a.jitter});
+        volumeRenderer->setVolume(*volume);
+        volumeRenderer->setTransferFunction(*tf);
+        volumeRenderer->setLights({light});
+    }
+
+    sss::GpuTimer timer(*context);
+    std::vector<double> times;
+    for (int i = 0; i < a.repeat; ++i) {
+        timer.begin();
+        target.clear(glm::vec4(a.background, 1.0f));
+        if (meshRenderer) meshRenderer->render(camera, target);
+        if (volumeRenderer) volumeRenderer->render(camera, target);
+        times.push_back(timer.endMilliseconds());
+    }
+    const sss::Image image = target.readColor();
+    image.toRgba8().savePng(a.out);
+
+    std::sort(times.begin(), times.end());
+    std::printf("renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().backend.c_str());
+    if (mesh) std::printf("mesh: %zu vertices, %zu triangles\n", mesh->vertexCount(), mesh->triangleCount());
+    if (volume)
+        std::printf("volume: %dx%dx%d %s\n", volume->dims().x, volume->dims().y, volume->dims().z,
+                    volume->type() == sss::VoxelType::UInt16 ? "uint16" : "uint8");
+    std::printf("frame: %.2f ms median, %.2f min, %.2f max over %d run(s) at %dx%d, %s; first run includes "
+                "shader compilation\n",
+                times[times.size() / 2], times.front(), times.back(), a.repeat, a.width, a.height,
+                timer.method() == sss::TimingMethod::GlTimerQuery ? "GL timer query" : "CPU clock around glFinish");
+    std::printf("wrote %s\n", a.out.c_str());
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(parseArgs(argc, argv));
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "sss-render: %s\n", e.what());
+        return 2;
+    } catch (const sss::Error& e) {
+        std::fprintf(stderr, "sss-render: %s\n", e.what());
+        return e.kind() == sss::ErrorKind::InvalidArgument ? 2 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "sss-render: %s\n", e.what());
+        return 1;
+    }
+}

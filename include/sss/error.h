@@ -1,0 +1,33 @@
+#pragma once
+/// @file
+/// The libsss error policy.
+///
+/// Every failure the caller can cause or meet is reported by throwing sss::Error:
+///  - ErrorKind::InvalidArgument: a value breaks a documented precondition (a zero image size, a
+///    negative ray step, a transfer function with unsorted points). The message names the option
+///    or parameter ("VolumeRenderOptions::stepSize must be > 0, got -1").
+///  - ErrorKind::Io / ErrorKind::Parse: a file is missing, unreadable or malformed. The message
+///    names the file and the problem ("bunny.obj: face 12 references vertex 900 of 870").
+///  - ErrorKind::Gl: the environment cannot do what is asked (no OpenGL 4.5 context, a shader that
+///    does not compile, an incomplete framebuffer). The message says which and why.
+/// Nothing in libsss terminates the process or returns a silently wrong result on bad input.
+/// Internal invariants (bugs in libsss itself) are assert()s.
+
+#include <stdexcept>
+#include <string>
+
+namespace sss {
+
+enum class ErrorKind { InvalidArgument, Io, Parse, Gl };
+
+/// The one exception type libsss throws; what() is a complete, human-readable message.
+class Error : public std::runtime_error {
+public:
+    Error(ErrorKind kind, const std::string& message) : std::runtime_error(message), m_kind(kind) {}
+    ErrorKind kind() const noexcept { return m_kind; }
+
+private:
+    ErrorKind m_kind;
+};
+
+}  // namespace sss

@@ -1,0 +1,47 @@
+#pragma once
+/// @file
+/// Procedural test meshes and volumes, deterministic on every platform we build for.
+
+#include "sss/mesh.h"
+#include "sss/volume.h"
+
+#include <glm/vec3.hpp>
+
+namespace sss {
+
+/// UV sphere centred at the origin with exact (analytic) normals: 2 pole vertices plus
+/// rings-1 latitude circles of `segments` vertices; each of the `rings` bands has `segments`
+/// quads of 2 triangles, and the quads touching a pole are kept as one real and one degenerate
+/// triangle. 20x20 gives 382 vertices and 800 triangles (the reference study's sphere).
+/// @throws Error InvalidArgument unless segments in [3, 4096], rings in [2, 4096], radius
+///         finite and > 0.
+Mesh makeUvSphere(int segments = 20, int rings = 20, float radius = 1.0f);
+
+/// Torus around the y axis, centred at the origin, with exact normals:
+/// majorSegments * minorSegments vertices and twice as many triangles (no seam duplicates).
+/// @throws Error InvalidArgument unless 0 < minorRadius < majorRadius (finite) and both
+///         segment counts are in [3, 4096].
+Mesh makeTorus(float majorRadius = 0.7f, float minorRadius = 0.3f, int majorSegments = 48,
+               int minorSegments = 24);
+
+/// Axis-aligned box of the given size centred at the origin: 24 vertices (4 per face, flat
+/// normals), 12 triangles. Default 1.6 x 1.0 x 0.2, a slab for translucency tests.
+/// @throws Error InvalidArgument unless every size component is finite and > 0.
+Mesh makeSlab(glm::vec3 size = glm::vec3(1.6f, 1.0f, 0.2f));
+
+/// n^3 uint8 volume with four soft Gaussian blobs of different sizes and peak values.
+/// @throws Error InvalidArgument unless n in [2, 1024].
+Volume makeBlobsVolume(int n = 64);
+
+/// n^3 uint8 hollow spherical shell centred in the volume, 255 inside the shell, 0 elsewhere,
+/// with edges softened over about a voxel. outerRadius and thickness are fractions of the side.
+/// @throws Error InvalidArgument unless n in [2, 1024], 0 < outerRadius <= 0.5 and
+///         0 < thickness <= outerRadius.
+Volume makeShellVolume(int n = 64, float outerRadius = 0.42f, float thickness = 0.08f);
+
+/// n^3 uint8 look-alike of the C60 "bucky" data set: 60 Gaussian blobs at the vertices of a
+/// truncated icosahedron (radius 0.35 of the side) on a faint spherical halo.
+/// @throws Error InvalidArgument unless n in [2, 1024].
+Volume makeBuckyLikeVolume(int n = 32);
+
+}  // namespace sss

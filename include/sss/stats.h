@@ -1,0 +1,33 @@
+#pragma once
+/// @file
+/// Per-pass statistics every renderer keeps, so applications, tests and the benchmark can see
+/// which passes ran (and which were skipped because nothing they depend on changed).
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+
+namespace sss {
+
+struct PassStats {
+    std::uint64_t runs = 0;    ///< times the pass was executed
+    double lastMs = 0.0;       ///< CPU time of the last run (submission only unless the
+                               ///< renderer's `finishEachPass` option waits for the GPU)
+    double totalMs = 0.0;
+};
+
+class RenderStats {
+public:
+    void record(std::string_view pass, double ms);
+    /// Runs of `pass` so far (0 for a pass that never ran).
+    std::uint64_t runs(std::string_view pass) const;
+    const PassStats* find(std::string_view pass) const;
+    const std::map<std::string, PassStats, std::less<>>& passes() const { return m_passes; }
+    void reset() { m_passes.clear(); }
+
+private:
+    std::map<std::string, PassStats, std::less<>> m_passes;
+};
+
+}  // namespace sss

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds libsss with tests, and runs the whole suite under ctest.
+# Usage: scripts/test.sh            (build dir: build/, executables in build/bin/)
+# Environment: SSS_BUILD_TYPE (default Release), SSS_CMAKE_ARGS (extra configure arguments),
+#              SSS_JOBS (parallel jobs, default: number of cores), SSS_BUILD_DIR (default build).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+scripts/install-deps.sh --viewer
+jobs=${SSS_JOBS:-$(nproc)}
+build=${SSS_BUILD_DIR:-build}
+# shellcheck disable=SC2086  # SSS_CMAKE_ARGS is a list of arguments on purpose
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE="${SSS_BUILD_TYPE:-Release}" -DSSS_BUILD_TESTS=ON \
+      -DSSS_BUILD_EXAMPLES=ON -DSSS_BUILD_BENCH=ON -DSSS_WITH_GLFW=ON ${SSS_CMAKE_ARGS:-}
+cmake --build "$build" -j "$jobs"
+# Tests need no GPU: headless EGL on Mesa llvmpipe. No DISPLAY is needed (or used).
+ctest --test-dir "$build" --output-on-failure -j "$jobs"

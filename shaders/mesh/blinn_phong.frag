@@ -1,0 +1,28 @@
+#include "common/lights.glsl"
+#include "common/blinn_phong.glsl"
+
+in vec3 worldPosition;
+in vec3 worldNormal;
+
+uniform vec3 cameraPosition;
+uniform vec3 ambient;
+uniform vec3 diffuseColor;
+uniform vec3 specularColor;
+uniform float shininess;
+uniform float inverseGamma;   // 1/gamma; 1 writes linear values
+
+layout(location = 0) out vec4 fragColor;
+
+void main() {
+    vec3 v = normalize(cameraPosition - worldPosition);
+    vec3 n = normalize(worldNormal);
+    // Two-sided lighting: back faces seen through open meshes are lit like front faces.
+    if (!gl_FrontFacing) n = -n;
+    vec3 color = ambient * diffuseColor;
+    for (int i = 0; i < lightCount; ++i) {
+        vec3 radiance;
+        vec3 l = lightDirectionAt(i, worldPosition, radiance);
+        color += blinnPhong(n, l, v, radiance, diffuseColor, specularColor, shininess);
+    }
+    fragColor = vec4(pow(max(color, vec3(0.0)), vec3(inverseGamma)), 1.0);
+}

@@ -1,0 +1,70 @@
+#pragma once
+#include "gl/object.h"
+#include "shader_source.h"
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+
+namespace sss::gl {
+
+struct ShaderTraits {
+    static constexpr GLenum labelNamespace = GL_SHADER;
+    static void destroy(GLuint id) { glDeleteShader(id); }
+};
+
+/// One compiled shader stage. Compile errors throw Error(Gl) with file:line locations.
+class Shader : public Object<ShaderTraits> {
+public:
+    Shader() = default;
+    /// Compiles shaders/<path> (after include expansion and defines) as `stage`.
+    static Shader compile(GLenum stage, std::string_view path, const detail::ShaderDefines& defines = {});
+    /// Compiles already-preprocessed text; `files` maps #line source numbers to names.
+    static Shader compileText(GLenum stage, const detail::PreprocessedShader& source);
+
+private:
+    explicit Shader(GLuint id) : Object(id) {}
+};
+
+struct ProgramTraits {
+    static constexpr GLenum labelNamespace = GL_PROGRAM;
+    static void destroy(GLuint id) { glDeleteProgram(id); }
+};
+
+struct ShaderStage {
+    GLenum stage;
+    std::string_view path;
+};
+
+/// A linked program with cached uniform locations. Setters ignore uniforms the linker removed
+/// (location -1), as GL does, so optional variants need no special cases.
+class Program : public Object<ProgramTraits> {
+public:
+    Program() = default;
+    static Program link(std::initializer_list<ShaderStage> stages, const detail::ShaderDefines& defines = {});
+
+    void use() const { glUseProgram(id()); }
+    GLint uniformLocation(std::string_view name) const;
+    void set(std::string_view name, int v) const { glProgramUniform1i(id(), uniformLocation(name), v); }
+    void set(std::string_view name, unsigned v) const { glProgramUniform1ui(id(), uniformLocation(name), v); }
+    void set(std::string_view name, float v) const { glProgramUniform1f(id(), uniformLocation(name), v); }
+    void set(std::string_view name, glm::vec2 v) const;
+    void set(std::string_view name, glm::vec3 v) const;
+    void set(std::string_view name, glm::vec4 v) const;
+    void set(std::string_view name, glm::ivec3 v) const;
+    void set(std::string_view name, const glm::mat3& v) const;
+    void set(std::string_view name, const glm::mat4& v) const;
+
+private:
+    explicit Program(GLuint id) : Object(id) {}
+    mutable std::unordered_map<std::string, GLint> m_locations;
+};
+
+}  // namespace sss::gl

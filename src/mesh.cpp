@@ -1,0 +1,263 @@
+#include "sss/mesh.h"
+
+#include "sss/error.h"
+
+#include <tiny_obj_loader.h>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+namespace sss {
+namespace {
+
+std::string str(glm::vec3 v) {
+    std::ostringstream s;
+    s << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+    return s.str();
+}
+
+bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// A normal is usable if normalizing it gives a finite unit vector.
+bool isUsableNormal(glm::vec3 n) {
+    if (!isFinite(n)) return false;
+    float len = glm::length(n);
+    return std::isfinite(len) && len > std::numeric_limits<float>::min();
+}
+
+Bounds boundsOf(const std::vector<glm::vec3>& positions) {
+    Bounds b;
+    for (const glm::vec3& p : positions) b.extend(p);
+    return b;
+}
+
+// Area-weighted: the unnormalized cross product has length 2*area, so summing it weights each
+// face by its area. Vertices whose sum vanishes (only degenerate faces, or opposite faces
+// cancelling) fall back to the direction from the mesh centre, which is right for the poles of
+// a UV sphere, and finally to +z.
+std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
+                                     const std::vector<uint32_t>& indices, glm::vec3 centre) {
+    std::vector<glm::vec3> acc(positions.size(), glm::vec3(0.0f));
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+        uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
+        glm::vec3 n = glm::cross(positions[i1] - positions[i0], positions[i2] - positions[i0]);
+        acc[i0] += n;
+        acc[i1] += n;
+        acc[i2] += n;
+    }
+    for (std::size_t i = 0; i < acc.size(); ++i) {
+        if (isUsableNormal(acc[i])) {
+            acc[i] = glm::normalize(acc[i]);
+            continue;
+        }
+        glm::vec3 d = positions[i] - centre;
+        acc[i] = isUsableNormal(d) ? glm::normalize(d) : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+    return acc;
+}
+
+std::string trimmed(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
+    return s;
+}
+
+}  // namespace
+
+Mesh Mesh::fromArrays(std::vector<glm::vec3> positions, std::vector<uint32_t> indices,
+                      std::vector<glm::vec3> normals, std::string_view name) {
+    const std::string prefix = std::string(name) + ": ";
+    auto fail = [&](const std::string& what) { throw Error(ErrorKind::InvalidArgument, prefix + what); };
+
+    if (indices.empty() || positions.empty())
+        fail("has no triangles (" + std::to_string(positions.size()) + " positions, " +
+             std::to_string(indices.size()) + " indices)");
+    if (indices.size() % 3 != 0)
+        fail("index count " + std::to_string(indices.size()) + " is not a multiple of 3");
+    if (positions.size() > std::numeric_limits<uint32_t>::max())
+        fail("has " + std::to_string(positions.size()) + " vertices, more than 32-bit indices can address");
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if (!isFinite(positions[i]))
+            fail("vertex " + std::to_string(i) + " has a non-finite coordinate " + str(positions[i]));
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] >= positions.size())
+            fail("triangle " + std::to_string(i / 3) + " (indices[" + std::to_string(i) +
+                 "]) references vertex " + std::to_string(indices[i]) + ", but the mesh has " +
+                 std::to_string(positions.size()) + " vertices");
+
+    Mesh mesh;
+    mesh.m_bounds = boundsOf(positions);
+    if (normals.empty()) {
+        normals = smoothNormals(positions, indices, mesh.m_bounds.center());
+    } else {
+        if (normals.size() != positions.size())
+            fail(std::to_string(normals.size()) + " normals given for " +
+                 std::to_string(positions.size()) + " positions; the counts must match");
+        for (std::size_t i = 0; i < normals.size(); ++i) {
+            if (!isUsableNormal(normals[i]))
+                fail("normal " + std::to_string(i) + " is zero or non-finite " + str(normals[i]));
+            normals[i] = glm::normalize(normals[i]);
+        }
+    }
+    mesh.m_positions = std::move(positions);
+    mesh.m_normals = std::move(normals);
+    mesh.m_indices = std::move(indices);
+    mesh.m_name = std::string(name);
+    return mesh;
+}
+
+Mesh Mesh::load(const std::filesystem::path& path) {
+    const std::string file = path.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        throw Error(ErrorKind::Io, file + ": file does not exist");
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(ErrorKind::Io, file + ": is a directory, not an OBJ file");
+    if (!std::ifstream(path))
+        throw Error(ErrorKind::Io, file + ": cannot be opened for reading");
+
+    // Triangulate ourselves: tinyobjloader silently drops polygons with out-of-range indices
+    // (and keeps triangles with them), so we need the raw faces to report bad indices.
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = false;
+    config.vertex_color = false;
+    config.mtl_search_path = path.parent_path().string();
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(file, config))
+        throw Error(ErrorKind::Parse, file + ": cannot parse OBJ: " + trimmed(reader.Error()));
+
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    const std::size_t vertexCount = attrib.vertices.size() / 3;
+    const std::size_t normalCount = attrib.normals.size() / 3;
+    auto filePosition = [&](std::size_t i) {
+        return glm::vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+    };
+    auto fileNormal = [&](std::size_t i) {
+        return glm::vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+    };
+    for (std::size_t i = 0; i < vertexCount; ++i)
+        if (!isFinite(filePosition(i)))
+            throw Error(ErrorKind::Parse, file + ": vertex " + std::to_string(i + 1) +
+                                              " has a non-finite coordinate " + str(filePosition(i)));
+
+    // Pass 1: validate every face and triangulate into (position, normal) index corners.
+    std::vector<tinyobj::index_t> corners;
+    bool smooth = false;
+    std::size_t faceNumber = 0;  // 1-based over all shapes, like the message users expect
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        std::size_t offset = 0;
+        for (auto faceSize : shape.mesh.num_face_vertices) {
+            ++faceNumber;
+            const std::size_t n = faceSize;
+            const tinyobj::index_t* face = shape.mesh.indices.data() + offset;
+            offset += n;
+            for (std::size_t k = 0; k < n; ++k) {
+                int v = face[k].vertex_index;
+                if (v < 0 || static_cast<std::size_t>(v) >= vertexCount)
+                    throw Error(ErrorKind::Parse, file + ": face " + std::to_string(faceNumber) +
+                                                      " references vertex " + std::to_string(v + 1) +
+                                                      ", but the file has " +
+                                                      std::to_string(vertexCount) + " vertices");
+                int vn = face[k].normal_index;
+                if (vn < 0) {
+                    smooth = true;
+                } else if (static_cast<std::size_t>(vn) >= normalCount) {
+                    throw Error(ErrorKind::Parse, file + ": face " + std::to_string(faceNumber) +
+                                                      " references normal " + std::to_string(vn + 1) +
+                                                      ", but the file has " +
+                                                      std::to_string(normalCount) + " normals");
+                } else if (!isUsableNormal(fileNormal(static_cast<std::size_t>(vn)))) {
+                    smooth = true;
+                }
+            }
+            if (n < 3) continue;
+            auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
+                corners.push_back(face[a]);
+                corners.push_back(face[b]);
+                corners.push_back(face[c]);
+            };
+            if (n == 4) {
+                // Split along the shorter diagonal (as tinyobjloader does) for better triangles.
+                auto p = [&](std::size_t k) { return filePosition(static_cast<std::size_t>(face[k].vertex_index)); };
+                if (glm::length(p(2) - p(0)) <= glm::length(p(3) - p(1))) {
+                    emit(0, 1, 2);
+                    emit(0, 2, 3);
+                } else {
+                    emit(0, 1, 3);
+                    emit(1, 2, 3);
+                }
+            } else {
+                for (std::size_t k = 1; k + 1 < n; ++k) emit(0, k, k + 1);
+            }
+        }
+    }
+    if (corners.empty()) throw Error(ErrorKind::Parse, file + ": has no faces");
+
+    // Pass 2: one output vertex per distinct (position, normal) pair; per position when smoothing.
+    std::vector<glm::vec3> positions, normals;
+    std::vector<uint32_t> indices;
+    indices.reserve(corners.size());
+    std::unordered_map<uint64_t, uint32_t> remap;
+    remap.reserve(corners.size());
+    for (const tinyobj::index_t& c : corners) {
+        const uint64_t v = static_cast<uint32_t>(c.vertex_index);
+        const uint64_t key = smooth ? v : (v << 32) | static_cast<uint32_t>(c.normal_index);
+        auto [it, inserted] = remap.try_emplace(key, static_cast<uint32_t>(positions.size()));
+        if (inserted) {
+            positions.push_back(filePosition(static_cast<std::size_t>(v)));
+            if (!smooth) normals.push_back(glm::normalize(fileNormal(static_cast<std::size_t>(c.normal_index))));
+        }
+        indices.push_back(it->second);
+    }
+
+    Mesh mesh;
+    mesh.m_bounds = boundsOf(positions);
+    if (smooth) normals = smoothNormals(positions, indices, mesh.m_bounds.center());
+    mesh.m_positions = std::move(positions);
+    mesh.m_normals = std::move(normals);
+    mesh.m_indices = std::move(indices);
+    mesh.m_name = file;
+    return mesh;
+}
+
+Mesh Mesh::transformed(const glm::mat4& m) const {
+    const glm::mat3 linear(m);
+    const float det = glm::determinant(linear);
+    if (!std::isfinite(det) || det == 0.0f)
+        throw Error(ErrorKind::InvalidArgument,
+                    m_name + ": Mesh::transformed: the matrix is singular or non-finite (det " +
+                        std::to_string(det) + ")");
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
+
+    Mesh out;
+    out.m_name = m_name;
+    out.m_positions.reserve(m_positions.size());
+    for (std::size_t i = 0; i < m_positions.size(); ++i) {
+        glm::vec3 p = glm::vec3(m * glm::vec4(m_positions[i], 1.0f));
+        if (!isFinite(p))
+            throw Error(ErrorKind::InvalidArgument, m_name + ": Mesh::transformed: vertex " +
+                                                        std::to_string(i) + " becomes non-finite " + str(p));
+        out.m_positions.push_back(p);
+    }
+    out.m_normals.reserve(m_normals.size());
+    for (const glm::vec3& n : m_normals) {
+        glm::vec3 t = normalMatrix * n;
+        out.m_normals.push_back(isUsableNormal(t) ? glm::normalize(t) : n);
+    }
+    out.m_indices = m_indices;
+    // A mirror turns counter-clockwise triangles clockwise; swap two corners to undo it.
+    if (det < 0.0f)
+        for (std::size_t t = 0; t + 2 < out.m_indices.size(); t += 3)
+            std::swap(out.m_indices[t + 1], out.m_indices[t + 2]);
+    out.m_bounds = boundsOf(out.m_positions);
+    return out;
+}
+
+}  // namespace sss

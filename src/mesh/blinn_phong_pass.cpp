@@ -1,0 +1,38 @@
+#include "mesh/blinn_phong_pass.h"
+
+#include "light_uniforms.h"
+
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+namespace sss::detail {
+
+BlinnPhongPass::BlinnPhongPass()
+    : m_program(gl::Program::link({{GL_VERTEX_SHADER, "mesh/blinn_phong.vert"},
+                                   {GL_FRAGMENT_SHADER, "mesh/blinn_phong.frag"}})) {}
+
+void BlinnPhongPass::run(const GpuMesh& mesh, const glm::mat4& model, const BlinnPhongMaterial& material,
+                         const std::vector<Light>& lights, const Camera& camera, float aspect, float gamma) const {
+    m_program.set("model", model);
+    m_program.set("viewProjection", camera.projection(aspect) * camera.view());
+    m_program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
+    m_program.set("cameraPosition", camera.position());
+    m_program.set("ambient", material.ambient);
+    m_program.set("diffuseColor", material.diffuse);
+    m_program.set("specularColor", material.specular);
+    m_program.set("shininess", material.shininess);
+    m_program.set("inverseGamma", 1.0f / gamma);
+    setLightUniforms(m_program, lights);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);  // open meshes show their inside
+    m_program.use();
+    mesh.draw();
+    glBindVertexArray(0);
+    glUseProgram(0);
+}
+
+}  // namespace sss::detail

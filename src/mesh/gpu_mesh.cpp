@@ -1,0 +1,32 @@
+#include "mesh/gpu_mesh.h"
+
+#include <vector>
+
+namespace sss::detail {
+
+GpuMesh GpuMesh::upload(const Mesh& mesh) {
+    std::vector<float> interleaved;
+    interleaved.reserve(mesh.vertexCount() * 6);
+    for (size_t i = 0; i < mesh.vertexCount(); ++i) {
+        const glm::vec3& p = mesh.positions()[i];
+        const glm::vec3& n = mesh.normals()[i];
+        interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+    }
+    GpuMesh gpu;
+    gpu.vertices = gl::Buffer::create(interleaved.size() * sizeof(float), interleaved.data(), 0);
+    gpu.indices = gl::Buffer::create(mesh.indices().size() * sizeof(uint32_t), mesh.indices().data(), 0);
+    gpu.vertexArray = gl::VertexArray::create();
+    gpu.vertexArray.setAttribute(0, gpu.vertices, 3, 0, 6 * sizeof(float));
+    gpu.vertexArray.setAttribute(1, gpu.vertices, 3, 3 * sizeof(float), 6 * sizeof(float));
+    gpu.vertexArray.setIndexBuffer(gpu.indices);
+    gpu.indexCount = static_cast<GLsizei>(mesh.indices().size());
+    gpu.bounds = mesh.bounds();
+    return gpu;
+}
+
+void GpuMesh::draw() const {
+    vertexArray.bind();
+    glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace sss::detail

@@ -1,0 +1,22 @@
+#pragma once
+// A Mesh uploaded to the GPU: interleaved position+normal vertex buffer, index buffer, VAO
+// (attribute 0 = position, 1 = normal). Shared by every mesh pass.
+#include "gl/buffer.h"
+#include "gl/vertex_array.h"
+#include "sss/bounds.h"
+#include "sss/mesh.h"
+
+namespace sss::detail {
+
+struct GpuMesh {
+    gl::Buffer vertices;
+    gl::Buffer indices;
+    gl::VertexArray vertexArray;
+    GLsizei indexCount = 0;
+    Bounds bounds;
+
+    static GpuMesh upload(const Mesh& mesh);
+    void draw() const;
+};
+
+}  // namespace sss::detail

@@ -1,0 +1,218 @@
+#include "sss/volume.h"
+
+#include "sss/error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace sss {
+namespace {
+
+constexpr int kMaxSide = 8192;
+constexpr uint64_t kMaxBytes = uint64_t(4) << 30;  // 4 GiB
+
+std::string dimsStr(glm::ivec3 d) {
+    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+}
+
+const char* typeStr(VoxelType t) { return t == VoxelType::UInt16 ? "uint16" : "uint8"; }
+
+std::string vecStr(glm::vec3 v) {
+    std::ostringstream s;
+    s << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+    return s.str();
+}
+
+// Throws InvalidArgument (prefixed) unless dims/spacing describe a volume we accept.
+// Returns the byte size.
+uint64_t checkLayout(const std::string& prefix, glm::ivec3 dims, VoxelType type, glm::vec3 spacing) {
+    if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
+        throw Error(ErrorKind::InvalidArgument, prefix + "dims must be positive, got " + dimsStr(dims));
+    if (dims.x > kMaxSide || dims.y > kMaxSide || dims.z > kMaxSide)
+        throw Error(ErrorKind::InvalidArgument, prefix + "dims " + dimsStr(dims) +
+                                                    " are too large: each side must be <= " +
+                                                    std::to_string(kMaxSide));
+    const uint64_t bytes = uint64_t(dims.x) * uint64_t(dims.y) * uint64_t(dims.z) * bytesPerVoxel(type);
+    if (bytes > kMaxBytes) {
+        std::ostringstream s;
+        s << prefix << "dims " << dimsStr(dims) << ' ' << typeStr(type) << " would need "
+          << double(bytes) / double(uint64_t(1) << 30) << " GiB, more than the 4 GiB limit";
+        throw Error(ErrorKind::InvalidArgument, s.str());
+    }
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(spacing[i]) || spacing[i] <= 0.0f)
+            throw Error(ErrorKind::InvalidArgument,
+                        prefix + "spacing must be finite and > 0, got " + vecStr(spacing));
+    return bytes;
+}
+
+bool parseInt(std::string_view s, int& out) {
+    if (s.empty()) return false;
+    auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+    return ec == std::errc() && end == s.data() + s.size();
+}
+
+bool parseDimsToken(std::string_view token, glm::ivec3& dims) {
+    std::size_t a = token.find('x');
+    if (a == std::string_view::npos) return false;
+    std::size_t b = token.find('x', a + 1);
+    if (b == std::string_view::npos) return false;
+    // Digits only: from_chars would accept a leading '-', which is not a dims token.
+    if (!std::all_of(token.begin(), token.end(), [](char c) { return c == 'x' || (c >= '0' && c <= '9'); }))
+        return false;
+    return parseInt(token.substr(0, a), dims.x) && parseInt(token.substr(a + 1, b - a - 1), dims.y) &&
+           parseInt(token.substr(b + 1), dims.z);
+}
+
+bool equalsIgnoreCase(std::string_view a, std::string_view b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+           });
+}
+
+}  // namespace
+
+std::optional<RawVolumeInfo> parseRawVolumeName(std::string_view filename) {
+    if (std::size_t slash = filename.find_last_of("/\\"); slash != std::string_view::npos)
+        filename.remove_prefix(slash + 1);
+    RawVolumeInfo info;
+    bool haveDims = false, haveType = false;
+    std::size_t start = 0;
+    while (start <= filename.size()) {
+        std::size_t end = filename.find_first_of("_.", start);
+        if (end == std::string_view::npos) end = filename.size();
+        std::string_view token = filename.substr(start, end - start);
+        glm::ivec3 dims;
+        if (!haveDims && parseDimsToken(token, dims)) {
+            info.dims = dims;
+            haveDims = true;
+        } else if (!haveType && equalsIgnoreCase(token, "uint8")) {
+            info.type = VoxelType::UInt8;
+            haveType = true;
+        } else if (!haveType && equalsIgnoreCase(token, "uint16")) {
+            info.type = VoxelType::UInt16;
+            haveType = true;
+        }
+        start = end + 1;
+    }
+    if (!haveDims) return std::nullopt;
+    return info;
+}
+
+Volume Volume::fromData(glm::ivec3 dims, VoxelType type, std::vector<uint8_t> bytes, glm::vec3 spacing) {
+    const std::string prefix = "Volume::fromData: ";
+    const uint64_t expected = checkLayout(prefix, dims, type, spacing);
+    if (bytes.size() != expected)
+        throw Error(ErrorKind::InvalidArgument, prefix + "bytes has " + std::to_string(bytes.size()) +
+                                                    " bytes, expected " + std::to_string(expected) +
+                                                    " for " + dimsStr(dims) + " " + typeStr(type));
+    Volume v;
+    v.m_dims = dims;
+    v.m_type = type;
+    v.m_spacing = spacing;
+    v.m_bytes = std::move(bytes);
+    // Computed once here so valueRange() is a cheap, thread-safe getter.
+    uint16_t lo = 0xffff, hi = 0;
+    if (type == VoxelType::UInt8) {
+        auto [mn, mx] = std::minmax_element(v.m_bytes.begin(), v.m_bytes.end());
+        lo = *mn;
+        hi = *mx;
+    } else {
+        for (std::size_t i = 0; i + 1 < v.m_bytes.size(); i += 2) {
+            uint16_t value = uint16_t(v.m_bytes[i] | (v.m_bytes[i + 1] << 8));
+            lo = std::min(lo, value);
+            hi = std::max(hi, value);
+        }
+    }
+    v.m_range = {lo, hi};
+    return v;
+}
+
+Volume Volume::loadRaw(const std::filesystem::path& path, const RawLoadOptions& options) {
+    const std::string file = path.string();
+    const std::string prefix = "Volume::loadRaw: " + file + ": ";
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(ErrorKind::Io, prefix + "file does not exist");
+    if (std::filesystem::is_directory(path, ec)) throw Error(ErrorKind::Io, prefix + "is a directory");
+
+    const std::optional<RawVolumeInfo> info = parseRawVolumeName(path.filename().string());
+    if (!options.dims && !info)
+        throw Error(ErrorKind::InvalidArgument,
+                    prefix + "dimensions unknown: the file name has no WxHxD token (as in "
+                             "name_256x256x256_uint8.raw) and RawLoadOptions::dims is not set");
+    const glm::ivec3 dims = options.dims ? *options.dims : info->dims;
+    const VoxelType type = options.type ? *options.type : (info ? info->type : VoxelType::UInt8);
+    const glm::vec3 spacing = options.spacing ? *options.spacing : glm::vec3(1.0f);
+    const uint64_t expected = checkLayout(prefix, dims, type, spacing);
+
+    const uint64_t actual = std::filesystem::file_size(path, ec);
+    if (ec) throw Error(ErrorKind::Io, prefix + "cannot read the file size: " + ec.message());
+    if (actual != expected)
+        throw Error(ErrorKind::Parse, prefix + "file has " + std::to_string(actual) + " bytes, expected " +
+                                          std::to_string(expected) + " for " + dimsStr(dims) + " " +
+                                          typeStr(type));
+
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(ErrorKind::Io, prefix + "cannot be opened for reading");
+    std::vector<uint8_t> bytes(static_cast<std::size_t>(expected));
+    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(expected));
+    if (in.gcount() != static_cast<std::streamsize>(expected))
+        throw Error(ErrorKind::Io, prefix + "read " + std::to_string(in.gcount()) + " of " +
+                                       std::to_string(expected) + " bytes");
+    return fromData(dims, type, std::move(bytes), spacing);
+}
+
+uint16_t Volume::valueAt(int x, int y, int z) const {
+    if (x < 0 || y < 0 || z < 0 || x >= m_dims.x || y >= m_dims.y || z >= m_dims.z)
+        throw Error(ErrorKind::InvalidArgument, "Volume::valueAt: voxel (" + std::to_string(x) + ", " +
+                                                    std::to_string(y) + ", " + std::to_string(z) +
+                                                    ") is outside dims " + dimsStr(m_dims));
+    const std::size_t i = (static_cast<std::size_t>(z) * static_cast<std::size_t>(m_dims.y) +
+                           static_cast<std::size_t>(y)) * static_cast<std::size_t>(m_dims.x) +
+                          static_cast<std::size_t>(x);
+    if (m_type == VoxelType::UInt8) return m_bytes[i];
+    return uint16_t(m_bytes[2 * i] | (m_bytes[2 * i + 1] << 8));
+}
+
+float Volume::normalizedAt(int x, int y, int z) const {
+    const float scale = m_type == VoxelType::UInt8 ? 1.0f / 255.0f : 1.0f / 65535.0f;
+    return float(valueAt(x, y, z)) * scale;
+}
+
+Bounds Volume::worldBounds() const {
+    const glm::vec3 extent = glm::vec3(m_dims) * m_spacing;
+    const float largest = std::max(extent.x, std::max(extent.y, extent.z));
+    const glm::vec3 half = 0.5f * extent / largest;
+    Bounds b;
+    b.extend(-half);
+    b.extend(half);
+    return b;
+}
+
+std::vector<uint32_t> Volume::histogram(int bins) const {
+    if (bins < 1 || bins > 65536)
+        throw Error(ErrorKind::InvalidArgument,
+                    "Volume::histogram: bins must be in [1, 65536], got " + std::to_string(bins));
+    // 64-bit while counting: a 2048x2048x1024 uint8 volume of one value holds 2^32 voxels.
+    std::vector<uint64_t> counts(static_cast<std::size_t>(bins), 0);
+    const uint64_t range = m_type == VoxelType::UInt8 ? 256 : 65536;
+    if (m_type == VoxelType::UInt8) {
+        for (uint8_t value : m_bytes) ++counts[static_cast<std::size_t>(uint64_t(value) * uint64_t(bins) / range)];
+    } else {
+        for (std::size_t i = 0; i + 1 < m_bytes.size(); i += 2) {
+            const uint64_t value = uint64_t(m_bytes[i] | (m_bytes[i + 1] << 8));
+            ++counts[static_cast<std::size_t>(value * uint64_t(bins) / range)];
+        }
+    }
+    std::vector<uint32_t> result(counts.size());
+    std::transform(counts.begin(), counts.end(), result.begin(),
+                   [](uint64_t c) { return static_cast<uint32_t>(std::min<uint64_t>(c, UINT32_MAX)); });
+    return result;
+}
+
+}  // namespace sss

@@ -1,0 +1,75 @@
+#include "volume/ray_cast_pass.h"
+
+#include "light_uniforms.h"
+
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sss::detail {
+
+RayCastPass::RayCastPass(VolumeShading shading)
+    : m_shading(shading),
+      m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                   {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
+                                  {{"SHADING_GRADIENT", shading == VolumeShading::Gradient ? "1" : "0"}})),
+      m_emptyVertexArray(gl::VertexArray::create()) {}
+
+void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
+                      const glm::mat4& model, const std::vector<Light>& lights, const VolumeRenderOptions& options,
+                      const Camera& camera, float aspect) const {
+    const glm::mat4 viewProjection = camera.projection(aspect) * camera.view();
+    const float stepLength = options.stepSize * volume.voxelLength;
+    const glm::vec3 size = volume.box.size();
+    // Enough steps to cross the box diagonally, plus one for the jittered start.
+    const float diagonal = std::sqrt(glm::dot(size, size));
+    const int maxSteps = static_cast<int>(std::ceil(diagonal / stepLength)) + 2;
+
+    const gl::Program& p = m_program;
+    p.set("inverseViewProjection", glm::inverse(viewProjection));
+    p.set("worldToModel", glm::inverse(model));
+    p.set("volumeTexture", 0);
+    p.set("transferFunction", 1);
+    p.set("sceneDepth", 2);
+    p.set("transferFunctionEntries", static_cast<float>(transferFunction.size().x));
+    p.set("valueScaleOffset", volume.valueScaleOffset);
+    p.set("boxMin", volume.box.min);
+    p.set("boxMax", volume.box.max);
+    p.set("volumeDims", volume.dims);
+    p.set("stepLength", stepLength);
+    p.set("opacityExponent", options.stepSize);
+    p.set("earlyTermination", options.earlyTermination);
+    p.set("jitterEnabled", options.jitter ? 1 : 0);
+    p.set("maxSteps", maxSteps);
+    if (m_shading == VolumeShading::Gradient) {
+        p.set("modelToWorld", model);
+        p.set("normalToWorld", glm::mat3(glm::transpose(glm::inverse(model))));
+        p.set("cameraPosition", camera.position());
+        p.set("ambientStrength", options.ambient);
+        p.set("diffuseStrength", options.diffuse);
+        p.set("specularColor", options.specular);
+        p.set("shininess", options.shininess);
+        p.set("gradientThreshold", options.gradientThreshold);
+        setLightUniforms(p, lights);
+    }
+
+    volume.texture.bind(0);
+    transferFunction.bind(1);
+    sceneDepth.bind(2);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    // Premultiplied "over": the ray's colour in front of what the target already holds.
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    m_program.use();
+    m_emptyVertexArray.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+}
+
+}  // namespace sss::detail

@@ -1,0 +1,31 @@
+#pragma once
+// Single-pass GPU ray casting of a volume with a transfer function (shaders/volume/ray_cast.frag):
+// emission-absorption or gradient-shaded, front to back, early ray termination, opacity
+// correction and per-pixel jitter.
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "gl/vertex_array.h"
+#include "sss/camera.h"
+#include "sss/volume_scattering_renderer.h"
+#include "volume/gpu_volume.h"
+
+#include <vector>
+
+namespace sss::detail {
+
+class RayCastPass {
+public:
+    explicit RayCastPass(VolumeShading shading);
+    VolumeShading shading() const { return m_shading; }
+    /// `sceneDepth` is a copy of the target's depth (rays stop there); the target is bound.
+    void run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
+             const glm::mat4& model, const std::vector<Light>& lights, const VolumeRenderOptions& options,
+             const Camera& camera, float aspect) const;
+
+private:
+    VolumeShading m_shading;
+    gl::Program m_program;
+    gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
+};
+
+}  // namespace sss::detail

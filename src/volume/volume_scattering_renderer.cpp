@@ -1,0 +1,129 @@
+#include "sss/volume_scattering_renderer.h"
+
+#include "gl/texture.h"
+#include "light_uniforms.h"
+#include "sss/error.h"
+#include "sss/timing.h"
+#include "volume/gpu_volume.h"
+#include "volume/ray_cast_pass.h"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+
+namespace sss {
+namespace {
+
+void validate(const VolumeRenderOptions& o) {
+    auto fail = [](const std::string& field, const std::string& rule, float value) {
+        throw Error(ErrorKind::InvalidArgument,
+                    "VolumeRenderOptions::" + field + " must be " + rule + ", got " + std::to_string(value));
+    };
+    if (!(o.stepSize > 0.0f) || !std::isfinite(o.stepSize)) fail("stepSize", "finite and > 0 (voxels)", o.stepSize);
+    if (o.stepSize < 0.01f) fail("stepSize", "at least 0.01 voxels (smaller steps cannot finish)", o.stepSize);
+    if (!(o.earlyTermination > 0.0f && o.earlyTermination <= 1.0f))
+        fail("earlyTermination", "in (0, 1]", o.earlyTermination);
+    if (o.transferFunctionEntries < 2 || o.transferFunctionEntries > 65536)
+        fail("transferFunctionEntries", "in 2..65536", static_cast<float>(o.transferFunctionEntries));
+    if (!(o.ambient >= 0.0f) || !std::isfinite(o.ambient)) fail("ambient", "finite and >= 0", o.ambient);
+    if (!(o.diffuse >= 0.0f) || !std::isfinite(o.diffuse)) fail("diffuse", "finite and >= 0", o.diffuse);
+    if (!(o.shininess > 0.0f) || !std::isfinite(o.shininess)) fail("shininess", "finite and > 0", o.shininess);
+    if (!(o.gradientThreshold > 0.0f) || !std::isfinite(o.gradientThreshold))
+        fail("gradientThreshold", "finite and > 0", o.gradientThreshold);
+    const glm::vec3 s = o.specular;
+    if (!(s.x >= 0 && s.y >= 0 && s.z >= 0) || !std::isfinite(s.x + s.y + s.z))
+        throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions::specular must be finite and >= 0");
+}
+
+}  // namespace
+
+struct VolumeScatteringRenderer::Impl {
+    VolumeRenderOptions options;
+    TransferFunction transferFunction;
+    gl::Texture transferFunctionTable;
+    std::vector<Light> lights{DirectionalLight{}};
+    glm::mat4 model{1.0f};
+    std::optional<detail::GpuVolume> volume;
+    std::optional<detail::RayCastPass> rayCast;  // built for the current shading mode
+    gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
+
+    // Sampling the depth attachment of the framebuffer being drawn would be a feedback loop,
+    // so the ray caster reads a copy.
+    void copyDepth(const RenderTarget& target) {
+        const glm::ivec3 size(target.width(), target.height(), 1);
+        if (!sceneDepth || sceneDepth.size() != size) {
+            sceneDepth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size.x, size.y);
+            sceneDepth.setFilter(GL_NEAREST, GL_NEAREST);
+            sceneDepth.setLabel("volume scene depth");
+        }
+        glCopyImageSubData(target.depthTextureId(), GL_TEXTURE_2D, 0, 0, 0, 0, sceneDepth.id(), GL_TEXTURE_2D, 0,
+                           0, 0, 0, size.x, size.y, 1);
+    }
+    RenderStats stats;
+
+    void uploadTransferFunction() {
+        const std::vector<glm::vec4> table = transferFunction.table(options.transferFunctionEntries);
+        if (!transferFunctionTable || transferFunctionTable.size().x != static_cast<int>(table.size())) {
+            transferFunctionTable = gl::Texture::create2D(GL_RGBA32F, static_cast<int>(table.size()), 1);
+            transferFunctionTable.setLabel("transfer function");
+        }
+        transferFunctionTable.upload(GL_RGBA, GL_FLOAT, table.data());
+    }
+};
+
+VolumeScatteringRenderer::VolumeScatteringRenderer(const VolumeRenderOptions& options) {
+    validate(options);
+    m_impl = std::make_unique<Impl>();
+    m_impl->options = options;
+    m_impl->uploadTransferFunction();
+}
+
+VolumeScatteringRenderer::~VolumeScatteringRenderer() = default;
+VolumeScatteringRenderer::VolumeScatteringRenderer(VolumeScatteringRenderer&&) noexcept = default;
+VolumeScatteringRenderer& VolumeScatteringRenderer::operator=(VolumeScatteringRenderer&&) noexcept = default;
+
+void VolumeScatteringRenderer::setVolume(const Volume& volume, const glm::mat4& model) {
+    m_impl->volume = detail::GpuVolume::upload(volume);
+    m_impl->model = model;
+}
+
+void VolumeScatteringRenderer::setModelTransform(const glm::mat4& model) { m_impl->model = model; }
+
+void VolumeScatteringRenderer::setTransferFunction(const TransferFunction& tf) {
+    m_impl->transferFunction = tf;
+    m_impl->uploadTransferFunction();
+}
+
+void VolumeScatteringRenderer::setLights(std::vector<Light> lights) {
+    detail::validateLights(lights, "VolumeScatteringRenderer::setLights");
+    m_impl->lights = std::move(lights);
+}
+
+void VolumeScatteringRenderer::setOptions(const VolumeRenderOptions& options) {
+    validate(options);
+    const bool tableChanged = options.transferFunctionEntries != m_impl->options.transferFunctionEntries;
+    m_impl->options = options;
+    if (tableChanged) m_impl->uploadTransferFunction();
+}
+
+const VolumeRenderOptions& VolumeScatteringRenderer::options() const { return m_impl->options; }
+const RenderStats& VolumeScatteringRenderer::stats() const { return m_impl->stats; }
+
+void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target) {
+    if (!m_impl->volume)
+        throw Error(ErrorKind::InvalidArgument, "VolumeScatteringRenderer::render: no volume set (call setVolume first)");
+    // Programs are compiled lazily, once per shading mode in use.
+    if (!m_impl->rayCast || m_impl->rayCast->shading() != m_impl->options.shading)
+        m_impl->rayCast.emplace(m_impl->options.shading);
+    const auto start = std::chrono::steady_clock::now();
+    m_impl->copyDepth(target);
+    target.bindForDrawing();
+    m_impl->rayCast->run(*m_impl->volume, m_impl->transferFunctionTable, m_impl->sceneDepth, m_impl->model,
+                         m_impl->lights, m_impl->options, camera, target.aspect());
+    if (m_impl->options.finishEachPass) finishGpuWork();
+    m_impl->stats.record(m_impl->options.shading == VolumeShading::Gradient ? "ray-cast-gradient" : "ray-cast",
+                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+}  // namespace sss
