@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <unordered_map>
@@ -69,6 +70,28 @@ std::string trimmed(std::string s) {
     return s;
 }
 
+// tinyobjloader's number parser reads "nan" (and other non-numbers) as 0, which would load a
+// silently wrong mesh, so vertex lines are checked here first. Returns an error message or "".
+std::string findBadVertexCoordinate(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::string line;
+    std::size_t vertex = 0;
+    while (std::getline(in, line)) {
+        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+        ++vertex;
+        std::istringstream tokens(line.substr(2));
+        std::string token;
+        for (int axis = 0; axis < 3 && tokens >> token; ++axis) {
+            char* end = nullptr;
+            const double value = std::strtod(token.c_str(), &end);
+            if (end != token.c_str() + token.size() || !std::isfinite(value))
+                return "vertex " + std::to_string(vertex) + " has a non-finite or non-numeric coordinate \"" +
+                       token + "\"";
+        }
+    }
+    return {};
+}
+
 }  // namespace
 
 Mesh Mesh::fromArrays(std::vector<glm::vec3> positions, std::vector<uint32_t> indices,
@@ -122,6 +145,9 @@ Mesh Mesh::load(const std::filesystem::path& path) {
         throw Error(ErrorKind::Io, file + ": is a directory, not an OBJ file");
     if (!std::ifstream(path))
         throw Error(ErrorKind::Io, file + ": cannot be opened for reading");
+
+    if (const std::string bad = findBadVertexCoordinate(path); !bad.empty())
+        throw Error(ErrorKind::Parse, file + ": " + bad);
 
     // Triangulate ourselves: tinyobjloader silently drops polygons with out-of-range indices
     // (and keeps triangles with them), so we need the raw faces to report bad indices.

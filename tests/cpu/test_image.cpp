@@ -82,7 +82,7 @@ TEST_CASE("PNG errors name the file", "[cpu]") {
     sss::test::TempDir dir;
     const auto missing = dir.path() / "missing.png";
     REQUIRE_SSS_ERROR(Image8::loadPng(missing), ErrorKind::Io, Contains(missing.string()) && Contains("does not exist"));
-    const auto garbage = dir.writeText("garbage.png", "this is not a png");
+    const auto garbage = dir.write("garbage.png", "this is not a png");
     REQUIRE_SSS_ERROR(Image8::loadPng(garbage), ErrorKind::Parse,
                       Contains(garbage.string()) && Contains("cannot decode image: "));
     const auto noDir = dir.path() / "no" / "such" / "dir" / "out.png";

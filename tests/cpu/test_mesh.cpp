@@ -48,7 +48,7 @@ glm::vec3 faceNormal(const Mesh& m, std::size_t t) {
 
 TEST_CASE("Mesh::load reads an OBJ with normals, triangulating quads", "[cpu]") {
     sss::test::TempDir dir;
-    const auto path = dir.writeText("cube_n.obj", std::string(kCubeVertices) + kCubeQuadsWithNormals);
+    const auto path = dir.write("cube_n.obj", std::string(kCubeVertices) + kCubeQuadsWithNormals);
     const Mesh m = Mesh::load(path);
     CHECK(m.triangleCount() == 12);
     // 8 corners x 3 face normals each: one vertex per distinct (position, normal) pair.
@@ -72,7 +72,7 @@ TEST_CASE("Mesh::load reads an OBJ with normals, triangulating quads", "[cpu]") 
 
 TEST_CASE("Mesh::load computes smooth normals when the file has none", "[cpu]") {
     sss::test::TempDir dir;
-    const Mesh m = Mesh::load(dir.writeText("cube.obj", std::string(kCubeVertices) + kCubeQuads));
+    const Mesh m = Mesh::load(dir.write("cube.obj", std::string(kCubeVertices) + kCubeQuads));
     CHECK(m.triangleCount() == 12);
     CHECK(m.vertexCount() == 8);  // one vertex per position when smoothing
     for (std::size_t i = 0; i < m.vertexCount(); ++i) {
@@ -94,7 +94,7 @@ TEST_CASE("Mesh::load smooths when only some faces have normals", "[cpu]") {
                              "vn 0 0 -1\n"
                              "f 1//1 4//1 3//1 2//1\n"
                              "f 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
-    const Mesh m = Mesh::load(dir.writeText("mixed.obj", text));
+    const Mesh m = Mesh::load(dir.write("mixed.obj", text));
     CHECK(m.vertexCount() == 8);
     CHECK(m.triangleCount() == 12);
     // The corner normal is the smooth diagonal, not the file's (0,0,-1).
@@ -110,7 +110,7 @@ TEST_CASE("Mesh::load merges shapes, fans polygons and resolves relative indices
         "o second\n"
         "v 0 0 1\nv 1 0 1\nv 0 1 1\n"
         "f -3 -2 -1\n";  // relative: vertices 6, 7, 8
-    const Mesh m = Mesh::load(dir.writeText("two.obj", text));
+    const Mesh m = Mesh::load(dir.write("two.obj", text));
     CHECK(m.triangleCount() == 4);
     CHECK(m.vertexCount() == 8);
     CHECK(m.bounds().min == glm::vec3(-0.3f, 0.0f, 0.0f));
@@ -124,35 +124,42 @@ TEST_CASE("Mesh::load reports bad files with the file name and the problem", "[c
     const auto missing = dir.path() / "nope.obj";
     REQUIRE_SSS_ERROR(Mesh::load(missing), ErrorKind::Io, Contains(missing.string()) && Contains("does not exist"));
 
-    const auto outOfRange = dir.writeText("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 9\n");
+    const auto outOfRange = dir.write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 9\n");
     REQUIRE_SSS_ERROR(Mesh::load(outOfRange), ErrorKind::Parse,
                       Contains(outOfRange.string()) && Contains("face 2 references vertex 9") &&
                           Contains("4 vertices"));
 
     // tinyobjloader itself silently drops quads with bad indices; we must still report them.
-    const auto quadOutOfRange = dir.writeText("quad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 7\n");
+    const auto quadOutOfRange = dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 7\n");
     REQUIRE_SSS_ERROR(Mesh::load(quadOutOfRange), ErrorKind::Parse,
                       Contains("quad.obj") && Contains("face 1 references vertex 7"));
 
-    const auto relativeOut = dir.writeText("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -5\n");
+    const auto relativeOut = dir.write("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -5\n");
     REQUIRE_SSS_ERROR(Mesh::load(relativeOut), ErrorKind::Parse, Contains("rel.obj") && Contains("face 1 references vertex"));
 
-    const auto badNormal = dir.writeText("badn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//4\n");
+    const auto badNormal = dir.write("badn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//4\n");
     REQUIRE_SSS_ERROR(Mesh::load(badNormal), ErrorKind::Parse,
                       Contains("badn.obj") && Contains("references normal 4") && Contains("1 normals"));
 
-    const auto noFaces = dir.writeText("nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    const auto noFaces = dir.write("nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
     REQUIRE_SSS_ERROR(Mesh::load(noFaces), ErrorKind::Parse, Contains("nofaces.obj") && Contains("no faces"));
 
-    const auto empty = dir.writeText("empty.obj", "");
+    const auto empty = dir.write("empty.obj", "");
     REQUIRE_SSS_ERROR(Mesh::load(empty), ErrorKind::Parse, Contains("empty.obj") && Contains("no faces"));
 
-    const auto inf = dir.writeText("inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n");
+    const auto inf = dir.write("inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n");
     REQUIRE_SSS_ERROR(Mesh::load(inf), ErrorKind::Parse,
                       Contains("inf.obj") && Contains("vertex 2") && Contains("non-finite"));
 
+    // tinyobjloader alone would read these as 0: a silently wrong mesh.
+    for (const char* token : {"nan", "-nan", "NaN", "abc"}) {
+        const auto bad = dir.write("nan.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 ") + token + " 0\nf 1 2 3\n");
+        REQUIRE_SSS_ERROR(Mesh::load(bad), ErrorKind::Parse,
+                          Contains("nan.obj") && Contains("vertex 3") && Contains(token));
+    }
+
     // A zero index is invalid OBJ; tinyobjloader's own message is passed on.
-    const auto zero = dir.writeText("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+    const auto zero = dir.write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
     REQUIRE_SSS_ERROR(Mesh::load(zero), ErrorKind::Parse,
                       Contains("zero.obj") && Contains("cannot parse OBJ") && Contains("line 4"));
 

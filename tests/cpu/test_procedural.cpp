@@ -66,7 +66,7 @@ TEST_CASE("makeUvSphere 20x20 matches the reference sphere", "[cpu]") {
     CHECK(s.vertexCount() == 382);
     CHECK(s.triangleCount() == 800);
     std::size_t degenerate = 0;
-    for (std::size_t t = 0; t < s.triangleCount(); ++t) degenerate += isDegenerate(s, t) ? 1 : 0;
+    for (std::size_t t = 0; t < s.triangleCount(); ++t) degenerate += isDegenerate(s, t) ? 1u : 0u;
     CHECK(degenerate == 40);  // one per pole quad
     for (std::size_t i = 0; i < s.vertexCount(); ++i) {
         const glm::vec3 p = s.positions()[i], n = s.normals()[i];

@@ -46,7 +46,7 @@ TEST_CASE("Volume::loadRaw loads 8-bit data with x fastest", "[cpu]") {
     sss::test::TempDir dir;
     std::vector<uint8_t> bytes(4 * 3 * 2);
     std::iota(bytes.begin(), bytes.end(), uint8_t(10));
-    const auto path = dir.writeBytes("t_4x3x2_uint8.raw", bytes);
+    const auto path = sss::test::writeBytes(dir, "t_4x3x2_uint8.raw", bytes);
     const Volume v = Volume::loadRaw(path);
     CHECK(v.dims() == glm::ivec3(4, 3, 2));
     CHECK(v.type() == VoxelType::UInt8);
@@ -76,7 +76,7 @@ TEST_CASE("Volume::loadRaw loads 16-bit little-endian data", "[cpu]") {
     sss::test::TempDir dir;
     // 2x2x1 voxels: 0x1234, 0x0001, 0xFFFF, 0x0100.
     const std::vector<uint8_t> bytes = {0x34, 0x12, 0x01, 0x00, 0xFF, 0xFF, 0x00, 0x01};
-    const Volume v = Volume::loadRaw(dir.writeBytes("ct_2x2x1_uint16.raw", bytes));
+    const Volume v = Volume::loadRaw(sss::test::writeBytes(dir, "ct_2x2x1_uint16.raw", bytes));
     CHECK(v.type() == VoxelType::UInt16);
     CHECK(v.valueAt(0, 0, 0) == 0x1234);
     CHECK(v.valueAt(1, 0, 0) == 1);
@@ -96,7 +96,7 @@ TEST_CASE("RawLoadOptions override the file name", "[cpu]") {
     sss::test::TempDir dir;
     const std::vector<uint8_t> bytes(8 * 2 * 1, 7);
     // The name says 4x4x1 uint8 (16 bytes): options reinterpret the same 16 bytes.
-    const auto path = dir.writeBytes("v_4x4x1_uint8.raw", bytes);
+    const auto path = sss::test::writeBytes(dir, "v_4x4x1_uint8.raw", bytes);
     RawLoadOptions opt;
     opt.dims = glm::ivec3(4, 2, 1);
     opt.type = VoxelType::UInt16;
@@ -111,7 +111,7 @@ TEST_CASE("RawLoadOptions override the file name", "[cpu]") {
     CHECK(v.worldBounds().max == glm::vec3(0.5f));
 
     // No name token: options alone are enough.
-    const auto plain = dir.writeBytes("plain.raw", bytes);
+    const auto plain = sss::test::writeBytes(dir, "plain.raw", bytes);
     RawLoadOptions dimsOnly;
     dimsOnly.dims = glm::ivec3(16, 1, 1);
     CHECK(Volume::loadRaw(plain, dimsOnly).type() == VoxelType::UInt8);
@@ -128,23 +128,23 @@ TEST_CASE("Volume::worldBounds: largest side 1, centred, proportional", "[cpu]")
 
 TEST_CASE("Volume::loadRaw reports bad input with the file and the problem", "[cpu]") {
     sss::test::TempDir dir;
-    const auto shortFile = dir.writeBytes("x_4x4x4_uint8.raw", std::vector<uint8_t>(60, 1));
+    const auto shortFile = sss::test::writeBytes(dir, "x_4x4x4_uint8.raw", std::vector<uint8_t>(60, 1));
     REQUIRE_SSS_ERROR(Volume::loadRaw(shortFile), ErrorKind::Parse,
                       Contains("Volume::loadRaw") && Contains(shortFile.string()) && Contains("file has 60 bytes") &&
                           Contains("expected 64 for 4x4x4 uint8"));
 
-    const auto shortFile16 = dir.writeBytes("x_4x4x4_uint16.raw", std::vector<uint8_t>(64, 1));
+    const auto shortFile16 = sss::test::writeBytes(dir, "x_4x4x4_uint16.raw", std::vector<uint8_t>(64, 1));
     REQUIRE_SSS_ERROR(Volume::loadRaw(shortFile16), ErrorKind::Parse,
                       Contains("x_4x4x4_uint16.raw") && Contains("expected 128 for 4x4x4 uint16"));
 
     const auto missing = dir.path() / "gone_4x4x4_uint8.raw";
     REQUIRE_SSS_ERROR(Volume::loadRaw(missing), ErrorKind::Io, Contains(missing.string()) && Contains("does not exist"));
 
-    const auto noDims = dir.writeBytes("nodims.raw", std::vector<uint8_t>(8, 1));
+    const auto noDims = sss::test::writeBytes(dir, "nodims.raw", std::vector<uint8_t>(8, 1));
     REQUIRE_SSS_ERROR(Volume::loadRaw(noDims), ErrorKind::InvalidArgument,
                       Contains("nodims.raw") && Contains("dimensions unknown") && Contains("RawLoadOptions::dims"));
 
-    const auto zero = dir.writeBytes("z_0x4x4_uint8.raw", {});
+    const auto zero = sss::test::writeBytes(dir, "z_0x4x4_uint8.raw", {});
     REQUIRE_SSS_ERROR(Volume::loadRaw(zero), ErrorKind::InvalidArgument,
                       Contains("z_0x4x4_uint8.raw") && Contains("dims must be positive") && Contains("0x4x4"));
 
@@ -153,15 +153,15 @@ TEST_CASE("Volume::loadRaw reports bad input with the file and the problem", "[c
     REQUIRE_SSS_ERROR(Volume::loadRaw(noDims, negative), ErrorKind::InvalidArgument,
                       Contains("nodims.raw") && Contains("2x-2x2"));
 
-    const auto huge = dir.writeBytes("h_9000x4x4_uint8.raw", {});
+    const auto huge = sss::test::writeBytes(dir, "h_9000x4x4_uint8.raw", {});
     REQUIRE_SSS_ERROR(Volume::loadRaw(huge), ErrorKind::InvalidArgument,
                       Contains("h_9000x4x4_uint8.raw") && Contains("too large") && Contains("8192"));
 
-    const auto tooMuch = dir.writeBytes("h_8192x8192x8192_uint16.raw", {});
+    const auto tooMuch = sss::test::writeBytes(dir, "h_8192x8192x8192_uint16.raw", {});
     REQUIRE_SSS_ERROR(Volume::loadRaw(tooMuch), ErrorKind::InvalidArgument,
                       Contains("h_8192x8192x8192_uint16.raw") && Contains("1024 GiB") && Contains("4 GiB limit"));
 
-    const auto ok = dir.writeBytes("ok_2x2x2_uint8.raw", std::vector<uint8_t>(8, 1));
+    const auto ok = sss::test::writeBytes(dir, "ok_2x2x2_uint8.raw", std::vector<uint8_t>(8, 1));
     RawLoadOptions badSpacing;
     badSpacing.spacing = glm::vec3(1.0f, 0.0f, 1.0f);
     REQUIRE_SSS_ERROR(Volume::loadRaw(ok, badSpacing), ErrorKind::InvalidArgument,
