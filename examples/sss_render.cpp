@@ -40,7 +40,8 @@ output:
   --background R,G,B        background colour in [0,1] (default: 0.1,0.1,0.12)
   --repeat N                render N times and report median/min/max (default: 1)
 shading:
-  --mode MODE               blinn-phong (mesh), emission-absorption or gradient (volume);
+  --mode MODE               blinn-phong (mesh), emission-absorption, gradient, scattering
+                            or scattering-gradient (volume);
                             default: blinn-phong for a mesh, emission-absorption for a volume.
                             With both a mesh and a volume, MODE is the volume's; the mesh is
                             drawn in blinn-phong and cuts the volume's rays.
@@ -51,6 +52,8 @@ shading:
   --step VOXELS             ray step in voxels (default: 1)
   --early-termination A     stop rays at this opacity, (0,1] (default: 0.99)
   --no-jitter               no per-pixel ray offset
+  --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
+  --anisotropy G            Henyey-Greenstein g for the scattering cone, (-1,1) (default: 0.5)
 camera and light:
   --yaw DEG --pitch DEG     orbit angles around the scene centre (default: 30, 20)
   --zoom F                  distance factor after framing the scene (default: 1)
@@ -75,7 +78,7 @@ struct Args {
     int width = 1200, height = 680, repeat = 1;
     glm::vec3 background{0.1f, 0.1f, 0.12f};
     glm::vec3 color{0.8f, 0.75f, 0.7f};
-    float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f;
+    float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
     bool jitter = true, ortho = false, listTf = false;
     float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
@@ -115,6 +118,14 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text) {
     const auto parts = split(text, ',');
     if (parts.size() != 3) throw UsageError(option + ": expected X,Y,Z, got \"" + text + "\"");
     return {parseFloat(option, parts[0]), parseFloat(option, parts[1]), parseFloat(option, parts[2])};
+}
+
+std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
+    if (mode == "emission-absorption") return sss::VolumeShading::EmissionAbsorption;
+    if (mode == "gradient") return sss::VolumeShading::Gradient;
+    if (mode == "scattering") return sss::VolumeShading::Scattering;
+    if (mode == "scattering-gradient") return sss::VolumeShading::ScatteringGradient;
+    return std::nullopt;
 }
 
 Args parseArgs(int argc, char** argv) {
@@ -163,6 +174,8 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--step") a.step = parseFloat(opt, value());
         else if (opt == "--early-termination") a.earlyTermination = parseFloat(opt, value());
         else if (opt == "--no-jitter") a.jitter = false;
+        else if (opt == "--light-volume-scale") a.lightVolumeScale = parseFloat(opt, value());
+        else if (opt == "--anisotropy") a.anisotropy = parseFloat(opt, value());
         else if (opt == "--yaw") a.yaw = parseFloat(opt, value());
         else if (opt == "--pitch") a.pitch = parseFloat(opt, value());
         else if (opt == "--zoom") {
@@ -180,9 +193,10 @@ Args parseArgs(int argc, char** argv) {
     if (a.mesh.empty() && a.volume.empty()) throw UsageError("nothing to render: give --mesh PATH and/or --volume PATH");
     if (a.mode.empty()) a.mode = a.volume.empty() ? "blinn-phong" : "emission-absorption";
     const bool meshMode = a.mode == "blinn-phong";
-    const bool volumeMode = a.mode == "emission-absorption" || a.mode == "gradient";
+    const bool volumeMode = volumeShading(a.mode).has_value();
     if (!meshMode && !volumeMode)
-        throw UsageError("--mode: unknown mode \"" + a.mode + "\" (blinn-phong, emission-absorption, gradient)");
+        throw UsageError("--mode: unknown mode \"" + a.mode +
+                         "\" (blinn-phong, emission-absorption, gradient, scattering, scattering-gradient)");
     if (meshMode && a.mesh.empty()) throw UsageError("--mode blinn-phong needs --mesh");
     if (volumeMode && a.volume.empty()) throw UsageError("--mode " + a.mode + " needs --volume");
     if (meshMode && !a.volume.empty())
@@ -286,10 +300,12 @@ int run(const Args& a) {
     std::optional<sss::VolumeScatteringRenderer> volumeRenderer;
     if (volume) {
         volumeRenderer.emplace(sss::VolumeRenderOptions{
-            .shading = a.mode == "gradient" ? sss::VolumeShading::Gradient : sss::VolumeShading::EmissionAbsorption,
+            .shading = *volumeShading(a.mode),
             .stepSize = a.step,
             .earlyTermination = a.earlyTermination,
-            .jitter = a.jitter});
+            .jitter = a.jitter,
+            .lightVolumeScale = a.lightVolumeScale,
+            .anisotropy = a.anisotropy});
         volumeRenderer->setVolume(*volume);
         volumeRenderer->setTransferFunction(*tf);
         volumeRenderer->setLights({light});

@@ -14,6 +14,7 @@ struct DirectionalLight {
     glm::vec3 direction{0.0f, 0.0f, -1.0f};  ///< direction the light travels (not towards it); normalized on use, must be non-zero
     glm::vec3 color{1.0f};                   ///< linear RGB, each >= 0
     float intensity = 1.0f;                  ///< scales color, >= 0
+    bool operator==(const DirectionalLight&) const = default;
 };
 
 /// An isotropic point light.
@@ -21,6 +22,7 @@ struct PointLight {
     glm::vec3 position{0.0f, 2.0f, 2.0f};  ///< world-space position
     glm::vec3 color{1.0f};                 ///< linear RGB, each >= 0
     float intensity = 1.0f;                ///< scales color, >= 0
+    bool operator==(const PointLight&) const = default;
 };
 
 /// Either kind of light.

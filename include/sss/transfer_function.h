@@ -7,8 +7,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace sss {
@@ -75,6 +78,44 @@ public:
 
     /// Names accepted by preset(), in a stable order.
     static std::vector<std::string> presetNames();
+
+    /// Loads a ParaView JSON colour-map preset (the format of ParaView's "Import Presets", also
+    /// used by vtk.js ColorMaps.json): a JSON array of preset objects, of which the first is
+    /// used, or a single preset object. Fields read:
+    ///  - "RGBPoints" (required): flat [x, r, g, b, ...], x in data units, r/g/b in [0,1];
+    ///  - "Points" (optional): opacity, flat [x, alpha, midpoint, sharpness, ...], alpha,
+    ///    midpoint and sharpness in [0,1]. Without "Points" the opacity is a linear ramp from 0
+    ///    at the bottom of the range (below) to 1 at its top.
+    /// Other fields ("Name", "ColorSpace", "NanColor", ...) are ignored.
+    /// x maps to this function's [0,1] domain linearly: dataRange (lo, hi) -> (0, 1) if given,
+    /// else the smallest..largest x in RGBPoints and Points together (a single x maps to 0).
+    /// Nodes beyond [0,1] are cut off there (the curves are evaluated at 0 and 1); outside its
+    /// nodes each curve holds its end value, as ParaView's do.
+    /// Colour and opacity are merged into one list of control points at the union of their
+    /// (mapped) x positions, each curve being evaluated there piecewise-linearly. Approximations:
+    /// colours are interpolated in linear RGB whatever "ColorSpace" says (HSV, Lab, Diverging
+    /// and Step are not reproduced between nodes); a midpoint other than 0.5 or a sharpness
+    /// other than 0 is treated as a linear segment; nodes with equal x replace the earlier
+    /// one (so a step discontinuity becomes the later node's value); x positions closer than
+    /// float precision after mapping are merged (the first one is kept).
+    /// @throws Error Io if the file is missing or unreadable; Parse if it is not JSON (the
+    ///         parser's line/column is given), has no preset object, lacks "RGBPoints", has an
+    ///         empty list or one whose length is not a multiple of 4, a non-number or
+    ///         non-finite entry, a colour/alpha/midpoint/sharpness outside [0,1] or x not
+    ///         sorted ascending (the entry's index is given); InvalidArgument if dataRange is
+    ///         not finite with lo < hi. Messages start with
+    ///         "TransferFunction::loadParaViewJson: <path>: ".
+    static TransferFunction loadParaViewJson(const std::filesystem::path& path,
+                                             std::optional<std::pair<double, double>> dataRange = {});
+
+    /// Writes this function as a ParaView JSON preset: an array holding one object with "Name",
+    /// "ColorSpace": "RGB", "RGBPoints" and "Points" (midpoint 0.5, sharpness 0: linear
+    /// segments), x in [0,1]. If the first point is above 0 or the last below 1, nodes with the
+    /// end values are added at 0 and 1 so that loadParaViewJson() without a dataRange maps the
+    /// file back onto the same positions (the function is unchanged: it is constant there).
+    /// Numbers are written with 17 significant digits, so a load gives the same points back.
+    /// @throws Error Io naming the file if it cannot be written.
+    void saveParaViewJson(const std::filesystem::path& path, std::string_view name = "libsss") const;
 
 private:
     void touch();

@@ -2,9 +2,19 @@
 /// @file
 /// Renders a scalar volume by single-pass GPU ray casting with a transfer function. Modes:
 ///  - VolumeShading::EmissionAbsorption: transfer-function colour and opacity only;
-///  - VolumeShading::Gradient: plus Blinn-Phong shading with normals from central differences.
-/// Both are the thesis's "scattering off" baselines; the Ropinski et al. 2010 light volume
-/// arrives as further modes.
+///  - VolumeShading::Gradient: plus Blinn-Phong shading with normals from central differences;
+///  - VolumeShading::Scattering: light from a light volume (Ropinski, Doering, Rezk-Salama 2010):
+///    per light, the chromaticity c and intensity l of the light arriving at each point,
+///    propagated slice by slice from the light, with hard shadows in l and the colour of the
+///    medium the light crossed, blurred over a forward cone, in c. A sample of TF colour C is
+///    shaded C * (ambient + diffuse * sum_lights E * c * l);
+///  - VolumeShading::ScatteringGradient: Scattering plus gradient Blinn-Phong highlights, each
+///    dimmed by l.
+/// EmissionAbsorption and Gradient are the thesis's "scattering off" baselines.
+///
+/// Optical model shared by every mode: the TF opacity alpha is defined per voxel length (the
+/// smallest voxel edge), i.e. extinction sigma_t = -ln(1 - alpha) per voxel; the ray step and the
+/// light propagation both correct opacity for their own path lengths.
 
 #include "sss/camera.h"
 #include "sss/light.h"
@@ -20,7 +30,7 @@
 
 namespace sss {
 
-enum class VolumeShading { EmissionAbsorption, Gradient };
+enum class VolumeShading { EmissionAbsorption, Gradient, Scattering, ScatteringGradient };
 
 struct VolumeRenderOptions {
     VolumeShading shading = VolumeShading::EmissionAbsorption;
@@ -33,14 +43,22 @@ struct VolumeRenderOptions {
     bool jitter = true;
     /// Entries of the transfer-function lookup table, 2..65536 (default: 256).
     int transferFunctionEntries = 256;
-    // Gradient shading (VolumeShading::Gradient only):
+    // Shading (every mode but EmissionAbsorption):
     float ambient = 0.25f;           ///< ambient fraction of the TF colour (default: 0.25)
     float diffuse = 0.85f;           ///< diffuse fraction of the TF colour (default: 0.85)
+    // Gradient highlights (Gradient, ScatteringGradient):
     glm::vec3 specular{0.3f};        ///< specular colour (default: 0.3)
     float shininess = 32.0f;         ///< Blinn-Phong exponent, > 0 (default: 32)
     /// Gradient magnitude (value change per voxel, 0..1 scale) at which shading is fully on;
     /// weaker gradients fade to the unshaded colour (default: 0.02).
     float gradientThreshold = 0.02f;
+    // Light volume (Scattering, ScatteringGradient):
+    /// Light-volume resolution relative to the data, in (0, 1] (default: 1, as the thesis).
+    float lightVolumeScale = 1.0f;
+    /// Henyey-Greenstein g in (-1, 1): the forward cone over which the light's colour is blurred
+    /// holds half of the phase function's energy; g <= 0 gives the widest cone, 60 degrees
+    /// (default: 0.5, about 47 degrees).
+    float anisotropy = 0.5f;
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).
     bool finishEachPass = false;
 };

@@ -1,16 +1,15 @@
 // Single-pass GPU ray casting, front to back, with the transfer function (post-classification).
 // Variants (defines set by src/volume/ray_cast_pass.cpp):
-//   SHADING_GRADIENT 0|1 : 0 = emission-absorption, 1 = gradient (Blinn-)Phong shading
+//   SHADING_GRADIENT 0|1   : Blinn-Phong from the gradient (central differences)
+//   SHADING_SCATTERING 0|1 : light from the light volumes (chromaticity c, intensity l)
+// Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
 #include "common/lights.glsl"
 #include "common/blinn_phong.glsl"
 #include "volume/ray_setup.glsl"
+#include "volume/transfer_function.glsl"
 
 in vec2 ndc;
 
-uniform sampler3D volumeTexture;
-uniform sampler2D transferFunction;   // 1 row of TF_ENTRIES entries, entry i at value i/(N-1)
-uniform float transferFunctionEntries;
-uniform vec2 valueScaleOffset;        // TF coordinate = sample * x + y (data range -> [0,1])
 uniform vec3 boxMin;
 uniform vec3 boxMax;
 uniform ivec3 volumeDims;
@@ -21,53 +20,82 @@ uniform int jitterEnabled;
 uniform int maxSteps;
 uniform sampler2D sceneDepth;         // depth of what the target already holds (opaque meshes)
 
-#if SHADING_GRADIENT
+#if SHADING_GRADIENT || SHADING_SCATTERING
 uniform mat4 modelToWorld;
-uniform mat3 normalToWorld;
-uniform vec3 cameraPosition;
 uniform float ambientStrength;
 uniform float diffuseStrength;
+#endif
+#if SHADING_GRADIENT
+uniform mat3 normalToWorld;
+uniform vec3 cameraPosition;
 uniform vec3 specularColor;
 uniform float shininess;
 uniform float gradientThreshold;   // |gradient| (per voxel) below which shading fades out
+#endif
+#if SHADING_SCATTERING
+uniform sampler3D lightVolumes[MAX_LIGHTS];   // one per light: (c, l) arriving at each point
 #endif
 
 layout(location = 0) out vec4 fragColor;   // premultiplied colour, alpha = opacity
 
 vec3 toTexture(vec3 p) { return (p - boxMin) / (boxMax - boxMin); }
 
-vec4 classify(float value) {
-    float x = clamp(value * valueScaleOffset.x + valueScaleOffset.y, 0.0, 1.0);
-    float u = (x * (transferFunctionEntries - 1.0) + 0.5) / transferFunctionEntries;
-    return texture(transferFunction, vec2(u, 0.5));
-}
-
 #if SHADING_GRADIENT
-vec3 shade(vec3 p, vec3 tc, vec3 color) {
+struct SurfaceNormal {
+    vec3 n;          // world space, facing the viewer (two-sided)
+    float strength;  // 0..1: fades shading out where the gradient is too weak to define n
+};
+
+SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
     // Central differences, one voxel apart on each axis; gradient in value units per voxel.
     vec3 h = 1.0 / vec3(volumeDims);
     vec3 g = vec3(texture(volumeTexture, tc + vec3(h.x, 0, 0)).r - texture(volumeTexture, tc - vec3(h.x, 0, 0)).r,
                   texture(volumeTexture, tc + vec3(0, h.y, 0)).r - texture(volumeTexture, tc - vec3(0, h.y, 0)).r,
                   texture(volumeTexture, tc + vec3(0, 0, h.z)).r - texture(volumeTexture, tc - vec3(0, 0, h.z)).r) *
              0.5 * valueScaleOffset.x;
-    float magnitude = length(g);
-    vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
-    vec3 v = normalize(cameraPosition - worldPosition);
     // Surfaces face from high to low values; scale the model-space gradient by the box so
     // anisotropic boxes get correct normals.
     vec3 outward = normalToWorld * (-g * vec3(volumeDims) / (boxMax - boxMin));
     float outwardLength = length(outward);
     // A zero gradient has no direction (normalize would give NaN); fall back to the view vector.
     vec3 n = outwardLength > 1e-12 ? outward / outwardLength : v;
-    if (dot(n, v) < 0.0) n = -n;   // two-sided: shade the side facing the viewer
+    if (dot(n, v) < 0.0) n = -n;
+    return SurfaceNormal(n, smoothstep(0.0, gradientThreshold, length(g)));
+}
+#endif
+
+#if SHADING_GRADIENT || SHADING_SCATTERING
+vec3 shade(vec3 p, vec3 tc, vec3 color) {
+    vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
+#if SHADING_GRADIENT
+    vec3 v = normalize(cameraPosition - worldPosition);
+    SurfaceNormal surface = gradientNormal(tc, v);
+#endif
     vec3 lit = ambientStrength * color;
     for (int i = 0; i < lightCount; ++i) {
         vec3 radiance;
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
-        lit += blinnPhong(n, l, v, radiance, diffuseStrength * color, specularColor, shininess);
+#if SHADING_SCATTERING
+        // Diffuse light is what the light volume says arrives here: tinted by c, dimmed by l.
+        vec4 arriving = texture(lightVolumes[i], tc);
+        lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
+#if SHADING_GRADIENT
+        vec3 h = normalize(l + v);
+        float nDotL = dot(surface.n, l);
+        if (nDotL > 0.0)
+            lit += surface.strength * arriving.a * radiance * specularColor *
+                   pow(max(dot(surface.n, h), 0.0), shininess);
+#endif
+#else
+        lit += blinnPhong(surface.n, l, v, radiance, diffuseStrength * color, specularColor, shininess);
+#endif
     }
+#if SHADING_SCATTERING
+    return lit;
+#else
     // Homogeneous regions have no meaningful normal: fade to the unshaded colour there.
-    return mix(color, lit, smoothstep(0.0, gradientThreshold, magnitude));
+    return mix(color, lit, surface.strength);
+#endif
 }
 #endif
 
@@ -92,9 +120,9 @@ void main() {
             float value = texture(volumeTexture, tc).r;
             vec4 tf = classify(value);
             if (tf.a <= 0.0) continue;
-            // Opacity correction: the TF's opacity is defined per voxel length.
-            float a = 1.0 - pow(1.0 - min(tf.a, 1.0), opacityExponent);
-#if SHADING_GRADIENT
+            // Opacity correction: the TF opacity is defined per voxel length.
+            float a = correctOpacity(tf.a, opacityExponent, 1.0);
+#if SHADING_GRADIENT || SHADING_SCATTERING
             vec3 c = shade(p, tc, tf.rgb);
 #else
             vec3 c = tf.rgb;

@@ -53,4 +53,8 @@ void Texture::setWrap(GLenum wrap) const {
     if (m_target != GL_TEXTURE_2D) glTextureParameteri(id(), GL_TEXTURE_WRAP_R, static_cast<GLint>(wrap));
 }
 
+void Texture::setBorderColor(glm::vec4 color) const {
+    glTextureParameterfv(id(), GL_TEXTURE_BORDER_COLOR, &color[0]);
+}
+
 }  // namespace sss::gl

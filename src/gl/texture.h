@@ -2,6 +2,7 @@
 #include "gl/object.h"
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace sss::gl {
 
@@ -23,7 +24,13 @@ public:
     void upload(GLenum format, GLenum type, const void* pixels) const;
     void setFilter(GLenum minFilter, GLenum magFilter) const;
     void setWrap(GLenum wrap) const;
+    /// Colour returned outside the texture with GL_CLAMP_TO_BORDER.
+    void setBorderColor(glm::vec4 color) const;
     void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
+    /// Binds level 0 (all layers) as image `unit` for imageLoad/imageStore.
+    void bindImage(GLuint unit, GLenum access) const {
+        glBindImageTexture(unit, id(), 0, GL_TRUE, 0, access, m_format);
+    }
 
     GLenum target() const { return m_target; }
     GLenum internalFormat() const { return m_format; }

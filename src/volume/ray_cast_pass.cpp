@@ -7,19 +7,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace sss::detail {
+
+namespace {
+
+bool usesGradient(VolumeShading s) { return s == VolumeShading::Gradient || s == VolumeShading::ScatteringGradient; }
+
+}  // namespace
+
+bool usesLightVolume(VolumeShading s) {
+    return s == VolumeShading::Scattering || s == VolumeShading::ScatteringGradient;
+}
 
 RayCastPass::RayCastPass(VolumeShading shading)
     : m_shading(shading),
       m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
-                                  {{"SHADING_GRADIENT", shading == VolumeShading::Gradient ? "1" : "0"}})),
+                                  {{"SHADING_GRADIENT", usesGradient(shading) ? "1" : "0"},
+                                   {"SHADING_SCATTERING", usesLightVolume(shading) ? "1" : "0"}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
-                      const glm::mat4& model, const std::vector<Light>& lights, const VolumeRenderOptions& options,
-                      const Camera& camera, float aspect) const {
+                      const std::vector<gl::Texture>& lightVolumes, const glm::mat4& model,
+                      const std::vector<Light>& lights, const VolumeRenderOptions& options, const Camera& camera,
+                      float aspect) const {
     const glm::mat4 viewProjection = camera.projection(aspect) * camera.view();
     const float stepLength = options.stepSize * volume.voxelLength;
     const glm::vec3 size = volume.box.size();
@@ -43,16 +56,25 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
     p.set("earlyTermination", options.earlyTermination);
     p.set("jitterEnabled", options.jitter ? 1 : 0);
     p.set("maxSteps", maxSteps);
-    if (m_shading == VolumeShading::Gradient) {
+    if (m_shading != VolumeShading::EmissionAbsorption) {
         p.set("modelToWorld", model);
-        p.set("normalToWorld", glm::mat3(glm::transpose(glm::inverse(model))));
-        p.set("cameraPosition", camera.position());
         p.set("ambientStrength", options.ambient);
         p.set("diffuseStrength", options.diffuse);
+        setLightUniforms(p, lights);
+    }
+    if (usesGradient(m_shading)) {
+        p.set("normalToWorld", glm::mat3(glm::transpose(glm::inverse(model))));
+        p.set("cameraPosition", camera.position());
         p.set("specularColor", options.specular);
         p.set("shininess", options.shininess);
         p.set("gradientThreshold", options.gradientThreshold);
-        setLightUniforms(p, lights);
+    }
+    if (usesLightVolume(m_shading)) {
+        for (size_t i = 0; i < lightVolumes.size(); ++i) {
+            const int unit = kFirstLightVolumeUnit + static_cast<int>(i);
+            p.set("lightVolumes[" + std::to_string(i) + "]", unit);
+            lightVolumes[i].bind(static_cast<GLuint>(unit));
+        }
     }
 
     volume.texture.bind(0);

@@ -13,16 +13,21 @@
 
 namespace sss::detail {
 
+/// Scattering modes sample light volumes.
+bool usesLightVolume(VolumeShading shading);
+
 class RayCastPass {
 public:
     explicit RayCastPass(VolumeShading shading);
     VolumeShading shading() const { return m_shading; }
-    /// `sceneDepth` is a copy of the target's depth (rays stop there); the target is bound.
+    /// `sceneDepth` is a copy of the target's depth (rays stop there); `lightVolumes` has one
+    /// texture per light in the scattering modes. The target is bound.
     void run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
-             const glm::mat4& model, const std::vector<Light>& lights, const VolumeRenderOptions& options,
-             const Camera& camera, float aspect) const;
+             const std::vector<gl::Texture>& lightVolumes, const glm::mat4& model, const std::vector<Light>& lights,
+             const VolumeRenderOptions& options, const Camera& camera, float aspect) const;
 
 private:
+    static constexpr int kFirstLightVolumeUnit = 4;  // 0 volume, 1 TF, 2 scene depth
     VolumeShading m_shading;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes

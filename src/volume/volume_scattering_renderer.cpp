@@ -5,9 +5,11 @@
 #include "sss/error.h"
 #include "sss/timing.h"
 #include "volume/gpu_volume.h"
+#include "volume/light_volume_pass.h"
 #include "volume/ray_cast_pass.h"
 
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -31,10 +33,25 @@ void validate(const VolumeRenderOptions& o) {
     if (!(o.shininess > 0.0f) || !std::isfinite(o.shininess)) fail("shininess", "finite and > 0", o.shininess);
     if (!(o.gradientThreshold > 0.0f) || !std::isfinite(o.gradientThreshold))
         fail("gradientThreshold", "finite and > 0", o.gradientThreshold);
+    if (!(o.lightVolumeScale > 0.0f && o.lightVolumeScale <= 1.0f))
+        fail("lightVolumeScale", "in (0, 1]", o.lightVolumeScale);
+    if (!(o.anisotropy > -1.0f && o.anisotropy < 1.0f)) fail("anisotropy", "in (-1, 1)", o.anisotropy);
     const glm::vec3 s = o.specular;
     if (!(s.x >= 0 && s.y >= 0 && s.z >= 0) || !std::isfinite(s.x + s.y + s.z))
         throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions::specular must be finite and >= 0");
 }
+
+// Everything the light volumes depend on; they are rebuilt only when this changes.
+struct LightVolumeInputs {
+    std::uint64_t volumeGeneration = 0;
+    std::uint64_t transferFunctionRevision = 0;
+    int transferFunctionEntries = 0;
+    std::vector<Light> lights;
+    glm::mat4 model{1.0f};
+    float resolutionScale = 0.0f;
+    float anisotropy = 0.0f;
+    bool operator==(const LightVolumeInputs&) const = default;
+};
 
 }  // namespace
 
@@ -45,7 +62,11 @@ struct VolumeScatteringRenderer::Impl {
     std::vector<Light> lights{DirectionalLight{}};
     glm::mat4 model{1.0f};
     std::optional<detail::GpuVolume> volume;
+    std::uint64_t volumeGeneration = 0;
     std::optional<detail::RayCastPass> rayCast;  // built for the current shading mode
+    std::optional<detail::LightVolumePass> lightVolumePass;  // built on first use
+    std::vector<gl::Texture> lightVolumes;                  // one per light
+    std::optional<LightVolumeInputs> lightVolumeInputs;     // what lightVolumes were built from
     gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
 
     // Sampling the depth attachment of the framebuffer being drawn would be a feedback loop,
@@ -59,6 +80,22 @@ struct VolumeScatteringRenderer::Impl {
         }
         glCopyImageSubData(target.depthTextureId(), GL_TEXTURE_2D, 0, 0, 0, 0, sceneDepth.id(), GL_TEXTURE_2D, 0,
                            0, 0, 0, size.x, size.y, 1);
+    }
+
+    void updateLightVolumes() {
+        const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
+                                       lights, model, options.lightVolumeScale, options.anisotropy};
+        if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
+        if (!lightVolumePass) lightVolumePass.emplace();
+        const auto start = std::chrono::steady_clock::now();
+        lightVolumes.resize(lights.size());
+        for (size_t i = 0; i < lights.size(); ++i)
+            lightVolumePass->run(*volume, transferFunctionTable, lights[i], model,
+                                 {options.lightVolumeScale, options.anisotropy}, lightVolumes[i]);
+        if (options.finishEachPass) finishGpuWork();
+        stats.record("light-volume",
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        lightVolumeInputs = inputs;
     }
     RenderStats stats;
 
@@ -85,6 +122,7 @@ VolumeScatteringRenderer& VolumeScatteringRenderer::operator=(VolumeScatteringRe
 
 void VolumeScatteringRenderer::setVolume(const Volume& volume, const glm::mat4& model) {
     m_impl->volume = detail::GpuVolume::upload(volume);
+    ++m_impl->volumeGeneration;
     m_impl->model = model;
 }
 
@@ -116,13 +154,14 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     // Programs are compiled lazily, once per shading mode in use.
     if (!m_impl->rayCast || m_impl->rayCast->shading() != m_impl->options.shading)
         m_impl->rayCast.emplace(m_impl->options.shading);
+    if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     const auto start = std::chrono::steady_clock::now();
     m_impl->copyDepth(target);
     target.bindForDrawing();
-    m_impl->rayCast->run(*m_impl->volume, m_impl->transferFunctionTable, m_impl->sceneDepth, m_impl->model,
-                         m_impl->lights, m_impl->options, camera, target.aspect());
+    m_impl->rayCast->run(*m_impl->volume, m_impl->transferFunctionTable, m_impl->sceneDepth, m_impl->lightVolumes,
+                         m_impl->model, m_impl->lights, m_impl->options, camera, target.aspect());
     if (m_impl->options.finishEachPass) finishGpuWork();
-    m_impl->stats.record(m_impl->options.shading == VolumeShading::Gradient ? "ray-cast-gradient" : "ray-cast",
+    m_impl->stats.record("ray-cast",
                          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 

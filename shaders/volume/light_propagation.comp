@@ -1,0 +1,93 @@
+// One slice of the light-volume propagation (Ropinski, Doering, Rezk-Salama 2010).
+// The volume is swept slice by slice along a "sweep" frame (u, v across a slice, w along the
+// sweep), which is a permutation/flip of the data axes chosen by src/volume/light_volume_pass.cpp
+// so the light always travels towards +w. For each voxel of slice w:
+//   - the light arriving there is looked up where the light ray through the voxel crosses slice
+//     w-1: intensity l with one bilinear fetch (hard shadows), chromaticity c gathered over a
+//     cone whose aperture follows the Henyey-Greenstein g;
+//   - the arriving (c, l) is stored in the light volume (so a voxel does not shadow itself);
+//   - the light leaving the voxel, c' = (1-a) c + a rgb and l' = (1-a) l, goes to the next slice,
+//     with the TF opacity a corrected for the oblique path through the slice.
+// Outside the volume the light is unattenuated white: (1, 1, 1, 1).
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "volume/transfer_function.glsl"
+
+uniform sampler2D previousSlice;                          // (c, l) leaving slice w-1
+layout(rgba16f) uniform writeonly image2D currentSlice;   // (c, l) leaving slice w
+layout(rgba16f) uniform image3D lightVolume;              // (c, l) arriving at each voxel
+
+uniform ivec3 sweepAxes;        // data axis that u, v, w run along
+uniform ivec3 sweepFlip;        // 1 where u, v or w runs against its data axis
+uniform ivec3 lightVolumeDims;  // per data axis
+uniform vec3 voxelSize;         // light-volume voxel edge per data axis, model units
+uniform vec3 boxMin;            // model-space corner of the volume box
+uniform float referenceLength;  // the TF opacity's reference length (one data voxel)
+uniform int sliceIndex;         // w
+uniform int isPointLight;
+uniform vec3 lightDirection;    // direction the light travels, model space, unit (directional)
+uniform vec3 lightPosition;     // model space (point light)
+uniform float coneTangent;      // tan of the cone half-angle
+uniform vec2 coneWeights;       // (centre tap, each of the 8 ring taps); centre + 8 ring = 1
+uniform float sweepWeight;      // this sweep's share of the final light volume
+uniform int accumulate;         // 1: add to the light volume (second, blended sweep)
+uniform int pyramidMask;        // 1: write only voxels whose dominant light axis is +w
+
+void main() {
+    ivec3 sliceDims = ivec3(lightVolumeDims[sweepAxes.x], lightVolumeDims[sweepAxes.y], lightVolumeDims[sweepAxes.z]);
+    ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
+    if (uv.x >= sliceDims.x || uv.y >= sliceDims.y) return;
+    ivec3 sweep = ivec3(uv, sliceIndex);
+
+    // Sweep frame -> data voxel index.
+    ivec3 voxel;
+    for (int j = 0; j < 3; ++j) {
+        int axis = sweepAxes[j];
+        voxel[axis] = sweepFlip[j] != 0 ? lightVolumeDims[axis] - 1 - sweep[j] : sweep[j];
+    }
+    vec3 position = boxMin + (vec3(voxel) + 0.5) * voxelSize;
+    vec3 direction = isPointLight != 0 ? position - lightPosition : lightDirection;
+
+    // Direction and voxel size in the sweep frame.
+    vec3 d, s;
+    for (int j = 0; j < 3; ++j) {
+        int axis = sweepAxes[j];
+        d[j] = sweepFlip[j] != 0 ? -direction[axis] : direction[axis];
+        s[j] = voxelSize[axis];
+    }
+    // A voxel centred exactly on a point light gets an arbitrary direction instead of NaN.
+    d = dot(d, d) > 1e-20 ? normalize(d) : vec3(0.0, 0.0, 1.0);
+    // Light must travel forward along w; a point light beside the sweep gives dz -> 0.
+    float dz = max(d.z, 1e-3);
+
+    vec4 sampleTf = classify(texture(volumeTexture, (vec3(voxel) + 0.5) / vec3(lightVolumeDims)).r);
+    float pathLength = s.z / dz;  // model units between slices along the light ray
+    float alpha = correctOpacity(sampleTf.a, pathLength, referenceLength);
+
+    // Where the light ray through this voxel crosses the previous slice, in slice texels.
+    vec2 sliceSize = vec2(sliceDims.xy);
+    vec2 previous = vec2(uv) + 0.5 - d.xy / dz * s.z / s.xy;
+    vec4 centre = texture(previousSlice, previous / sliceSize);
+    vec3 chromaticity = centre.rgb;
+    vec2 ringRadius = coneTangent * pathLength / s.xy;  // texels
+    if (min(ringRadius.x, ringRadius.y) >= 0.5) {
+        vec3 ring = vec3(0.0);
+        for (int k = 0; k < 8; ++k) {
+            float angle = float(k) * 0.78539816;
+            ring += texture(previousSlice, (previous + ringRadius * vec2(cos(angle), sin(angle))) / sliceSize).rgb;
+        }
+        chromaticity = coneWeights.x * centre.rgb + coneWeights.y * ring;
+    }
+    vec4 arriving = vec4(chromaticity, centre.a);
+    imageStore(currentSlice, uv, vec4((1.0 - alpha) * chromaticity + alpha * sampleTf.rgb, (1.0 - alpha) * centre.a));
+
+    if (pyramidMask != 0) {
+        // Light inside the volume: six sweeps, each owning the voxels whose light arrives
+        // mostly along its +w (measured in voxels, so the lookup stays within one texel).
+        vec3 inVoxels = abs(d) / s;
+        if (d.z <= 0.0 || inVoxels.z < inVoxels.x || inVoxels.z < inVoxels.y) return;
+    }
+    vec4 stored = sweepWeight * arriving;
+    if (accumulate != 0) stored += imageLoad(lightVolume, voxel);
+    imageStore(lightVolume, voxel, stored);
+}

@@ -1,0 +1,58 @@
+#pragma once
+// The light volume of Ropinski et al. 2010: per light, an RGBA16F 3D texture holding the
+// chromaticity c (rgb) and intensity l (a) of the light arriving at each point, propagated slice
+// by slice from the light (shaders/volume/light_propagation.comp). View-independent: it is
+// rebuilt only when the volume, transfer function, light, model transform or options change.
+//
+// Sweeps (all along +w of a permuted frame, one compute dispatch per slice):
+//  - directional light, or point light outside the volume: along the axis the light travels most
+//    along (dir_max) and, blended, the second one (dir_blend), with weights proportional to
+//    (p1 - p3) and (p2 - p3) of the sorted direction components, which are continuous when the
+//    principal axis switches (both 1/2 there) and when the 2nd and 3rd axes swap (weight 0);
+//  - point light inside the volume (or on its boundary): six sweeps outward from the light, each
+//    owning the voxels the light reaches mostly along its axis.
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "sss/light.h"
+#include "volume/gpu_volume.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <vector>
+
+namespace sss::detail {
+
+struct LightVolumeSettings {
+    float resolutionScale = 1.0f;  ///< light-volume resolution relative to the data, (0, 1]
+    float anisotropy = 0.5f;       ///< Henyey-Greenstein g: sets the chromaticity blur cone
+};
+
+/// One sweep of the propagation, as planned on the CPU (exposed for tests).
+struct LightSweep {
+    int axis = 2;           ///< data axis the sweep runs along
+    bool reversed = false;  ///< the light travels towards -axis
+    float weight = 1.0f;
+    int firstSlice = 0;     ///< sweep-frame slice the sweep starts at
+    bool pyramid = false;   ///< owns only the voxels whose dominant light axis is its own
+};
+
+/// The sweeps for `light` (already in the volume's model space) over `volume`.
+std::vector<LightSweep> planLightSweeps(const Light& modelSpaceLight, const GpuVolume& volume, glm::ivec3 dims);
+
+/// Cone half-angle (radians) holding half the scattered energy of HG(g), clamped to 60 degrees.
+float chromaticityConeAngle(float g);
+
+class LightVolumePass {
+public:
+    LightVolumePass();
+    /// Propagates `light` (world space) through `volume` placed by `model` into `output`
+    /// (re)allocated at the scaled resolution.
+    void run(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light,
+             const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output);
+
+private:
+    gl::Program m_program;
+    gl::Texture m_slices[2];  // ping-pong: light leaving the previous / current slice
+};
+
+}  // namespace sss::detail
