@@ -29,8 +29,8 @@ uniform vec3 lightDirection;    // direction the light travels, model space, uni
 uniform vec3 lightPosition;     // model space (point light)
 uniform float coneTangent;      // tan of the cone half-angle
 uniform vec2 coneWeights;       // (centre tap, each of the 8 ring taps); centre + 8 ring = 1
-uniform float sweepWeight;      // this sweep's share of the final light volume
-uniform int accumulate;         // 1: add to the light volume (second, blended sweep)
+uniform float sweepWeight;      // the blended sweep's share of the final light volume
+uniform int accumulate;         // 1: mix into the light volume (second, blended sweep)
 uniform int pyramidMask;        // 1: write only voxels whose dominant light axis is +w
 
 void main() {
@@ -87,7 +87,7 @@ void main() {
         vec3 inVoxels = abs(d) / s;
         if (d.z <= 0.0 || inVoxels.z < inVoxels.x || inVoxels.z < inVoxels.y) return;
     }
-    vec4 stored = sweepWeight * arriving;
-    if (accumulate != 0) stored += imageLoad(lightVolume, voxel);
-    imageStore(lightVolume, voxel, stored);
+    // The first sweep stores its result whole; the blended one mixes in its share, so the sum is
+    // rounded to half precision once (unlit stays exactly 1).
+    imageStore(lightVolume, voxel, accumulate != 0 ? mix(imageLoad(lightVolume, voxel), arriving, sweepWeight) : arriving);
 }

@@ -16,8 +16,8 @@ using sss::TransferFunction;
 
 namespace {
 
-// tests/data, next to tests/golden.
-std::filesystem::path dataDir() { return std::filesystem::path(SSS_GOLDEN_DIR).parent_path() / "data"; }
+// tests/data (the fixtures).
+std::filesystem::path dataDir() { return SSS_TEST_DATA_DIR; }
 
 void requireNear(glm::vec4 actual, glm::vec4 expected, float eps = 1e-5f) {
     INFO("actual = (" << actual.x << ", " << actual.y << ", " << actual.z << ", " << actual.w << "), expected = ("
