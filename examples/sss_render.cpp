@@ -52,6 +52,7 @@ shading:
   --step VOXELS             ray step in voxels (default: 1)
   --early-termination A     stop rays at this opacity, (0,1] (default: 0.99)
   --no-jitter               no per-pixel ray offset
+  --no-skipping             no empty-space skipping (same image, slower)
   --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
   --anisotropy G            Henyey-Greenstein g for the scattering cone, (-1,1) (default: 0.5)
 camera and light:
@@ -79,7 +80,7 @@ struct Args {
     glm::vec3 background{0.1f, 0.1f, 0.12f};
     glm::vec3 color{0.8f, 0.75f, 0.7f};
     float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
-    bool jitter = true, ortho = false, listTf = false;
+    bool jitter = true, skipping = true, ortho = false, listTf = false;
     float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
     float lightIntensity = 1.0f;
@@ -174,6 +175,7 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--step") a.step = parseFloat(opt, value());
         else if (opt == "--early-termination") a.earlyTermination = parseFloat(opt, value());
         else if (opt == "--no-jitter") a.jitter = false;
+        else if (opt == "--no-skipping") a.skipping = false;
         else if (opt == "--light-volume-scale") a.lightVolumeScale = parseFloat(opt, value());
         else if (opt == "--anisotropy") a.anisotropy = parseFloat(opt, value());
         else if (opt == "--yaw") a.yaw = parseFloat(opt, value());
@@ -304,6 +306,7 @@ int run(const Args& a) {
             .stepSize = a.step,
             .earlyTermination = a.earlyTermination,
             .jitter = a.jitter,
+            .emptySpaceSkipping = a.skipping,
             .lightVolumeScale = a.lightVolumeScale,
             .anisotropy = a.anisotropy});
         volumeRenderer->setVolume(*volume);

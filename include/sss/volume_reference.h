@@ -164,7 +164,7 @@ struct ConvergedReference {
     Image image;                 ///< the last (finest) image
     double stepVoxels = 0;       ///< view step of that image
     double shadowStepVoxels = 0; ///< shadow step of that image
-    double lastChange = 0;       ///< relRmse (computeErrorMetrics) between the last two images
+    double lastChange = 0;       ///< relRmse (computeErrorMetrics) between the last two images; +inf after one
     int renders = 0;             ///< images rendered
     bool converged = false;      ///< lastChange < tolerance (else the step hit minStepVoxels)
 };

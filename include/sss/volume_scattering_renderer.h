@@ -41,6 +41,9 @@ struct VolumeRenderOptions {
     float earlyTermination = 0.99f;
     /// Offsets each ray's first sample by a per-pixel amount against wood-grain (default: on).
     bool jitter = true;
+    /// Jump over 8^3-voxel bricks the transfer function makes fully transparent. The samples
+    /// taken, and so the image, are the same as without it (default: on).
+    bool emptySpaceSkipping = true;
     /// Entries of the transfer-function lookup table, 2..65536 (default: 256).
     int transferFunctionEntries = 256;
     // Shading (every mode but EmissionAbsorption):

@@ -2,6 +2,7 @@
 // Variants (defines set by src/volume/ray_cast_pass.cpp):
 //   SHADING_GRADIENT 0|1   : Blinn-Phong from the gradient (central differences)
 //   SHADING_SCATTERING 0|1 : light from the light volumes (chromaticity c, intensity l)
+//   EMPTY_SPACE_SKIPPING 0|1 : jump over bricks the transfer function makes fully transparent
 // Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
 #include "common/lights.glsl"
 #include "common/blinn_phong.glsl"
@@ -19,6 +20,10 @@ uniform float earlyTermination;       // stop when accumulated opacity reaches t
 uniform int jitterEnabled;
 uniform int maxSteps;
 uniform sampler2D sceneDepth;         // depth of what the target already holds (opaque meshes)
+#if EMPTY_SPACE_SKIPPING
+uniform sampler3D occupancy;          // per brick: > 0 where the TF gives any opacity
+uniform int brickVoxels;
+#endif
 
 #if SHADING_GRADIENT || SHADING_SCATTERING
 uniform mat4 modelToWorld;
@@ -113,10 +118,28 @@ void main() {
     vec3 color = vec3(0.0);
     float alpha = 0.0;
     if (span.x < span.y) {
-        float t = span.x + (jitterEnabled != 0 ? pixelJitter(gl_FragCoord.xy) : 0.5) * stepLength;
-        for (int i = 0; i < maxSteps && t < span.y; ++i, t += stepLength) {
+        float tFirst = span.x + (jitterEnabled != 0 ? pixelJitter(gl_FragCoord.xy) : 0.5) * stepLength;
+        // Sample i sits at tFirst + i * step: computed from i, not accumulated, so a skip lands
+        // on exactly the positions the unskipped loop would reach.
+        for (int i = 0; i < maxSteps; ++i) {
+            float t = tFirst + float(i) * stepLength;
+            if (t >= span.y) break;
             vec3 p = ray.origin + t * ray.direction;
             vec3 tc = toTexture(p);
+#if EMPTY_SPACE_SKIPPING
+            ivec3 brick = clamp(ivec3(tc * vec3(volumeDims)) / brickVoxels, ivec3(0), textureSize(occupancy, 0) - 1);
+            if (texelFetch(occupancy, brick, 0).r == 0.0) {
+                // Leave the brick in whole steps, so the samples taken are exactly those a caster
+                // without skipping would take (and the skipped ones would all be transparent).
+                vec3 brickSize = vec3(brickVoxels) / vec3(volumeDims) * (boxMax - boxMin);
+                vec3 lo = boxMin + vec3(brick) * brickSize, hi = lo + brickSize;
+                vec3 inv = 1.0 / ray.direction;
+                vec3 tFar = max((lo - ray.origin) * inv, (hi - ray.origin) * inv);
+                float exitT = min(min(tFar.x, tFar.y), tFar.z);
+                i = max(i, int(ceil((exitT - tFirst) / stepLength)) - 1);  // the loop adds one
+                continue;
+            }
+#endif
             float value = texture(volumeTexture, tc).r;
             vec4 tf = classify(value);
             if (tf.a <= 0.0) continue;

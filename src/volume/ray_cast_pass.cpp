@@ -21,16 +21,18 @@ bool usesLightVolume(VolumeShading s) {
     return s == VolumeShading::Scattering || s == VolumeShading::ScatteringGradient;
 }
 
-RayCastPass::RayCastPass(VolumeShading shading)
+RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping)
     : m_shading(shading),
+      m_emptySpaceSkipping(emptySpaceSkipping),
       m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
                                   {{"SHADING_GRADIENT", usesGradient(shading) ? "1" : "0"},
-                                   {"SHADING_SCATTERING", usesLightVolume(shading) ? "1" : "0"}})),
+                                   {"SHADING_SCATTERING", usesLightVolume(shading) ? "1" : "0"},
+                                   {"EMPTY_SPACE_SKIPPING", emptySpaceSkipping ? "1" : "0"}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
-                      const std::vector<gl::Texture>& lightVolumes, const glm::mat4& model,
+                      const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes, const glm::mat4& model,
                       const std::vector<Light>& lights, const VolumeRenderOptions& options, const Camera& camera,
                       float aspect) const {
     const glm::mat4 viewProjection = camera.projection(aspect) * camera.view();
@@ -46,6 +48,8 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
     p.set("volumeTexture", 0);
     p.set("transferFunction", 1);
     p.set("sceneDepth", 2);
+    p.set("occupancy", 3);
+    p.set("brickVoxels", kBrickVoxels);
     p.set("transferFunctionEntries", static_cast<float>(transferFunction.size().x));
     p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("boxMin", volume.box.min);
@@ -80,6 +84,7 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
     volume.texture.bind(0);
     transferFunction.bind(1);
     sceneDepth.bind(2);
+    if (m_emptySpaceSkipping) occupancy.bind(3);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);

@@ -7,6 +7,7 @@
 #include "gl/vertex_array.h"
 #include "sss/camera.h"
 #include "sss/volume_scattering_renderer.h"
+#include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
 
 #include <vector>
@@ -18,17 +19,21 @@ bool usesLightVolume(VolumeShading shading);
 
 class RayCastPass {
 public:
-    explicit RayCastPass(VolumeShading shading);
-    VolumeShading shading() const { return m_shading; }
+    RayCastPass(VolumeShading shading, bool emptySpaceSkipping);
+    /// Whether this pass was built for these options (programs are per variant).
+    bool matches(const VolumeRenderOptions& o) const {
+        return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping;
+    }
     /// `sceneDepth` is a copy of the target's depth (rays stop there); `lightVolumes` has one
     /// texture per light in the scattering modes. The target is bound.
     void run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
-             const std::vector<gl::Texture>& lightVolumes, const glm::mat4& model, const std::vector<Light>& lights,
+             const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes, const glm::mat4& model, const std::vector<Light>& lights,
              const VolumeRenderOptions& options, const Camera& camera, float aspect) const;
 
 private:
-    static constexpr int kFirstLightVolumeUnit = 4;  // 0 volume, 1 TF, 2 scene depth
+    static constexpr int kFirstLightVolumeUnit = 4;  // 0 volume, 1 TF, 2 scene depth, 3 occupancy
     VolumeShading m_shading;
+    bool m_emptySpaceSkipping;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
 };

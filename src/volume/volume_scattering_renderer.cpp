@@ -4,6 +4,7 @@
 #include "light_uniforms.h"
 #include "sss/error.h"
 #include "sss/timing.h"
+#include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
 #include "volume/light_volume_pass.h"
 #include "volume/ray_cast_pass.h"
@@ -62,6 +63,7 @@ struct VolumeScatteringRenderer::Impl {
     std::vector<Light> lights{DirectionalLight{}};
     glm::mat4 model{1.0f};
     std::optional<detail::GpuVolume> volume;
+    std::optional<detail::OccupancyGrid> occupancy;
     std::uint64_t volumeGeneration = 0;
     std::optional<detail::RayCastPass> rayCast;  // built for the current shading mode
     std::optional<detail::LightVolumePass> lightVolumePass;  // built on first use
@@ -106,6 +108,7 @@ struct VolumeScatteringRenderer::Impl {
             transferFunctionTable.setLabel("transfer function");
         }
         transferFunctionTable.upload(GL_RGBA, GL_FLOAT, table.data());
+        if (occupancy) occupancy->update(table, volume->valueScaleOffset);
     }
 };
 
@@ -122,6 +125,8 @@ VolumeScatteringRenderer& VolumeScatteringRenderer::operator=(VolumeScatteringRe
 
 void VolumeScatteringRenderer::setVolume(const Volume& volume, const glm::mat4& model) {
     m_impl->volume = detail::GpuVolume::upload(volume);
+    m_impl->occupancy.emplace(volume);
+    m_impl->uploadTransferFunction();  // also derives the occupancy for the current TF
     ++m_impl->volumeGeneration;
     m_impl->model = model;
 }
@@ -152,13 +157,14 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (!m_impl->volume)
         throw Error(ErrorKind::InvalidArgument, "VolumeScatteringRenderer::render: no volume set (call setVolume first)");
     // Programs are compiled lazily, once per shading mode in use.
-    if (!m_impl->rayCast || m_impl->rayCast->shading() != m_impl->options.shading)
-        m_impl->rayCast.emplace(m_impl->options.shading);
+    if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options))
+        m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     const auto start = std::chrono::steady_clock::now();
     m_impl->copyDepth(target);
     target.bindForDrawing();
-    m_impl->rayCast->run(*m_impl->volume, m_impl->transferFunctionTable, m_impl->sceneDepth, m_impl->lightVolumes,
+    m_impl->rayCast->run(*m_impl->volume, m_impl->transferFunctionTable, m_impl->sceneDepth,
+                         m_impl->occupancy->texture(), m_impl->lightVolumes,
                          m_impl->model, m_impl->lights, m_impl->options, camera, target.aspect());
     if (m_impl->options.finishEachPass) finishGpuWork();
     m_impl->stats.record("ray-cast",

@@ -210,3 +210,20 @@ TEST_CASE("volume renderer options are validated with the option's name", "[gl][
     CHECK_THROWS_WITH(renderer.render(Camera{}, target), Catch::Contains("no volume"));
     gl.requireNoErrors();
 }
+
+TEST_CASE("empty-space skipping changes no pixel in any mode", "[gl][volume]") {
+    test::GlTestScope gl;
+    const Volume volume = makeBlobsVolume(48);  // mostly empty
+    const Camera camera = orbitCamera(volume.worldBounds(), 35.0f, 15.0f);
+    for (VolumeShading shading : {VolumeShading::EmissionAbsorption, VolumeShading::Gradient,
+                                  VolumeShading::Scattering, VolumeShading::ScatteringGradient}) {
+        const Image skipped = renderVolume(volume, blobsTf(), {.shading = shading, .emptySpaceSkipping = true}, camera, 96, 54);
+        const Image full = renderVolume(volume, blobsTf(), {.shading = shading, .emptySpaceSkipping = false}, camera, 96, 54);
+        int different = 0;
+        for (int y = 0; y < full.height(); ++y)
+            for (int x = 0; x < full.width(); ++x) different += skipped.at(x, y) != full.at(x, y) ? 1 : 0;
+        INFO("shading mode " << static_cast<int>(shading));
+        CHECK(different == 0);
+    }
+    gl.requireNoErrors();
+}

@@ -1,0 +1,61 @@
+#include "volume/empty_space.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sss::detail {
+
+OccupancyGrid::OccupancyGrid(const Volume& volume) {
+    const glm::ivec3 dims = volume.dims();
+    m_bricks = (dims + kBrickVoxels - 1) / kBrickVoxels;
+    const size_t count = static_cast<size_t>(m_bricks.x) * m_bricks.y * m_bricks.z;
+    m_min.assign(count, 1.0f);
+    m_max.assign(count, 0.0f);
+    const float scale = volume.type() == VoxelType::UInt16 ? 1.0f / 65535.0f : 1.0f / 255.0f;
+    // A trilinear sample inside brick b mixes voxels up to one beyond the brick on each side, so
+    // each voxel widens the range of every brick whose extended footprint contains it.
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                const float value = static_cast<float>(volume.valueAt(x, y, z)) * scale;
+                const glm::ivec3 v(x, y, z);
+                const glm::ivec3 lo = glm::max(glm::ivec3(0), (v - 1) / kBrickVoxels);
+                const glm::ivec3 hi = glm::min(m_bricks - 1, (v + 1) / kBrickVoxels);
+                for (int bz = lo.z; bz <= hi.z; ++bz)
+                    for (int by = lo.y; by <= hi.y; ++by)
+                        for (int bx = lo.x; bx <= hi.x; ++bx) {
+                            const size_t i = (static_cast<size_t>(bz) * m_bricks.y + by) * m_bricks.x + bx;
+                            m_min[i] = std::min(m_min[i], value);
+                            m_max[i] = std::max(m_max[i], value);
+                        }
+            }
+    m_texture = gl::Texture::create3D(GL_R8, m_bricks);
+    m_texture.setFilter(GL_NEAREST, GL_NEAREST);
+    m_texture.setLabel("empty-space occupancy");
+}
+
+void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueScaleOffset) {
+    const int entries = static_cast<int>(table.size());
+    // Largest opacity over table entries [a, b]: a prefix structure is overkill for 256 entries.
+    auto maxOpacity = [&](int a, int b) {
+        float m = 0.0f;
+        for (int i = a; i <= b; ++i) m = std::max(m, table[static_cast<size_t>(i)].a);
+        return m;
+    };
+    std::vector<std::uint8_t> occupied(m_min.size());
+    size_t count = 0;
+    for (size_t i = 0; i < m_min.size(); ++i) {
+        // TF coordinates of the range (clamped as classify() does), then the table entries the
+        // linear lookup can blend: the ones around each end.
+        const float lo = std::clamp(m_min[i] * valueScaleOffset.x + valueScaleOffset.y, 0.0f, 1.0f);
+        const float hi = std::clamp(m_max[i] * valueScaleOffset.x + valueScaleOffset.y, 0.0f, 1.0f);
+        const int a = std::max(0, static_cast<int>(std::floor(lo * static_cast<float>(entries - 1))));
+        const int b = std::min(entries - 1, static_cast<int>(std::ceil(hi * static_cast<float>(entries - 1))));
+        occupied[i] = m_min[i] <= m_max[i] && maxOpacity(a, b) > 0.0f ? 255 : 0;
+        count += occupied[i] ? 1 : 0;
+    }
+    m_texture.upload(GL_RED, GL_UNSIGNED_BYTE, occupied.data());
+    m_occupiedFraction = m_min.empty() ? 0.0 : static_cast<double>(count) / static_cast<double>(m_min.size());
+}
+
+}  // namespace sss::detail

@@ -1,0 +1,38 @@
+#pragma once
+// Empty-space skipping: a coarse grid of bricks (kBrickVoxels^3 voxels each) that records, per
+// brick, the range of values a trilinear sample inside it can take. When the transfer function
+// changes, each brick is marked occupied if the TF gives any opacity over its range; the ray
+// caster jumps over unoccupied bricks in whole steps, so its samples (and image) are exactly
+// those of a caster without skipping.
+#include "gl/texture.h"
+#include "sss/volume.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace sss::detail {
+
+inline constexpr int kBrickVoxels = 8;
+
+class OccupancyGrid {
+public:
+    /// Computes the per-brick value ranges (normalised to [0, 1] like texture samples).
+    explicit OccupancyGrid(const Volume& volume);
+    glm::ivec3 brickCount() const { return m_bricks; }
+    /// Re-derives occupancy for a TF table (entry i at TF coordinate i/(N-1)) and uploads it.
+    void update(const std::vector<glm::vec4>& transferFunctionTable, glm::vec2 valueScaleOffset);
+    const gl::Texture& texture() const { return m_texture; }
+    /// Fraction of bricks marked occupied by the last update().
+    double occupiedFraction() const { return m_occupiedFraction; }
+
+private:
+    glm::ivec3 m_bricks{0};
+    std::vector<float> m_min, m_max;  // per brick
+    gl::Texture m_texture;            // R8, 1 = occupied
+    double m_occupiedFraction = 1.0;
+};
+
+}  // namespace sss::detail

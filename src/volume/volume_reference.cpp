@@ -1,0 +1,497 @@
+#include "sss/volume_reference.h"
+
+#include "sss/error.h"
+#include "sss/image_compare.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <variant>
+
+namespace sss {
+namespace {
+
+constexpr double kMinStepVoxels = 1.0 / 1024.0;
+
+template <typename T>
+std::string str(const T& v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+std::string str(glm::dvec3 v) {
+    std::ostringstream s;
+    s << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+    return s.str();
+}
+
+std::string str(glm::dvec4 v) {
+    std::ostringstream s;
+    s << '(' << v.x << ", " << v.y << ", " << v.z << ", " << v.w << ')';
+    return s.str();
+}
+
+bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void validate(const VolumeReferenceOptions& o) {
+    auto fail = [](const std::string& field, const std::string& rule, const std::string& value) {
+        throw Error(ErrorKind::InvalidArgument, "VolumeReferenceOptions::" + field + " must be " + rule + ", got " + value);
+    };
+    const int shading = static_cast<int>(o.shading);
+    if (shading < 0 || shading > static_cast<int>(ReferenceShading::ScatteringGradient))
+        fail("shading", "a ReferenceShading value", str(shading));
+    if (!std::isfinite(o.stepVoxels) || !(o.stepVoxels >= kMinStepVoxels))
+        fail("stepVoxels", "finite and >= 1/1024 (voxels)", str(o.stepVoxels));
+    if (!std::isfinite(o.shadowStepVoxels) || !(o.shadowStepVoxels >= kMinStepVoxels))
+        fail("shadowStepVoxels", "finite and >= 1/1024 (voxels)", str(o.shadowStepVoxels));
+    const glm::dvec4 b = o.background;
+    if (!finite(glm::dvec3(b)) || !std::isfinite(b.w))
+        fail("background", "finite", str(b));
+    if (!(o.earlyTermination > 0.0 && o.earlyTermination <= 1.0))
+        fail("earlyTermination", "in (0, 1]", str(o.earlyTermination));
+    if (!std::isfinite(o.ambient) || !(o.ambient >= 0.0)) fail("ambient", "finite and >= 0", str(o.ambient));
+    if (!std::isfinite(o.diffuse) || !(o.diffuse >= 0.0)) fail("diffuse", "finite and >= 0", str(o.diffuse));
+    const glm::dvec3 s = o.specular;
+    if (!finite(s) || !(s.x >= 0.0 && s.y >= 0.0 && s.z >= 0.0))
+        fail("specular", "finite and >= 0", str(s));
+    if (!std::isfinite(o.shininess) || !(o.shininess > 0.0)) fail("shininess", "finite and > 0", str(o.shininess));
+    if (!std::isfinite(o.gradientThreshold) || !(o.gradientThreshold > 0.0))
+        fail("gradientThreshold", "finite and > 0", str(o.gradientThreshold));
+    if (o.threads < 0) fail("threads", ">= 0 (0: one per hardware thread)", str(o.threads));
+}
+
+void validateSize(int width, int height, const char* who) {
+    if (width <= 0 || width > kMaxImageSide || height <= 0 || height > kMaxImageSide)
+        throw Error(ErrorKind::InvalidArgument, std::string(who) + ": width and height must be in 1.." +
+                                                    std::to_string(kMaxImageSide) + ", got " + std::to_string(width) +
+                                                    " x " + std::to_string(height));
+}
+
+double smoothstep(double edge0, double edge1, double x) {
+    const double t = std::clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+// A light prepared for both spaces: shading happens in world space (as on the GPU), shadow
+// rays run in model space (where sigma_t is defined).
+struct PreparedLight {
+    bool directional = true;
+    glm::dvec3 towardsLightWorld{0.0};  // directional: unit, towards the light
+    glm::dvec3 towardsLightModel{0.0};  // directional: unit, in model space
+    glm::dvec3 positionWorld{0.0};      // point
+    glm::dvec3 positionModel{0.0};      // point
+    glm::dvec3 radiance{0.0};           // colour * intensity
+};
+
+}  // namespace
+
+struct VolumeReference::Impl {
+    glm::ivec3 dims{0};
+    std::vector<uint16_t> raw;  // x fastest
+    double normalise = 1.0;     // raw -> [0,1] sample (1/255 or 1/65535)
+    double valueScale = 1.0, valueOffset = 0.0;  // sample -> TF coordinate
+    glm::dvec3 boxMin{0.0}, boxMax{0.0}, boxSize{0.0};
+    double voxel = 0.0;  // reference length D, model units
+    std::vector<glm::dvec4> table;
+    glm::dmat4 modelToWorld{1.0}, worldToModel{1.0};
+    glm::dmat3 normalToWorld{1.0};
+    std::vector<PreparedLight> lights;
+    VolumeReferenceOptions options;
+
+    // s(p) at texture coordinate tc: GL_LINEAR with clamp-to-edge, texel centres at (i+0.5)/n.
+    double field(glm::dvec3 tc) const {
+        int i0[3], i1[3];
+        double w[3];
+        for (int a = 0; a < 3; ++a) {
+            const double f = tc[a] * dims[a] - 0.5;
+            const double fl = std::floor(f);
+            w[a] = f - fl;
+            const int i = static_cast<int>(std::clamp(fl, -1.0, static_cast<double>(dims[a])));
+            i0[a] = std::clamp(i, 0, dims[a] - 1);
+            i1[a] = std::clamp(i + 1, 0, dims[a] - 1);
+        }
+        const std::size_t sx = 1, sy = static_cast<std::size_t>(dims.x),
+                          sz = static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y);
+        auto at = [&](int x, int y, int z) {
+            return static_cast<double>(raw[static_cast<std::size_t>(x) * sx + static_cast<std::size_t>(y) * sy +
+                                           static_cast<std::size_t>(z) * sz]);
+        };
+        const double c00 = at(i0[0], i0[1], i0[2]) + w[0] * (at(i1[0], i0[1], i0[2]) - at(i0[0], i0[1], i0[2]));
+        const double c10 = at(i0[0], i1[1], i0[2]) + w[0] * (at(i1[0], i1[1], i0[2]) - at(i0[0], i1[1], i0[2]));
+        const double c01 = at(i0[0], i0[1], i1[2]) + w[0] * (at(i1[0], i0[1], i1[2]) - at(i0[0], i0[1], i1[2]));
+        const double c11 = at(i0[0], i1[1], i1[2]) + w[0] * (at(i1[0], i1[1], i1[2]) - at(i0[0], i1[1], i1[2]));
+        const double c0 = c00 + w[1] * (c10 - c00);
+        const double c1 = c01 + w[1] * (c11 - c01);
+        return (c0 + w[2] * (c1 - c0)) * normalise;
+    }
+
+    glm::dvec3 toTexture(glm::dvec3 p) const { return (p - boxMin) / boxSize; }
+
+    glm::dvec4 classifySample(double sample) const {
+        const double x = std::clamp(sample * valueScale + valueOffset, 0.0, 1.0);
+        const int n = static_cast<int>(table.size());
+        const double f = x * (n - 1);
+        const int i = std::min(static_cast<int>(std::floor(f)), n - 2);
+        const double t = f - i;
+        const glm::dvec4& lo = table[static_cast<std::size_t>(i)];
+        const glm::dvec4& hi = table[static_cast<std::size_t>(i) + 1];
+        return lo + t * (hi - lo);
+    }
+
+    // sigma_t * D from alpha_tf, capped (see kMaxOpticalDepthPerVoxel).
+    static double opticalDepthPerVoxel(double alpha) {
+        if (!(alpha > 0.0)) return 0.0;
+        if (alpha >= 1.0) return kMaxOpticalDepthPerVoxel;
+        return std::min(-std::log1p(-alpha), kMaxOpticalDepthPerVoxel);
+    }
+
+    // Opacity of a piece `length` (model units) long with TF opacity alpha.
+    double pieceOpacity(double alpha, double length) const {
+        return -std::expm1(-opticalDepthPerVoxel(alpha) * length / voxel);
+    }
+
+    // Clips origin + t * dir, t in [tMin, tMax], to the box; false if nothing is left.
+    bool clip(glm::dvec3 origin, glm::dvec3 dir, double& tMin, double& tMax) const {
+        for (int a = 0; a < 3; ++a) {
+            if (dir[a] == 0.0) {
+                if (origin[a] < boxMin[a] || origin[a] > boxMax[a]) return false;
+                continue;
+            }
+            double t0 = (boxMin[a] - origin[a]) / dir[a], t1 = (boxMax[a] - origin[a]) / dir[a];
+            if (t0 > t1) std::swap(t0, t1);
+            tMin = std::max(tMin, t0);
+            tMax = std::min(tMax, t1);
+        }
+        return tMin < tMax;
+    }
+
+    // Number of equal pieces of length <= step covering `length`.
+    static long pieces(double length, double step) {
+        return length > 0.0 ? std::max(1L, static_cast<long>(std::ceil(length / step))) : 0L;
+    }
+
+    ReferenceLightSample incident(glm::dvec3 p, const PreparedLight& light) const {
+        ReferenceLightSample out;
+        out.radiance = light.radiance;
+        glm::dvec3 dir;
+        double tEnd = std::numeric_limits<double>::infinity();
+        if (light.directional) {
+            dir = light.towardsLightModel;
+        } else {
+            const glm::dvec3 toLight = light.positionModel - p;
+            const double distance = glm::length(toLight);
+            const glm::dvec3 worldP = glm::dvec3(modelToWorld * glm::dvec4(p, 1.0));
+            const glm::dvec3 toLightWorld = light.positionWorld - worldP;
+            out.radiance = light.radiance / std::max(glm::dot(toLightWorld, toLightWorld), 1e-8);
+            if (!(distance > 0.0)) return out;
+            dir = toLight / distance;
+            tEnd = distance;
+        }
+        double t0 = 0.0;
+        if (!clip(p, dir, t0, tEnd)) return out;  // p on the boundary, facing out
+        const long m = pieces(tEnd, options.shadowStepVoxels * voxel);
+        const double h = tEnd / static_cast<double>(m);
+        double l = 1.0;
+        glm::dvec3 c(1.0);
+        // From the light towards p: c = (1 - a) c + a C_tf is the exact solution of
+        // dc/ds = sigma_t (C_tf - c) over a piece with constant sigma_t and C_tf.
+        for (long k = 0; k < m; ++k) {
+            const double s = tEnd - (static_cast<double>(k) + 0.5) * h;
+            const glm::dvec4 tf = classifySample(field(toTexture(p + s * dir)));
+            if (!(tf.a > 0.0)) continue;
+            const double a = pieceOpacity(tf.a, h);
+            c = (1.0 - a) * c + a * glm::dvec3(tf);
+            l *= 1.0 - a;
+        }
+        out.transmittance = l;
+        out.chromaticity = c;
+        return out;
+    }
+
+    struct Normal {
+        glm::dvec3 n;
+        double strength;
+    };
+
+    Normal gradientNormal(glm::dvec3 tc, glm::dvec3 v) const {
+        const glm::dvec3 h = 1.0 / glm::dvec3(dims);
+        glm::dvec3 g(field(tc + glm::dvec3(h.x, 0, 0)) - field(tc - glm::dvec3(h.x, 0, 0)),
+                     field(tc + glm::dvec3(0, h.y, 0)) - field(tc - glm::dvec3(0, h.y, 0)),
+                     field(tc + glm::dvec3(0, 0, h.z)) - field(tc - glm::dvec3(0, 0, h.z)));
+        g *= 0.5 * valueScale;
+        const glm::dvec3 outward = normalToWorld * (-g * glm::dvec3(dims) / boxSize);
+        const double len = glm::length(outward);
+        glm::dvec3 n = len > 1e-12 ? outward / len : v;
+        if (glm::dot(n, v) < 0.0) n = -n;
+        return {n, smoothstep(0.0, options.gradientThreshold, glm::length(g))};
+    }
+
+    // Unit vector towards the light and the radiance arriving at a world position (lights.glsl).
+    static glm::dvec3 towardsLight(const PreparedLight& light, glm::dvec3 worldP, glm::dvec3& radiance) {
+        if (light.directional) {
+            radiance = light.radiance;
+            return light.towardsLightWorld;
+        }
+        const glm::dvec3 toLight = light.positionWorld - worldP;
+        const double d2 = std::max(glm::dot(toLight, toLight), 1e-8);
+        radiance = light.radiance / d2;
+        return toLight / std::sqrt(d2);
+    }
+
+    glm::dvec3 shade(glm::dvec3 p, glm::dvec3 tc, glm::dvec3 color, glm::dvec3 cameraPosition) const {
+        const ReferenceShading mode = options.shading;
+        if (mode == ReferenceShading::EmissionAbsorption) return color;
+        const glm::dvec3 worldP = glm::dvec3(modelToWorld * glm::dvec4(p, 1.0));
+        const bool gradient = mode == ReferenceShading::Gradient || mode == ReferenceShading::ScatteringGradient;
+        glm::dvec3 v(0.0);
+        Normal surface{glm::dvec3(0.0), 0.0};
+        if (gradient) {
+            v = glm::normalize(cameraPosition - worldP);
+            surface = gradientNormal(tc, v);
+        }
+        glm::dvec3 lit = options.ambient * color;
+        for (const PreparedLight& light : lights) {
+            glm::dvec3 radiance;
+            const glm::dvec3 l = towardsLight(light, worldP, radiance);
+            if (mode == ReferenceShading::Gradient) {
+                const double nDotL = std::max(glm::dot(surface.n, l), 0.0);
+                if (nDotL <= 0.0) continue;
+                const glm::dvec3 h = glm::normalize(l + v);
+                const double spec = std::pow(std::max(glm::dot(surface.n, h), 0.0), options.shininess);
+                lit += radiance * (options.diffuse * color * nDotL + options.specular * spec);
+                continue;
+            }
+            const ReferenceLightSample arriving = incident(p, light);
+            lit += options.diffuse * color * arriving.radiance * arriving.chromaticity * arriving.transmittance;
+            if (mode == ReferenceShading::ScatteringGradient && glm::dot(surface.n, l) > 0.0) {
+                const glm::dvec3 h = glm::normalize(l + v);
+                lit += surface.strength * arriving.transmittance * radiance * options.specular *
+                       std::pow(std::max(glm::dot(surface.n, h), 0.0), options.shininess);
+            }
+        }
+        if (mode == ReferenceShading::Gradient) return color + surface.strength * (lit - color);
+        return lit;
+    }
+
+    glm::dvec4 tracePixel(const glm::dmat4& inverseViewProjection, glm::dvec2 ndc, glm::dvec3 cameraPosition) const {
+        const glm::dvec4 nearWorld = inverseViewProjection * glm::dvec4(ndc, -1.0, 1.0);
+        const glm::dvec4 farWorld = inverseViewProjection * glm::dvec4(ndc, 1.0, 1.0);
+        const glm::dvec3 nearModel = glm::dvec3(worldToModel * glm::dvec4(glm::dvec3(nearWorld) / nearWorld.w, 1.0));
+        const glm::dvec3 farModel = glm::dvec3(worldToModel * glm::dvec4(glm::dvec3(farWorld) / farWorld.w, 1.0));
+        const glm::dvec3 d = farModel - nearModel;
+        const double length = glm::length(d);
+        glm::dvec3 color(0.0);
+        double alpha = 0.0;
+        double t0 = 0.0, t1 = length;
+        if (length > 0.0 && clip(nearModel, d / length, t0, t1)) {
+            const glm::dvec3 dir = d / length;
+            const long m = pieces(t1 - t0, options.stepVoxels * voxel);
+            const double h = (t1 - t0) / static_cast<double>(m);
+            for (long k = 0; k < m; ++k) {
+                const glm::dvec3 p = nearModel + (t0 + (static_cast<double>(k) + 0.5) * h) * dir;
+                const glm::dvec3 tc = toTexture(p);
+                const glm::dvec4 tf = classifySample(field(tc));
+                if (!(tf.a > 0.0)) continue;
+                const double a = pieceOpacity(tf.a, h);
+                const glm::dvec3 c = shade(p, tc, glm::dvec3(tf), cameraPosition);
+                color += (1.0 - alpha) * a * c;
+                alpha += (1.0 - alpha) * a;
+                if (alpha >= options.earlyTermination) break;
+            }
+        }
+        const glm::dvec4 bg = options.background;
+        return {color + (1.0 - alpha) * glm::dvec3(bg), alpha + (1.0 - alpha) * bg.w};
+    }
+};
+
+VolumeReference::VolumeReference(const Volume& volume, const TransferFunction& tf, int tfEntries,
+                                 const glm::mat4& model, std::vector<Light> lights,
+                                 const VolumeReferenceOptions& options) {
+    const std::string who = "VolumeReference";
+    if (tfEntries < 2 || tfEntries > 65536)
+        throw Error(ErrorKind::InvalidArgument,
+                    who + ": tfEntries must be in 2..65536, got " + std::to_string(tfEntries));
+    const glm::dmat4 m(model);
+    bool modelFinite = true;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) modelFinite = modelFinite && std::isfinite(m[c][r]);
+    const double det = glm::determinant(m);
+    if (!modelFinite || !std::isfinite(det) || det == 0.0)
+        throw Error(ErrorKind::InvalidArgument, who + ": the model matrix must be finite and invertible");
+    for (std::size_t i = 0; i < lights.size(); ++i) validateLight(lights[i], who + " light " + std::to_string(i));
+    validate(options);
+
+    auto impl = std::make_unique<Impl>();
+    impl->options = options;
+    impl->dims = volume.dims();
+    impl->raw.resize(volume.voxelCount());
+    const std::vector<uint8_t>& bytes = volume.bytes();
+    if (volume.type() == VoxelType::UInt16) {
+        for (std::size_t i = 0; i < impl->raw.size(); ++i)
+            impl->raw[i] = static_cast<uint16_t>(bytes[2 * i] | (bytes[2 * i + 1] << 8));
+        impl->normalise = 1.0 / 65535.0;
+        // As GpuVolume: the data range maps onto [0,1].
+        const auto [lo, hi] = volume.valueRange();
+        const double range = std::max(1.0, static_cast<double>(hi) - static_cast<double>(lo));
+        impl->valueScale = 65535.0 / range;
+        impl->valueOffset = -static_cast<double>(lo) / range;
+    } else {
+        for (std::size_t i = 0; i < impl->raw.size(); ++i) impl->raw[i] = bytes[i];
+        impl->normalise = 1.0 / 255.0;
+    }
+    const Bounds box = volume.worldBounds();
+    impl->boxMin = glm::dvec3(box.min);
+    impl->boxMax = glm::dvec3(box.max);
+    impl->boxSize = impl->boxMax - impl->boxMin;
+    const glm::dvec3 voxel = impl->boxSize / glm::dvec3(impl->dims);
+    impl->voxel = std::min({voxel.x, voxel.y, voxel.z});
+    for (const glm::vec4& e : tf.table(tfEntries)) impl->table.emplace_back(e);
+    impl->modelToWorld = m;
+    impl->worldToModel = glm::inverse(m);
+    impl->normalToWorld = glm::transpose(glm::inverse(glm::dmat3(m)));
+    const glm::dmat3 worldToModelLinear(impl->worldToModel);
+    for (const Light& light : lights) {
+        PreparedLight p;
+        if (const auto* d = std::get_if<DirectionalLight>(&light)) {
+            p.directional = true;
+            p.towardsLightWorld = -glm::normalize(glm::dvec3(d->direction));
+            p.towardsLightModel = glm::normalize(worldToModelLinear * p.towardsLightWorld);
+            p.radiance = glm::dvec3(d->color) * static_cast<double>(d->intensity);
+        } else {
+            const auto& pl = std::get<PointLight>(light);
+            p.directional = false;
+            p.positionWorld = glm::dvec3(pl.position);
+            p.positionModel = glm::dvec3(impl->worldToModel * glm::dvec4(p.positionWorld, 1.0));
+            p.radiance = glm::dvec3(pl.color) * static_cast<double>(pl.intensity);
+        }
+        impl->lights.push_back(p);
+    }
+    m_impl = std::move(impl);
+}
+
+VolumeReference::~VolumeReference() = default;
+VolumeReference::VolumeReference(VolumeReference&&) noexcept = default;
+VolumeReference& VolumeReference::operator=(VolumeReference&&) noexcept = default;
+
+void VolumeReference::setOptions(const VolumeReferenceOptions& options) {
+    validate(options);
+    m_impl->options = options;
+}
+
+const VolumeReferenceOptions& VolumeReference::options() const { return m_impl->options; }
+
+double VolumeReference::voxelLength() const { return m_impl->voxel; }
+
+glm::dvec4 VolumeReference::classify(glm::dvec3 modelPoint) const {
+    return m_impl->classifySample(m_impl->field(m_impl->toTexture(modelPoint)));
+}
+
+double VolumeReference::extinction(glm::dvec3 modelPoint) const {
+    return Impl::opticalDepthPerVoxel(classify(modelPoint).a) / m_impl->voxel;
+}
+
+ReferenceLightSample VolumeReference::incidentLight(glm::dvec3 modelPoint, std::size_t light) const {
+    if (light >= m_impl->lights.size())
+        throw Error(ErrorKind::InvalidArgument, "VolumeReference::incidentLight: light " + std::to_string(light) +
+                                                    " is out of range (" + std::to_string(m_impl->lights.size()) +
+                                                    " lights)");
+    return m_impl->incident(modelPoint, m_impl->lights[light]);
+}
+
+Image VolumeReference::render(const Camera& camera, int width, int height) const {
+    validateSize(width, height, "VolumeReference::render");
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    const glm::dmat4 inverseViewProjection =
+        glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()));
+    const glm::dvec3 cameraPosition(camera.position());
+    Image image(width, height);
+
+    int threads = m_impl->options.threads;
+    if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    threads = std::min(threads, height);
+    std::atomic<int> nextRow{0};
+    std::exception_ptr failure;
+    std::mutex failureMutex;
+    auto work = [&] {
+        try {
+            for (int y = nextRow++; y < height; y = nextRow++) {
+                for (int x = 0; x < width; ++x) {
+                    const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, 1.0 - (y + 0.5) / height * 2.0);
+                    image.at(x, y) = glm::vec4(m_impl->tracePixel(inverseViewProjection, ndc, cameraPosition));
+                }
+            }
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(failureMutex);
+            if (!failure) failure = std::current_exception();
+            nextRow = height;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+    return image;
+}
+
+Image renderVolumeReference(const Volume& volume, const TransferFunction& tf, int tfEntries, const glm::mat4& model,
+                            const std::vector<Light>& lights, const Camera& camera, int width, int height,
+                            const VolumeReferenceOptions& options) {
+    validateSize(width, height, "renderVolumeReference");
+    return VolumeReference(volume, tf, tfEntries, model, lights, options).render(camera, width, height);
+}
+
+ConvergedReference renderVolumeReferenceConverged(const Volume& volume, const TransferFunction& tf, int tfEntries,
+                                                  const glm::mat4& model, const std::vector<Light>& lights,
+                                                  const Camera& camera, int width, int height,
+                                                  const VolumeReferenceOptions& options, double tolerance,
+                                                  double startStepVoxels, double minStepVoxels) {
+    const std::string who = "renderVolumeReferenceConverged: ";
+    validateSize(width, height, "renderVolumeReferenceConverged");
+    if (!std::isfinite(tolerance) || !(tolerance > 0.0))
+        throw Error(ErrorKind::InvalidArgument, who + "tolerance must be finite and > 0, got " + str(tolerance));
+    if (!std::isfinite(startStepVoxels) || !std::isfinite(minStepVoxels) || !(minStepVoxels >= kMinStepVoxels) ||
+        !(minStepVoxels <= startStepVoxels))
+        throw Error(ErrorKind::InvalidArgument, who + "need 1/1024 <= minStepVoxels <= startStepVoxels, got " +
+                                                    str(minStepVoxels) + " and " + str(startStepVoxels));
+    validate(options);
+    const double shadowRatio = options.shadowStepVoxels / options.stepVoxels;
+    VolumeReferenceOptions o = options;
+    auto withStep = [&](double step) {
+        o.stepVoxels = step;
+        o.shadowStepVoxels = std::max(step * shadowRatio, kMinStepVoxels);
+        return o;
+    };
+    VolumeReference reference(volume, tf, tfEntries, model, lights, withStep(startStepVoxels));
+    ConvergedReference result{reference.render(camera, width, height), startStepVoxels, o.shadowStepVoxels,
+                              std::numeric_limits<double>::infinity(), 1, false};
+    while (result.stepVoxels * 0.5 >= minStepVoxels) {
+        const double step = result.stepVoxels * 0.5;
+        reference.setOptions(withStep(step));
+        Image next = reference.render(camera, width, height);
+        result.lastChange = computeErrorMetrics(next, result.image).relRmse;
+        result.image = std::move(next);
+        result.stepVoxels = step;
+        result.shadowStepVoxels = o.shadowStepVoxels;
+        ++result.renders;
+        if (result.lastChange < tolerance) {
+            result.converged = true;
+            break;
+        }
+    }
+    return result;
+}
+
+}  // namespace sss

@@ -1,0 +1,246 @@
+// The CPU volume reference renderer on its own: analytic cases and the scattering model.
+#include "sss/volume_reference.h"
+
+#include "test_helpers.h"
+
+#include <sss/procedural.h>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+using Catch::Contains;
+using namespace sss;
+
+namespace {
+
+Volume uniformVolume(int n, uint8_t value) {
+    return Volume::fromData({n, n, n}, VoxelType::UInt8, std::vector<uint8_t>(static_cast<size_t>(n * n * n), value));
+}
+
+TransferFunction constantTf(glm::vec3 color, float opacity) {
+    return TransferFunction({{0.0f, color, opacity}, {1.0f, color, opacity}});
+}
+
+Camera orthoFront() {
+    Camera camera;  // at (0,0,3) looking along -z
+    camera.setProjectionType(Projection::Orthographic);
+    camera.setOrthoHeight(2.0f);
+    return camera;
+}
+
+// Model-space centre of voxel (i, j, k) of an n^3 volume in the unit box.
+glm::dvec3 voxelCentre(int n, double i, double j, double k) { return (glm::dvec3(i, j, k) + 0.5) / double(n) - 0.5; }
+
+// Pixel whose centre is nearest to the projection of a world point.
+glm::ivec2 pixelOf(const Camera& camera, int width, int height, glm::vec3 world) {
+    const glm::vec4 clip = camera.projection(float(width) / float(height)) * camera.view() * glm::vec4(world, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return {int(std::floor((ndc.x + 1.0f) * 0.5f * float(width))), int(std::floor((1.0f - ndc.y) * 0.5f * float(height)))};
+}
+
+}  // namespace
+
+TEST_CASE("volume reference: a uniform slab gives exactly 1 - (1 - alpha)^L", "[cpu]") {
+    // 16^3, TF opacity 0.1 per voxel, orthographic view straight through 16 voxels.
+    const int n = 16;
+    const Volume volume = uniformVolume(n, 200);
+    const double expected = 1.0 - std::pow(0.9, n);
+    for (double step : {1.0, 0.5, 0.3, 0.125}) {
+        VolumeReferenceOptions options;
+        options.stepVoxels = step;
+        options.threads = 2;
+        const Image image =
+            renderVolumeReference(volume, constantTf({1, 1, 1}, 0.1f), 256, glm::mat4(1.0f), {}, orthoFront(), 16, 16, options);
+        INFO("step " << step);
+        const glm::vec4 centre = image.at(8, 8);
+        CHECK(centre.a == Approx(expected).margin(1e-6));
+        CHECK(centre.r == Approx(expected).margin(1e-6));
+    }
+    SECTION("composited over a background") {
+        VolumeReferenceOptions options;
+        options.background = {0.2, 0.4, 0.6, 0.5};
+        const Image image = renderVolumeReference(volume, constantTf({1, 0, 0}, 0.1f), 256, glm::mat4(1.0f), {},
+                                                  orthoFront(), 16, 16, options);
+        const glm::vec4 c = image.at(8, 8);
+        CHECK(c.r == Approx(expected + (1 - expected) * 0.2).margin(1e-6));
+        CHECK(c.g == Approx((1 - expected) * 0.4).margin(1e-6));
+        CHECK(c.b == Approx((1 - expected) * 0.6).margin(1e-6));
+        CHECK(c.a == Approx(expected + (1 - expected) * 0.5).margin(1e-6));
+        // The box spans the middle of the 2-unit-high view: the corner pixel misses it.
+        CHECK(image.at(0, 0) == glm::vec4(0.2f, 0.4f, 0.6f, 0.5f));
+    }
+    SECTION("a scaled model matrix scales the path") {
+        // Stretched 2x along z: the path is 32 voxels (opacity per model-space voxel length).
+        const Image image = renderVolumeReference(volume, constantTf({1, 1, 1}, 0.1f), 256,
+                                                  glm::scale(glm::mat4(1.0f), {1, 1, 2}), {}, orthoFront(), 16, 16);
+        CHECK(image.at(8, 8).a == Approx(1.0 - std::pow(0.9, 16)).margin(1e-6));  // model units: still 16
+    }
+}
+
+TEST_CASE("volume reference: an opaque volume shows the TF colour", "[cpu]") {
+    const Volume volume = uniformVolume(8, 255);
+    const Image image = renderVolumeReference(volume, constantTf({0.2f, 0.4f, 0.6f}, 1.0f), 256, glm::mat4(1.0f), {},
+                                              orthoFront(), 16, 16);
+    CHECK(image.at(8, 8).r == Approx(0.2).margin(1e-9));
+    CHECK(image.at(8, 8).b == Approx(0.6).margin(1e-9));
+    CHECK(image.at(8, 8).a == Approx(1.0).margin(1e-9));
+}
+
+TEST_CASE("volume reference: a fully transparent TF leaves exactly the background", "[cpu]") {
+    const Volume volume = makeBlobsVolume(16);
+    Camera camera;
+    camera.setYaw(30.0f);
+    VolumeReferenceOptions options;
+    options.background = {0.1, 0.1, 0.12, 1.0};
+    for (ReferenceShading shading : {ReferenceShading::EmissionAbsorption, ReferenceShading::Gradient,
+                                     ReferenceShading::Scattering, ReferenceShading::ScatteringGradient}) {
+        options.shading = shading;
+        const Image image = renderVolumeReference(volume, constantTf({1, 1, 1}, 0.0f), 256, glm::mat4(1.0f),
+                                                  {DirectionalLight{}}, camera, 24, 16, options);
+        INFO("shading " << int(shading));
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x) REQUIRE(image.at(x, y) == glm::vec4(0.1f, 0.1f, 0.12f, 1.0f));
+    }
+}
+
+TEST_CASE("volume reference: light through a white medium stays white, a coloured one tints it", "[cpu]") {
+    // Uniform 16^3 medium, TF opacity 0.1 per voxel; light from +z. From the centre to the +z face
+    // is 8 voxels: l = 0.9^8 and c = C + (1 - C) 0.9^8 exactly (constant sigma_t and C).
+    const int n = 16;
+    const Volume volume = uniformVolume(n, 200);
+    const std::vector<Light> lights{DirectionalLight{.direction = {0, 0, -1}, .color = {1, 1, 1}, .intensity = 2.0f}};
+    const double l = std::pow(0.9, 8);
+    const glm::dvec3 centre(0.0);
+    {
+        const VolumeReference white(volume, constantTf({1, 1, 1}, 0.1f), 256, glm::mat4(1.0f), lights);
+        const ReferenceLightSample s = white.incidentLight(centre, 0);
+        CHECK(s.transmittance == Approx(l).margin(1e-12));
+        CHECK(glm::length(s.chromaticity - glm::dvec3(1.0)) < 1e-12);
+        CHECK(glm::length(s.radiance - glm::dvec3(2.0)) < 1e-12);
+        CHECK(white.extinction(centre) == Approx(-std::log(0.9) * n).epsilon(1e-6));  // per model unit
+    }
+    {
+        VolumeReferenceOptions options;
+        options.shadowStepVoxels = 0.3;  // any step: piecewise constant medium is integrated exactly
+        const VolumeReference tinted(volume, constantTf({1, 0.5f, 0}, 0.1f), 256, glm::mat4(1.0f), lights, options);
+        const ReferenceLightSample s = tinted.incidentLight(centre, 0);
+        CHECK(s.transmittance == Approx(l).margin(1e-12));
+        CHECK(s.chromaticity.r == Approx(1.0).margin(1e-12));
+        CHECK(s.chromaticity.g == Approx(0.5 + 0.5 * l).margin(1e-12));
+        CHECK(s.chromaticity.b == Approx(l).margin(1e-12));
+        // Deeper in the medium the light is redder.
+        const ReferenceLightSample deeper = tinted.incidentLight(voxelCentre(n, 8, 8, 1), 0);
+        CHECK(deeper.chromaticity.b < s.chromaticity.b);
+        CHECK(deeper.transmittance < s.transmittance);
+    }
+    SECTION("a point light inside the medium: the path ends at the light, E falls off with 1/r^2") {
+        const std::vector<Light> point{PointLight{.position = {0, 0, 0.25f}, .color = {1, 1, 1}, .intensity = 1.0f}};
+        const VolumeReference ref(volume, constantTf({1, 1, 1}, 0.1f), 256, glm::mat4(1.0f), point);
+        const ReferenceLightSample s = ref.incidentLight(centre, 0);
+        CHECK(s.transmittance == Approx(std::pow(0.9, 4)).margin(1e-12));  // 0.25 units = 4 voxels
+        CHECK(s.radiance.x == Approx(16.0).margin(1e-9));
+    }
+}
+
+TEST_CASE("volume reference: an opaque slab casts a hard shadow on a blob", "[cpu]") {
+    // 32^3: an opaque slab (255) at z voxels 22..25 over the half x < 16, and a ball (128) of
+    // radius 6 around voxel (16, 16, 10); light from +z. The ball's x < 16 half is in shadow.
+    const int n = 32;
+    std::vector<uint8_t> bytes(static_cast<size_t>(n * n * n), 0);
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                uint8_t v = 0;
+                if (z >= 22 && z <= 25 && x < 16) v = 255;
+                const glm::dvec3 d = glm::dvec3(x, y, z) - glm::dvec3(16, 16, 10);
+                if (glm::length(d) <= 6.0) v = 128;
+                bytes[static_cast<size_t>((z * n + y) * n + x)] = v;
+            }
+    const Volume volume = Volume::fromData({n, n, n}, VoxelType::UInt8, std::move(bytes));
+    const TransferFunction tf({{0.0f, {0, 0, 0}, 0.0f}, {0.3f, {1, 1, 1}, 0.0f}, {0.5f, {1, 1, 1}, 0.3f},
+                               {0.9f, {1, 1, 1}, 1.0f}});
+    const std::vector<Light> lights{DirectionalLight{.direction = {0, 0, -1}}};
+    VolumeReferenceOptions options;
+    options.shading = ReferenceShading::Scattering;
+    options.ambient = 0.2;
+    options.diffuse = 1.0;
+    const VolumeReference ref(volume, tf, 256, glm::mat4(1.0f), lights, options);
+
+    // Behind the slab (between it and the ball, and in the ball's top): no light.
+    CHECK(ref.incidentLight(voxelCentre(n, 8, 16, 18), 0).transmittance < 1e-9);
+    CHECK(ref.incidentLight(voxelCentre(n, 12, 16, 15), 0).transmittance < 1e-9);
+    // Beside the slab and in front of it (towards the light): all of it.
+    CHECK(ref.incidentLight(voxelCentre(n, 24, 16, 18), 0).transmittance == Approx(1.0).margin(1e-12));
+    CHECK(ref.incidentLight(voxelCentre(n, 8, 16, 28), 0).transmittance == Approx(1.0).margin(1e-12));
+    // Inside the ball's lit half: only the ball itself (about 2.5 voxels of alpha 0.3) attenuates.
+    const double litInside = ref.incidentLight(voxelCentre(n, 20, 16, 12), 0).transmittance;
+    CHECK(litInside > 0.2);
+    CHECK(litInside < 0.9);
+
+    // The image, seen from below (-y) so that both halves of the ball show side by side.
+    Camera camera;
+    camera.setProjectionType(Projection::Orthographic);
+    camera.setOrthoHeight(1.2f);
+    camera.setPitch(-89.0f);
+    const int w = 48, h = 48;
+    const Image image = ref.render(camera, w, h);
+    auto luminance = [&](int i, int j, int k) {
+        const glm::ivec2 px = pixelOf(camera, w, h, glm::vec3(voxelCentre(n, i, j, k)));
+        const glm::vec4 c = image.at(px.x, px.y);
+        return (c.r + c.g + c.b) / 3.0f;
+    };
+    const float shadowed = luminance(12, 16, 13), lit = luminance(20, 16, 13);
+    INFO("ball: shadowed half " << shadowed << ", lit half " << lit);
+    CHECK(shadowed > 0.05f);        // ambient still shows it
+    CHECK(lit > 2.5f * shadowed);   // k_a + k_d * l vs k_a alone
+}
+
+TEST_CASE("volume reference: converged rendering halves the step until it settles", "[cpu]") {
+    const Volume volume = makeBlobsVolume(16);
+    const TransferFunction tf({{0.0f, {0, 0, 0}, 0.0f}, {0.2f, {0.9f, 0.4f, 0.1f}, 0.0f},
+                               {0.5f, {1.0f, 0.8f, 0.3f}, 0.15f}, {1.0f, {0.4f, 0.7f, 1.0f}, 0.6f}});
+    Camera camera;
+    camera.frame(volume.worldBounds());
+    const ConvergedReference r =
+        renderVolumeReferenceConverged(volume, tf, 256, glm::mat4(1.0f), {}, camera, 24, 16, {}, 1e-3, 1.0, 1.0 / 64);
+    INFO("step " << r.stepVoxels << ", last change " << r.lastChange << ", renders " << r.renders);
+    CHECK(r.converged);
+    CHECK(r.lastChange < 1e-3);
+    CHECK(r.renders >= 2);
+    CHECK(r.stepVoxels == 1.0 / std::pow(2.0, r.renders - 1));
+}
+
+TEST_CASE("volume reference: bad inputs are rejected with the parameter's name", "[cpu]") {
+    const Volume volume = makeBlobsVolume(8);
+    const TransferFunction tf;
+    const Camera camera;
+    auto render = [&](const VolumeReferenceOptions& o, int w = 8, int h = 8) {
+        return renderVolumeReference(volume, tf, 256, glm::mat4(1.0f), {}, camera, w, h, o);
+    };
+    using K = ErrorKind;
+    REQUIRE_SSS_ERROR(render({}, 0, 8), K::InvalidArgument, Contains("width and height must be in 1..16384, got 0 x 8"));
+    REQUIRE_SSS_ERROR(render({.stepVoxels = 0.0}), K::InvalidArgument,
+                      Contains("VolumeReferenceOptions::stepVoxels must be finite and >= 1/1024"));
+    REQUIRE_SSS_ERROR(render({.stepVoxels = -1.0}), K::InvalidArgument, Contains("stepVoxels"));
+    REQUIRE_SSS_ERROR(render({.shadowStepVoxels = std::nan("")}), K::InvalidArgument, Contains("shadowStepVoxels"));
+    REQUIRE_SSS_ERROR(render({.earlyTermination = 0.0}), K::InvalidArgument, Contains("earlyTermination"));
+    REQUIRE_SSS_ERROR(render({.shininess = 0.0}), K::InvalidArgument, Contains("shininess"));
+    REQUIRE_SSS_ERROR(render({.threads = -2}), K::InvalidArgument, Contains("threads"));
+    REQUIRE_SSS_ERROR(renderVolumeReference(volume, tf, 1, glm::mat4(1.0f), {}, camera, 8, 8), K::InvalidArgument,
+                      Contains("tfEntries must be in 2..65536, got 1"));
+    REQUIRE_SSS_ERROR(renderVolumeReference(volume, tf, 256, glm::mat4(0.0f), {}, camera, 8, 8), K::InvalidArgument,
+                      Contains("model matrix must be finite and invertible"));
+    REQUIRE_SSS_ERROR(renderVolumeReference(volume, tf, 256, glm::mat4(1.0f), {DirectionalLight{.direction = {0, 0, 0}}},
+                                            camera, 8, 8),
+                      K::InvalidArgument, Contains("VolumeReference light 0") && Contains("direction"));
+    REQUIRE_SSS_ERROR(renderVolumeReferenceConverged(volume, tf, 256, glm::mat4(1.0f), {}, camera, 8, 8, {}, 0.0),
+                      K::InvalidArgument, Contains("tolerance must be finite and > 0"));
+    REQUIRE_SSS_ERROR(renderVolumeReferenceConverged(volume, tf, 256, glm::mat4(1.0f), {}, camera, 8, 8, {}, 1e-3, 0.1, 0.5),
+                      K::InvalidArgument, Contains("minStepVoxels <= startStepVoxels"));
+    const VolumeReference ref(volume, tf, 256, glm::mat4(1.0f), {});
+    REQUIRE_SSS_ERROR(ref.incidentLight(glm::dvec3(0), 0), K::InvalidArgument, Contains("light 0 is out of range"));
+}

@@ -1,0 +1,268 @@
+// The directional dipole in GLSL (float) against the same text compiled as C++ (double): a
+// compute shader evaluates shaders/common/dirpole.glsl for >100k random point pairs, including
+// the degenerate configurations of spec mesh-scattering.md §1.5, and every result is compared
+// with sss::evaluateSd / evaluateBssrdf.
+#include "support/gl_test.h"
+
+#include "gl/buffer.h"
+#include "gl/program.h"
+
+#include <catch2/catch.hpp>
+#include <sss/bssrdf.h>
+#include <sss/error.h>
+#include <sss/materials.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace sss;
+using glm::dvec3;
+
+namespace {
+
+constexpr const char* kSweepPath = "test/dirpole_sweep.comp";
+
+// Test-only shader: the library's dirpole.glsl, fed from SSBOs. Material constants arrive as 5
+// vec4 per material, assembled into DirpoleParams as a render pass would from uniforms.
+constexpr const char* kSweepSource = R"(
+#include "common/dirpole.glsl"
+layout(local_size_x = 64) in;
+struct Pair { vec4 xi; vec4 ni; vec4 wi; vec4 xo; vec4 no; vec4 wo; };  // xi.w = material index
+layout(std430, binding = 0) readonly buffer Pairs { Pair pairs[]; };
+layout(std430, binding = 1) readonly buffer Materials { vec4 materials[]; };
+layout(std430, binding = 2) writeonly buffer Results { vec4 results[]; };  // 2 per pair
+uniform uint pairCount;
+
+DirpoleParams material(int m) {
+    DirpoleParams p;
+    p.sigmaTr = materials[5 * m].xyz;     p.eta = materials[5 * m].w;
+    p.D = materials[5 * m + 1].xyz;       p.cPhi = materials[5 * m + 1].w;
+    p.de = materials[5 * m + 2].xyz;      p.cE = materials[5 * m + 2].w;
+    p.sigmaT = materials[5 * m + 3].xyz;  p.A = materials[5 * m + 3].w;
+    p.normalization = materials[5 * m + 4].x;
+    return p;
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= pairCount) return;
+    Pair q = pairs[i];
+    DirpoleParams p = material(int(q.xi.w));
+    vec3 sd = dirpoleSd(p, q.xi.xyz, q.ni.xyz, q.wi.xyz, q.xo.xyz, q.no.xyz);
+    vec3 s = dirpoleBssrdf(p, q.xi.xyz, q.ni.xyz, q.wi.xyz, q.xo.xyz, q.no.xyz, q.wo.xyz);
+    results[2u * i] = vec4(sd, dirpoleFresnelT(p.eta, dot(q.wi.xyz, q.ni.xyz)));
+    results[2u * i + 1u] = vec4(s, 0.0);
+}
+)";
+
+std::string loadSweepShader(std::string_view path) {
+    if (path == kSweepPath) return kSweepSource;
+    return detail::loadShaderFile(path);  // common/dirpole.glsl, as embedded in the library
+}
+
+struct GpuPair {
+    glm::vec4 xi, ni, wi, xo, no, wo;
+};
+
+struct Case {
+    DipoleConstants constants;
+    dvec3 peak;  // S_d at r = 0, normal incidence: the scale of this material's kernel
+};
+
+dvec3 toD(const glm::vec4& v) { return {v.x, v.y, v.z}; }
+double at(const dvec3& v, int c) { return c == 0 ? v.x : c == 1 ? v.y : v.z; }
+bool finite(const glm::vec4& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+// Where the model itself is discontinuous, float and double may rightly take different branches:
+// front/back-lit at mu_0 = 0, and the n_i* fallbacks at their thresholds. Such pairs are still
+// checked for finiteness but left out of the error statistics.
+bool nearDiscontinuity(const DipoleConstants& c, const GpuPair& q) {
+    const dvec3 ni = glm::normalize(toD(q.ni)), wi = glm::normalize(toD(q.wi)), no = glm::normalize(toD(q.no));
+    const dvec3 x = toD(q.xo) - toD(q.xi), t = wi - glm::dot(wi, ni) * ni;
+    const double sin2 = glm::dot(t, t) / (c.eta * c.eta);
+    const dvec3 w12 = sin2 > 1.0 ? -t / (c.eta * std::sqrt(sin2)) : -t / c.eta - ni * std::sqrt(1.0 - sin2);
+    if (std::abs(glm::dot(no, w12)) < 1e-4) { static int n = 0; if (n++ < 5) std::printf("mu0 %g eta %g wi.ni %g sin2 %g\n", glm::dot(no, w12), c.eta, glm::dot(wi, ni), sin2); return true; }
+    const double r = glm::length(x), minR = 1e-6 * std::min({c.D.x, c.D.y, c.D.z});
+    if (r > 0.5 * minR && r < 2.0 * minR) { std::printf("minR\n"); return true; }
+    if (r > 0.0) {
+        const dvec3 cr = glm::cross(ni, x / r);
+        const double s = glm::dot(cr, cr);
+        if (s > 0.5e-6 && s < 2e-6) { std::printf("sin\n"); return true; }
+    }
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 configurations", "[gl][bssrdf]") {
+    test::GlTestScope gl;
+
+    // Materials: every preset in mm and in metres (tiny lengths in float), plus random media.
+    std::vector<Case> cases;
+    std::mt19937 rng(20140305);
+    std::uniform_real_distribution<double> uni(0.0, 1.0);
+    std::normal_distribution<double> gauss;
+    const auto logUniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, uni(rng)); };
+    const dvec3 z{0, 0, 1};
+    const auto addCase = [&](const ScatteringMaterial& m, double scale) {
+        const DipoleConstants c = deriveDipoleConstants(m, scale);
+        cases.push_back({c, evaluateSd(c, dvec3(0.0), z, z, dvec3(0.0), z)});
+    };
+    for (const std::string& name : materialPresetNames())
+        for (double scale : {1.0, 1000.0}) addCase(materialPreset(name), scale);
+    for (int i = 0; i < 40; ++i) {
+        ScatteringMaterial m;
+        m.sigmaA = {logUniform(1e-4, 10), logUniform(1e-4, 10), logUniform(1e-4, 10)};
+        m.sigmaS = {logUniform(1e-2, 30), logUniform(1e-2, 30), logUniform(1e-2, 30)};
+        m.g = uni(rng) * 0.9;
+        m.eta = 0.7 + 1.1 * uni(rng);
+        addCase(m, 1.0);
+    }
+    std::vector<glm::vec4> materialData;
+    for (const Case& k : cases) {
+        const DipoleConstants& c = k.constants;
+        materialData.emplace_back(glm::vec3(c.sigmaTr), float(c.eta));
+        materialData.emplace_back(glm::vec3(c.D), float(c.cPhi));
+        materialData.emplace_back(glm::vec3(c.de), float(c.cE));
+        materialData.emplace_back(glm::vec3(c.sigmaT), float(c.A));
+        materialData.emplace_back(float(c.normalization), 0.0f, 0.0f, 0.0f);
+    }
+
+    // Point pairs. Lengths follow the material's kernel: 1/sigma_tr of its widest channel.
+    const auto randomDir = [&] { return glm::normalize(dvec3(gauss(rng), gauss(rng), gauss(rng))); };
+    const auto axis = [&] {  // +-e_k, so that parallel and grazing cases are exact in float
+        dvec3 a(0.0);
+        const int k = int(uni(rng) * 3.0) % 3;
+        (k == 0 ? a.x : k == 1 ? a.y : a.z) = uni(rng) < 0.5 ? -1.0 : 1.0;
+        return a;
+    };
+    constexpr int kPairs = 131072;
+    std::vector<GpuPair> pairs(kPairs);
+    std::vector<int> caseOf(kPairs);
+    int edgeCases = 0;
+    for (int i = 0; i < kPairs; ++i) {
+        const int m = int(uni(rng) * double(cases.size())) % int(cases.size());
+        const DipoleConstants& c = cases[m].constants;
+        const double minTr = std::min({c.sigmaTr.x, c.sigmaTr.y, c.sigmaTr.z});
+        const double maxD = std::max({c.D.x, c.D.y, c.D.z});
+        const double ell = minTr > 0.0 ? std::min(1.0 / minTr, 1000.0 * maxD) : 1000.0 * maxD;
+        const dvec3 xi = ell * dvec3(uni(rng) - 0.5, uni(rng) - 0.5, uni(rng) - 0.5);
+        dvec3 ni = randomDir();
+        const double kind = uni(rng);
+        dvec3 wi, xo, no;
+        if (kind < 0.06) {  // x_o = x_i
+            wi = randomDir();
+            xo = xi;
+            no = uni(rng) < 0.5 ? ni : randomDir();
+        } else if (kind < 0.12) {  // x parallel to n_i, either side (thin slab and its mirror)
+            ni = axis();
+            wi = randomDir();
+            xo = xi + (uni(rng) < 0.7 ? -1.0 : 1.0) * logUniform(1e-3, 1.0) * ell * ni;
+            no = uni(rng) < 0.5 ? -ni : randomDir();
+        } else if (kind < 0.18) {  // grazing light, exactly perpendicular to n_i
+            ni = axis();
+            const dvec3 t = glm::normalize(glm::cross(ni, randomDir()));
+            wi = glm::normalize(t - glm::dot(t, ni) * ni);
+            xo = xi + logUniform(1e-3, 3.0) * ell * randomDir();
+            no = randomDir();
+        } else if (kind < 0.22) {  // tiny r: below the "x_o = x_i" threshold 1e-6 min D, or just above it
+            const double minD = std::min({c.D.x, c.D.y, c.D.z});
+            wi = randomDir();
+            xo = xi + (uni(rng) < 0.5 ? logUniform(1e-9, 1e-7) : logUniform(1e-5, 1e-3)) * minD * randomDir();
+            no = ni;
+        } else {  // surface-like: x_o near the tangent plane, n_o near n_i; some back-facing light
+            const dvec3 tangent = glm::normalize(glm::cross(ni, randomDir()));
+            const dvec3 dir = glm::normalize(tangent + 0.3 * gauss(rng) * ni);
+            xo = xi + logUniform(1e-4, 5.0) * ell * dir;
+            wi = randomDir();
+            if (uni(rng) < 0.7 && glm::dot(wi, ni) < 0.0) wi = -wi;
+            const double u = uni(rng);
+            no = u < 0.2 ? ni : u < 0.8 ? glm::normalize(ni + 0.4 * randomDir()) : randomDir();
+            if (uni(rng) < 0.05) no = -no;  // flipped normal
+        }
+        if (kind < 0.22) ++edgeCases;
+        const dvec3 wo = uni(rng) < 0.9 ? glm::normalize(no + randomDir()) : randomDir();
+        pairs[i] = {glm::vec4(glm::vec3(xi), float(m)), glm::vec4(glm::vec3(ni), 0.0f), glm::vec4(glm::vec3(wi), 0.0f),
+                    glm::vec4(glm::vec3(xo), 0.0f),     glm::vec4(glm::vec3(no), 0.0f), glm::vec4(glm::vec3(wo), 0.0f)};
+        caseOf[i] = m;
+    }
+
+    // GPU evaluation.
+    const detail::PreprocessedShader source = detail::preprocessShader(kSweepPath, {}, &loadSweepShader);
+    const gl::Shader shader = gl::Shader::compileText(GL_COMPUTE_SHADER, source);
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, shader.id());
+    glLinkProgram(program);
+    GLint linked = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    REQUIRE(linked == GL_TRUE);
+    const gl::Buffer pairBuffer = gl::Buffer::create(pairs.size() * sizeof(GpuPair), pairs.data(), 0);
+    const gl::Buffer materialBuffer =
+        gl::Buffer::create(materialData.size() * sizeof(glm::vec4), materialData.data(), 0);
+    const gl::Buffer resultBuffer = gl::Buffer::create(2 * pairs.size() * sizeof(glm::vec4), nullptr, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pairBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materialBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, resultBuffer.id());
+    glUseProgram(program);
+    glProgramUniform1ui(program, glGetUniformLocation(program, "pairCount"), GLuint(kPairs));
+    glDispatchCompute(GLuint((kPairs + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> results(2 * pairs.size());
+    glGetNamedBufferSubData(resultBuffer.id(), 0, GLsizeiptr(results.size() * sizeof(glm::vec4)), results.data());
+    glUseProgram(0);
+    for (GLuint b = 0; b < 3; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    glDeleteProgram(program);
+
+    // Compare. Relative error per channel against max(|reference|, 1e-6 peak): below a millionth of
+    // the kernel's peak a value is invisible, and float cannot resolve it relative to the peak.
+    int nonFinite = 0, excluded = 0;
+    double maxRelSd = 0.0, maxRelS = 0.0, maxAbsT = 0.0;
+    int worst = -1;
+    for (int i = 0; i < kPairs; ++i) {
+        const GpuPair& q = pairs[i];
+        if (!finite(results[2 * i]) || !finite(results[2 * i + 1])) {
+            ++nonFinite;
+            continue;
+        }
+        const Case& k = cases[caseOf[i]];
+        if (nearDiscontinuity(k.constants, q)) {
+            ++excluded;
+            continue;
+        }
+        const dvec3 xi = toD(q.xi), ni = toD(q.ni), wi = toD(q.wi), xo = toD(q.xo), no = toD(q.no), wo = toD(q.wo);
+        const dvec3 sd = evaluateSd(k.constants, xi, ni, wi, xo, no);
+        const dvec3 s = evaluateBssrdf(k.constants, xi, ni, wi, xo, no, wo);
+        for (int c = 0; c < 3; ++c) {
+            const double floor = 1e-6 * at(k.peak, c);
+            const double relSd = std::abs(at(toD(results[2 * i]), c) - at(sd, c)) / std::max(std::abs(at(sd, c)), floor);
+            const double relS = std::abs(at(toD(results[2 * i + 1]), c) - at(s, c)) / std::max(std::abs(at(s, c)), floor);
+            if (relSd > maxRelSd) worst = i;
+            maxRelSd = std::max(maxRelSd, relSd);
+            maxRelS = std::max(maxRelS, relS);
+        }
+        const double t = fresnelTransmittance(k.constants.eta, glm::dot(glm::normalize(wi), glm::normalize(ni)));
+        maxAbsT = std::max(maxAbsT, std::abs(double(results[2 * i].w) - t));
+    }
+    std::printf("dirpole GLSL (float) vs C++ (double): %d pairs (%d edge cases), %zu materials, %d non-finite, "
+                "%d near a model discontinuity (not compared); max relative error S_d %.3g, BSSRDF %.3g; "
+                "max |T| error %.3g\n",
+                kPairs, edgeCases, cases.size(), nonFinite, excluded, maxRelSd, maxRelS, maxAbsT);
+    if (worst >= 0) {
+        const GpuPair& q = pairs[worst];
+        std::printf("worst %d: m %d eta %g r %g mu0 %g gpu %g %g %g cpu %g %g %g peak %g %g %g\n", worst, caseOf[worst], cases[caseOf[worst]].constants.eta, glm::length(toD(q.xo)-toD(q.xi)), -glm::dot(toD(q.no), toD(q.wi)), results[2*worst].x, results[2*worst].y, results[2*worst].z, evaluateSd(cases[caseOf[worst]].constants, toD(q.xi), toD(q.ni), toD(q.wi), toD(q.xo), toD(q.no)).x, evaluateSd(cases[caseOf[worst]].constants, toD(q.xi), toD(q.ni), toD(q.wi), toD(q.xo), toD(q.no)).y, evaluateSd(cases[caseOf[worst]].constants, toD(q.xi), toD(q.ni), toD(q.wi), toD(q.xo), toD(q.no)).z, cases[caseOf[worst]].peak.x, cases[caseOf[worst]].peak.y, cases[caseOf[worst]].peak.z);
+        INFO("worst pair " << worst << " material " << caseOf[worst] << " xi " << q.xi.x << "," << q.xi.y << ","
+                           << q.xi.z << " xo " << q.xo.x << "," << q.xo.y << "," << q.xo.z);
+        CHECK(maxRelSd < 1.0);  // placeholder, set from the measurement
+    }
+    CHECK(nonFinite == 0);
+    CHECK(excluded < kPairs / 1000);
+    gl.requireNoErrors();
+}
