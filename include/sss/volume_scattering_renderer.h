@@ -7,7 +7,7 @@
 ///    per light, the chromaticity c and intensity l of the light arriving at each point,
 ///    propagated slice by slice from the light, with hard shadows in l and the colour of the
 ///    medium the light crossed, blurred over a forward cone, in c. A sample of TF colour C is
-///    shaded C * (ambient + diffuse * sum_lights E * c * l);
+///    shaded C * (ambient + emission + diffuse * sum_lights E * c * l);
 ///  - VolumeShading::ScatteringGradient: Scattering plus gradient Blinn-Phong highlights, each
 ///    dimmed by l.
 /// EmissionAbsorption and Gradient are the thesis's "scattering off" baselines.
@@ -49,6 +49,8 @@ struct VolumeRenderOptions {
     // Shading (every mode but EmissionAbsorption):
     float ambient = 0.25f;           ///< ambient fraction of the TF colour (default: 0.25)
     float diffuse = 0.85f;           ///< diffuse fraction of the TF colour (default: 0.85)
+    /// Self-illumination: this fraction of the TF colour is added whatever the light (default: 0).
+    float emission = 0.0f;
     // Gradient highlights (Gradient, ScatteringGradient):
     glm::vec3 specular{0.3f};        ///< specular colour (default: 0.3)
     float shininess = 32.0f;         ///< Blinn-Phong exponent, > 0 (default: 32)

@@ -62,7 +62,8 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
     p.set("maxSteps", maxSteps);
     if (m_shading != VolumeShading::EmissionAbsorption) {
         p.set("modelToWorld", model);
-        p.set("ambientStrength", options.ambient);
+        // Emission adds to the ambient term: both are light-independent fractions of the TF colour.
+        p.set("ambientStrength", options.ambient + options.emission);
         p.set("diffuseStrength", options.diffuse);
         setLightUniforms(p, lights);
     }

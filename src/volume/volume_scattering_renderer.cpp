@@ -31,6 +31,7 @@ void validate(const VolumeRenderOptions& o) {
         fail("transferFunctionEntries", "in 2..65536", static_cast<float>(o.transferFunctionEntries));
     if (!(o.ambient >= 0.0f) || !std::isfinite(o.ambient)) fail("ambient", "finite and >= 0", o.ambient);
     if (!(o.diffuse >= 0.0f) || !std::isfinite(o.diffuse)) fail("diffuse", "finite and >= 0", o.diffuse);
+    if (!(o.emission >= 0.0f) || !std::isfinite(o.emission)) fail("emission", "finite and >= 0", o.emission);
     if (!(o.shininess > 0.0f) || !std::isfinite(o.shininess)) fail("shininess", "finite and > 0", o.shininess);
     if (!(o.gradientThreshold > 0.0f) || !std::isfinite(o.gradientThreshold))
         fail("gradientThreshold", "finite and > 0", o.gradientThreshold);

@@ -81,23 +81,28 @@ bool finite(const glm::vec4& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
 
-// Where the model itself is discontinuous, float and double may rightly take different branches:
-// front/back-lit at mu_0 = 0, and the n_i* fallbacks at their thresholds. Such pairs are still
-// checked for finiteness but left out of the error statistics.
-bool nearDiscontinuity(const DipoleConstants& c, const GpuPair& q) {
+enum class Skip { None, TotalInternalReflection, Discontinuity };
+
+// Pairs the S_d comparison leaves out (they are still checked for NaN/Inf):
+//  - total internal reflection on entry (eta < 1): no light enters, T = 0, so S_d is never used;
+//    its refracted ray lies exactly in the tangent plane, on the front/back-lit switch.
+//  - within rounding of a discontinuity of the model, where float and double may rightly take
+//    different branches: the front/back-lit switch at mu_0 = 0 and the n_i* fallbacks.
+Skip classify(const DipoleConstants& c, const GpuPair& q) {
     const dvec3 ni = glm::normalize(toD(q.ni)), wi = glm::normalize(toD(q.wi)), no = glm::normalize(toD(q.no));
     const dvec3 x = toD(q.xo) - toD(q.xi), t = wi - glm::dot(wi, ni) * ni;
     const double sin2 = glm::dot(t, t) / (c.eta * c.eta);
-    const dvec3 w12 = sin2 > 1.0 ? -t / (c.eta * std::sqrt(sin2)) : -t / c.eta - ni * std::sqrt(1.0 - sin2);
-    if (std::abs(glm::dot(no, w12)) < 1e-4) { static int n = 0; if (n++ < 5) std::printf("mu0 %g eta %g wi.ni %g sin2 %g\n", glm::dot(no, w12), c.eta, glm::dot(wi, ni), sin2); return true; }
+    if (sin2 >= 1.0) return Skip::TotalInternalReflection;
+    const dvec3 w12 = -t / c.eta - ni * std::sqrt(1.0 - sin2);
+    if (std::abs(glm::dot(no, w12)) < 1e-4) return Skip::Discontinuity;
     const double r = glm::length(x), minR = 1e-6 * std::min({c.D.x, c.D.y, c.D.z});
-    if (r > 0.5 * minR && r < 2.0 * minR) { std::printf("minR\n"); return true; }
+    if (r > 0.5 * minR && r < 2.0 * minR) return Skip::Discontinuity;
     if (r > 0.0) {
         const dvec3 cr = glm::cross(ni, x / r);
-        const double s = glm::dot(cr, cr);
-        if (s > 0.5e-6 && s < 2e-6) { std::printf("sin\n"); return true; }
+        const double sin2ni = glm::dot(cr, cr);
+        if (sin2ni > 0.5e-6 && sin2ni < 2e-6) return Skip::Discontinuity;
     }
-    return false;
+    return Skip::None;
 }
 
 }  // namespace
@@ -123,7 +128,7 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
         m.sigmaA = {logUniform(1e-4, 10), logUniform(1e-4, 10), logUniform(1e-4, 10)};
         m.sigmaS = {logUniform(1e-2, 30), logUniform(1e-2, 30), logUniform(1e-2, 30)};
         m.g = uni(rng) * 0.9;
-        m.eta = 0.7 + 1.1 * uni(rng);
+        m.eta = 0.8 + 1.0 * uni(rng);
         addCase(m, 1.0);
     }
     std::vector<glm::vec4> materialData;
@@ -221,11 +226,12 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
     for (GLuint b = 0; b < 3; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glDeleteProgram(program);
 
-    // Compare. Relative error per channel against max(|reference|, 1e-6 peak): below a millionth of
-    // the kernel's peak a value is invisible, and float cannot resolve it relative to the peak.
-    int nonFinite = 0, excluded = 0;
+    // Compare. Relative error per channel against max(|reference|, 1e-6 peak): a millionth of the
+    // kernel's peak is invisible, and float cannot resolve values far below it relative to the
+    // peak-sized source terms whose difference S_d is.
+    int nonFinite = 0, skippedTir = 0, skippedEdge = 0, bssrdfCompared = 0;
     double maxRelSd = 0.0, maxRelS = 0.0, maxAbsT = 0.0;
-    int worst = -1;
+    std::vector<double> relSds;
     for (int i = 0; i < kPairs; ++i) {
         const GpuPair& q = pairs[i];
         if (!finite(results[2 * i]) || !finite(results[2 * i + 1])) {
@@ -233,36 +239,47 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
             continue;
         }
         const Case& k = cases[caseOf[i]];
-        if (nearDiscontinuity(k.constants, q)) {
-            ++excluded;
+        const dvec3 xi = toD(q.xi), ni = toD(q.ni), wi = toD(q.wi), xo = toD(q.xo), no = toD(q.no), wo = toD(q.wo);
+        const double ti = fresnelTransmittance(k.constants.eta, glm::dot(glm::normalize(wi), glm::normalize(ni)));
+        const double to = fresnelTransmittance(k.constants.eta, glm::dot(glm::normalize(wo), glm::normalize(no)));
+        maxAbsT = std::max(maxAbsT, std::abs(double(results[2 * i].w) - ti));
+        const Skip skip = classify(k.constants, q);
+        if (skip != Skip::None) {
+            ++(skip == Skip::TotalInternalReflection ? skippedTir : skippedEdge);
             continue;
         }
-        const dvec3 xi = toD(q.xi), ni = toD(q.ni), wi = toD(q.wi), xo = toD(q.xo), no = toD(q.no), wo = toD(q.wo);
         const dvec3 sd = evaluateSd(k.constants, xi, ni, wi, xo, no);
         const dvec3 s = evaluateBssrdf(k.constants, xi, ni, wi, xo, no, wo);
+        // Near grazing, T ~ cos theta, and the cosine of float-rounded unit vectors carries an
+        // absolute error ~1e-7: the BSSRDF is compared where that is far below the bound.
+        const bool compareS = ti > 1e-2 && to > 1e-2;
+        bssrdfCompared += compareS;
+        double worstChannel = 0.0;
         for (int c = 0; c < 3; ++c) {
             const double floor = 1e-6 * at(k.peak, c);
             const double relSd = std::abs(at(toD(results[2 * i]), c) - at(sd, c)) / std::max(std::abs(at(sd, c)), floor);
-            const double relS = std::abs(at(toD(results[2 * i + 1]), c) - at(s, c)) / std::max(std::abs(at(s, c)), floor);
-            if (relSd > maxRelSd) worst = i;
-            maxRelSd = std::max(maxRelSd, relSd);
-            maxRelS = std::max(maxRelS, relS);
+            worstChannel = std::max(worstChannel, relSd);
+            if (compareS)
+                maxRelS = std::max(maxRelS, std::abs(at(toD(results[2 * i + 1]), c) - at(s, c)) /
+                                                std::max(std::abs(at(s, c)), floor));
         }
-        const double t = fresnelTransmittance(k.constants.eta, glm::dot(glm::normalize(wi), glm::normalize(ni)));
-        maxAbsT = std::max(maxAbsT, std::abs(double(results[2 * i].w) - t));
+        relSds.push_back(worstChannel);
+        maxRelSd = std::max(maxRelSd, worstChannel);
     }
-    std::printf("dirpole GLSL (float) vs C++ (double): %d pairs (%d edge cases), %zu materials, %d non-finite, "
-                "%d near a model discontinuity (not compared); max relative error S_d %.3g, BSSRDF %.3g; "
-                "max |T| error %.3g\n",
-                kPairs, edgeCases, cases.size(), nonFinite, excluded, maxRelSd, maxRelS, maxAbsT);
-    if (worst >= 0) {
-        const GpuPair& q = pairs[worst];
-        std::printf("worst %d: m %d eta %g r %g mu0 %g gpu %g %g %g cpu %g %g %g peak %g %g %g\n", worst, caseOf[worst], cases[caseOf[worst]].constants.eta, glm::length(toD(q.xo)-toD(q.xi)), -glm::dot(toD(q.no), toD(q.wi)), results[2*worst].x, results[2*worst].y, results[2*worst].z, evaluateSd(cases[caseOf[worst]].constants, toD(q.xi), toD(q.ni), toD(q.wi), toD(q.xo), toD(q.no)).x, evaluateSd(cases[caseOf[worst]].constants, toD(q.xi), toD(q.ni), toD(q.wi), toD(q.xo), toD(q.no)).y, evaluateSd(cases[caseOf[worst]].constants, toD(q.xi), toD(q.ni), toD(q.wi), toD(q.xo), toD(q.no)).z, cases[caseOf[worst]].peak.x, cases[caseOf[worst]].peak.y, cases[caseOf[worst]].peak.z);
-        INFO("worst pair " << worst << " material " << caseOf[worst] << " xi " << q.xi.x << "," << q.xi.y << ","
-                           << q.xi.z << " xo " << q.xo.x << "," << q.xo.y << "," << q.xo.z);
-        CHECK(maxRelSd < 1.0);  // placeholder, set from the measurement
-    }
+    std::sort(relSds.begin(), relSds.end());
+    const auto percentile = [&](double p) { return relSds[std::size_t(p * double(relSds.size() - 1))]; };
+    std::printf("dirpole GLSL (float) vs C++ (double), %s: %d pairs (%d edge cases), %zu materials; %d non-finite; "
+                "not compared: %d total internal reflection, %d at a model discontinuity\n"
+                "  S_d relative error (floor 1e-6 peak): median %.2g, 99.9%% %.2g, max %.3g over %zu pairs\n"
+                "  BSSRDF relative error: max %.3g over %d pairs with T > 0.01; T absolute error: max %.3g\n",
+                gl.context().info().renderer.c_str(), kPairs, edgeCases, cases.size(), nonFinite, skippedTir,
+                skippedEdge, percentile(0.5), percentile(0.999), maxRelSd, relSds.size(), maxRelS, bssrdfCompared,
+                maxAbsT);
     CHECK(nonFinite == 0);
-    CHECK(excluded < kPairs / 1000);
+    CHECK(skippedEdge < kPairs / 1000);
+    CHECK(relSds.size() > 100000u);
+    CHECK(maxRelSd < 1.0);  // placeholder, set from the measurement
+    CHECK(maxRelS < 1.0);
+    CHECK(maxAbsT < 1.0);
     gl.requireNoErrors();
 }

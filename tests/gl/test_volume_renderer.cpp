@@ -227,3 +227,47 @@ TEST_CASE("empty-space skipping changes no pixel in any mode", "[gl][volume]") {
     }
     gl.requireNoErrors();
 }
+
+TEST_CASE("anisotropic spacing: opacity follows physical path length on every axis", "[gl][volume][analytic]") {
+    // 16x16x8 voxels with spacing 1x1x2 is a physical cube; TF opacity 0.1 per smallest voxel
+    // edge. Looking along z (8 thick voxels) or along x (16 thin ones) crosses the same length.
+    test::GlTestScope gl;
+    const Volume volume = Volume::fromData({16, 16, 8}, VoxelType::UInt8, std::vector<uint8_t>(16 * 16 * 8, 255),
+                                           {1.0f, 1.0f, 2.0f});
+    const double expected = 1.0 - std::pow(0.9, 16.0);
+    for (float yaw : {0.0f, 90.0f}) {
+        Camera camera;
+        camera.setProjectionType(Projection::Orthographic);
+        camera.setOrthoHeight(2.0f);
+        camera.setYaw(yaw);
+        VolumeScatteringRenderer renderer({.earlyTermination = 1.0f, .jitter = false});
+        renderer.setVolume(volume);
+        renderer.setTransferFunction(constantTf({1, 1, 1}, 0.1f));
+        RenderTarget target(16, 16);
+        target.clear({0, 0, 0, 0});
+        renderer.render(camera, target);
+        INFO("yaw " << yaw);
+        CHECK(target.readColor().at(8, 8).a == Approx(expected).margin(1e-3));
+    }
+    gl.requireNoErrors();
+}
+
+TEST_CASE("emission adds a light-independent share of the TF colour", "[gl][volume]") {
+    test::GlTestScope gl;
+    const Volume volume = uniformVolume(8, 255);
+    Camera camera;
+    camera.setDistance(3.0f);
+    // With no ambient or diffuse light, an opaque volume shows emission * TF colour. (Gradient
+    // mode shows the plain TF colour where the gradient vanishes, as in this uniform volume.)
+    const TransferFunction tf = constantTf({0.5f, 0.25f, 1.0f}, 1.0f);
+    for (VolumeShading shading : {VolumeShading::Scattering, VolumeShading::ScatteringGradient}) {
+        VolumeRenderOptions options{.shading = shading, .ambient = 0.0f, .diffuse = 0.0f, .emission = 0.4f};
+        options.specular = glm::vec3(0.0f);
+        const Image image = renderVolume(volume, tf, options, camera, 16, 16);
+        INFO("mode " << static_cast<int>(shading));
+        CHECK(image.at(8, 8).r == Approx(0.2f).margin(1e-4));
+        CHECK(image.at(8, 8).b == Approx(0.4f).margin(1e-4));
+    }
+    CHECK_THROWS_WITH(VolumeScatteringRenderer({.emission = -1.0f}), Catch::Contains("emission"));
+    gl.requireNoErrors();
+}
