@@ -74,6 +74,16 @@ TEST_CASE("emission-absorption bucky-like volume matches the golden image", "[gl
     gl.requireNoErrors();
 }
 
+TEST_CASE("gradient-shaded bucky-like volume matches the golden image", "[gl][volume][golden]") {
+    test::GlTestScope gl;
+    const Volume volume = makeBuckyLikeVolume(32);
+    const Image image = renderVolume(volume, TransferFunction::preset("bucky"),
+                                     {.shading = VolumeShading::Gradient, .stepSize = 0.5f},
+                                     orbitCamera(volume.worldBounds(), -20.0f, 25.0f));
+    test::requireMatchesGolden(image.toRgba8(), "volume_gradient_bucky");
+    gl.requireNoErrors();
+}
+
 TEST_CASE("gradient-shaded hollow shell matches the golden image", "[gl][volume][golden]") {
     test::GlTestScope gl;
     const Volume volume = makeShellVolume(64);
