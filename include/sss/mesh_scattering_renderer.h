@@ -2,9 +2,18 @@
 /// @file
 /// Renders a triangle mesh. Shading modes:
 ///  - MeshShading::BlinnPhong: Lambert diffuse + Blinn-Phong specular (the thesis's
-///    "scattering off" baseline).
-/// Directional-dipole subsurface scattering (Dal Corso et al. 2017) arrives as a further mode.
+///    "scattering off" baseline);
+///  - MeshShading::Scattering: subsurface scattering with the directional dipole BSSRDF
+///    (Frisvad et al. 2014) by the method of Dal Corso et al. 2017, in three passes:
+///      1. light buffer: positions and normals of the surface each light sees;
+///      2. scattering maps: the object from K cameras on Halton directions, each texel a Monte
+///         Carlo sum of N light-buffer samples weighted by the BSSRDF (view-independent);
+///      3. combine: each visible point averages the maps that see it, times exit Fresnel.
+///    Passes 1-2 rerun only when what they depend on changes (mesh, transform, lights,
+///    material, options); while the scene is static, further map frames are accumulated until
+///    `accumulationFrames`. A camera change reruns only the combine pass.
 
+#include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/light.h"
 #include "sss/mesh.h"
@@ -18,7 +27,7 @@
 
 namespace sss {
 
-enum class MeshShading { BlinnPhong };
+enum class MeshShading { BlinnPhong, Scattering };
 
 /// Surface parameters of the Blinn-Phong baseline (linear RGB).
 struct BlinnPhongMaterial {
@@ -30,8 +39,31 @@ struct BlinnPhongMaterial {
 
 struct MeshRenderOptions {
     MeshShading shading = MeshShading::BlinnPhong;
-    /// Output is encoded as colour^(1/gamma); 1 writes linear values (default: 2.2, as the thesis).
+    /// Output is encoded as colour^(1/gamma); 1 writes linear values (default: 2.2).
     float gamma = 2.2f;
+    // Scattering (MeshShading::Scattering):
+    int cameras = 8;               ///< K scattering maps, 1..32 (default: 8)
+    int samples = 24;              ///< N proposals per light per frame, 1..4096 (default: 24)
+    int mapResolution = 512;       ///< scattering-map side in texels, 16..8192 (default: 512)
+    int lightMapResolution = 512;  ///< light-buffer side in texels, 16..8192 (default: 512)
+    /// Scene scale for the material's mm^-1 coefficients, > 0 (default: 1000, metres; see
+    /// ScatteringScale).
+    double millimetresPerUnit = 1000.0;
+    /// Radius of the sampling disk in scene units; 0 chooses 3 / sigma*, where the acceptance
+    /// probability exp(-sigma* r) has fallen to 5 % (default: 0).
+    float sampleRadius = 0.0f;
+    /// Spreads the samples: sigma* = min(sigma_tr) / spread, >= 0.1 (default: 1).
+    float spread = 1.0f;
+    /// Map frames accumulated while the scene is static, >= 1 (default: 8).
+    int accumulationFrames = 8;
+    /// Visibility depth bias of the map lookup, in texels' worth of depth, >= 0 (default: 1.5).
+    float depthBias = 1.5f;
+    /// Seam shrink of the map lookup, in texels, >= 0 (default: 2, as the thesis).
+    float seamShrink = 2.0f;
+    /// Specular highlight on top of the scattering, weighted by the surface's Fresnel
+    /// reflectance 1 - T, >= 0 (default: 1; 0 turns it off).
+    float specular = 1.0f;
+    float shininess = 60.0f;       ///< highlight exponent, > 0 (default: 60)
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).
     bool finishEachPass = false;
 };
@@ -49,6 +81,10 @@ public:
     void setMesh(const Mesh& mesh, const glm::mat4& model = glm::mat4(1.0f));
     void setModelTransform(const glm::mat4& model);
     void setMaterial(const BlinnPhongMaterial& material);
+    /// The translucent material of the Scattering mode (validated; default: potato).
+    void setScatteringMaterial(const ScatteringMaterial& material);
+    /// True once the scattering maps hold `accumulationFrames` frames for the current scene.
+    bool converged() const;
     /// At most 8 lights; each is validated.
     void setLights(std::vector<Light> lights);
     void setOptions(const MeshRenderOptions& options);

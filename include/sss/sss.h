@@ -2,6 +2,7 @@
 /// @file
 /// Everything in the public libsss API.
 #include "sss/bounds.h"
+#include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/context.h"
 #include "sss/error.h"
@@ -12,6 +13,7 @@
 #include "sss/image_compare.h"
 #include "sss/light.h"
 #include "sss/log.h"
+#include "sss/materials.h"
 #include "sss/mesh.h"
 #include "sss/mesh_scattering_renderer.h"
 #include "sss/procedural.h"

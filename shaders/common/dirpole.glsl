@@ -13,13 +13,14 @@
 // S_d is per RGB channel, without Fresnel factors, in length^-2; the full BSSRDF is
 // T(eta, w_i.n_i) * S_d * T(eta, w_o.n_o).
 //
-// Guards (spec §1.5), none of which changes the model where it is well defined:
+// Guards (spec §1.5); each touches only a degenerate corner of the model:
 //   - r -> 0 or x parallel to n_i: the modified tangent-plane normal n_i* falls back to n_i
 //     (returning 0 would darken the kernel centre);
 //   - back-facing light (w_i.n_i < 0): only the tangential part of w_i is refracted, so the
 //     refracted ray stays a unit vector (T(eta, cos <= 0) = 0 removes such light in the BSSRDF);
-//   - cos(beta) radicand clamped at 0; source distances floored at DIRPOLE_MIN_DISTANCE * D
-//     (d_r -> 0 only when mu_0 -> 0+ at r -> 0, a crease or grazing limit);
+//   - the cos(beta) radicand is non-negative by construction (a cross product, not r^2 - (x.w)^2);
+//   - source distances are floored at DIRPOLE_MIN_DISTANCE * D: d_r -> 0 only when mu_0 -> 0+
+//     at r -> 0 (a crease, or grazing light with eta near 1), where S'_d grows like 1/d_r^3;
 //   - sigma_a = 0 (sigma_tr = 0) needs nothing: exp(0) = 1 and every divisor stays > 0;
 //   - the result is max(0, real - virtual) with NaN/Inf replaced by 0 explicitly (GLSL max()
 //     of NaN is undefined).
@@ -32,7 +33,9 @@
 #endif
 
 // Material constants, derived once on the CPU in double (sss::deriveDipoleConstants) and
-// uploaded as uniforms. Per channel (r, g, b) unless noted.
+// uploaded as uniforms, e.g. `uniform DirpoleParams dirpole;` set member by member
+// ("dirpole.sigmaTr", ...) from the DipoleConstants fields of the same names, cast to float.
+// Per channel (r, g, b) unless noted.
 struct DirpoleParams {
     real3 sigmaTr;        // effective transport coefficient sqrt(3 sigma_a sigma_t')
     real3 D;              // diffusion coefficient 1 / (3 sigma_t')
@@ -99,8 +102,10 @@ real dirpoleChannel(real3 x, real3 w12, real3 niStar, real3 no, real sigmaTr, re
     real mu0 = -dot(no, w12);
     real dr2;
     if (mu0 > 0.0) {
-        real xw = dot(x, w12);
-        real cosBeta = -sqrt(max(r2 - xw * xw, 0.0) / (r2 + de * de));
+        // r^2 - (x.w12)^2 written as |x cross w12|^2 (w12 is a unit vector): no cancellation
+        // when x is nearly parallel to w12, where the sqrt would amplify it.
+        real3 xCrossW = cross(x, w12);
+        real cosBeta = -sqrt(dot(xCrossW, xCrossW) / (r2 + de * de));
         dr2 = r2 + D * mu0 * (D * mu0 - 2.0 * de * cosBeta);
     } else {
         real z = 1.0 / (3.0 * sigmaT);
@@ -129,11 +134,11 @@ real3 dirpoleSd(DirpoleParams p, real3 xi, real3 ni, real3 wi, real3 xo, real3 n
     real3 w12 = dirpoleRefract(wi, ni, p.eta);
     real minR = 1e-6 * min(min(p.D.x, p.D.y), p.D.z);  // "x_o = x_i" relative to the smallest D
     real3 niStar = dirpoleModifiedNormal(x, ni, minR);
-    real sr = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.x, p.D.x, p.de.x, p.sigmaT.x, p.A, p.cPhi, p.cE);
-    real sg = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.y, p.D.y, p.de.y, p.sigmaT.y, p.A, p.cPhi, p.cE);
-    real sb = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.z, p.D.z, p.de.z, p.sigmaT.z, p.A, p.cPhi, p.cE);
-    return real3(dirpoleSanitize(sr * p.normalization), dirpoleSanitize(sg * p.normalization),
-                 dirpoleSanitize(sb * p.normalization));
+    real red = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.x, p.D.x, p.de.x, p.sigmaT.x, p.A, p.cPhi, p.cE);
+    real green = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.y, p.D.y, p.de.y, p.sigmaT.y, p.A, p.cPhi, p.cE);
+    real blue = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.z, p.D.z, p.de.z, p.sigmaT.z, p.A, p.cPhi, p.cE);
+    return real3(dirpoleSanitize(red * p.normalization), dirpoleSanitize(green * p.normalization),
+                 dirpoleSanitize(blue * p.normalization));
 }
 
 // Exact dielectric Fresnel transmittance T = 1 - F_r for light crossing a boundary of relative

@@ -3,7 +3,9 @@
 //   lightVector[i].w == 0: directional; xyz = unit direction *towards* the light
 //   lightVector[i].w == 1: point light;   xyz = world position
 //   lightRadiance[i]   : colour * intensity
-#define MAX_LIGHTS 8
+#ifndef MAX_LIGHTS
+#define MAX_LIGHTS 8  // kMaxLights in src/light_uniforms.h
+#endif
 uniform int lightCount;
 uniform vec4 lightVector[MAX_LIGHTS];
 uniform vec3 lightRadiance[MAX_LIGHTS];

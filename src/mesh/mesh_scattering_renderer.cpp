@@ -2,11 +2,16 @@
 
 #include "light_uniforms.h"
 #include "mesh/blinn_phong_pass.h"
+#include "mesh/combine_pass.h"
 #include "mesh/gpu_mesh.h"
+#include "mesh/light_buffer_pass.h"
+#include "mesh/scattering_map_pass.h"
 #include "sss/error.h"
 #include "sss/timing.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -15,10 +20,46 @@ namespace sss {
 namespace {
 
 void validate(const MeshRenderOptions& o) {
-    if (!(o.gamma > 0.0f) || !std::isfinite(o.gamma))
+    auto fail = [](const std::string& field, const std::string& rule, double value) {
         throw Error(ErrorKind::InvalidArgument,
-                    "MeshRenderOptions::gamma must be a finite value > 0, got " + std::to_string(o.gamma));
+                    "MeshRenderOptions::" + field + " must be " + rule + ", got " + std::to_string(value));
+    };
+    auto finite = [](double v) { return std::isfinite(v); };
+    if (!(o.gamma > 0.0f) || !finite(o.gamma)) fail("gamma", "a finite value > 0", o.gamma);
+    if (o.cameras < 1 || o.cameras > detail::kMaxScatteringCameras) fail("cameras", "in 1..32", o.cameras);
+    if (o.samples < 1 || o.samples > 4096) fail("samples", "in 1..4096", o.samples);
+    if (o.mapResolution < 16 || o.mapResolution > 8192) fail("mapResolution", "in 16..8192", o.mapResolution);
+    if (o.lightMapResolution < 16 || o.lightMapResolution > 8192)
+        fail("lightMapResolution", "in 16..8192", o.lightMapResolution);
+    if (!(o.millimetresPerUnit > 0.0) || !finite(o.millimetresPerUnit))
+        fail("millimetresPerUnit", "finite and > 0", o.millimetresPerUnit);
+    if (!(o.sampleRadius >= 0.0f) || !finite(o.sampleRadius)) fail("sampleRadius", "finite and >= 0", o.sampleRadius);
+    if (!(o.spread >= 0.1f) || !finite(o.spread)) fail("spread", "finite and >= 0.1", o.spread);
+    if (o.accumulationFrames < 1) fail("accumulationFrames", ">= 1", o.accumulationFrames);
+    if (!(o.depthBias >= 0.0f) || !finite(o.depthBias)) fail("depthBias", "finite and >= 0", o.depthBias);
+    if (!(o.seamShrink >= 0.0f) || !finite(o.seamShrink)) fail("seamShrink", "finite and >= 0", o.seamShrink);
+    if (!(o.specular >= 0.0f) || !finite(o.specular)) fail("specular", "finite and >= 0", o.specular);
+    if (!(o.shininess > 0.0f) || !finite(o.shininess)) fail("shininess", "finite and > 0", o.shininess);
 }
+
+// What the light buffer depends on.
+struct LightBufferInputs {
+    std::uint64_t meshGeneration = 0;
+    glm::mat4 model{1.0f};
+    std::vector<Light> lights;
+    int resolution = 0;
+    bool operator==(const LightBufferInputs&) const = default;
+};
+
+// What the scattering maps depend on (besides the light buffer).
+struct ScatteringMapInputs {
+    LightBufferInputs lightBuffer;
+    std::uint64_t materialGeneration = 0;
+    int cameras = 0, samples = 0, resolution = 0;
+    double millimetresPerUnit = 0.0;
+    float sampleRadius = 0.0f, spread = 0.0f;
+    bool operator==(const ScatteringMapInputs&) const = default;
+};
 
 void validate(const BlinnPhongMaterial& m) {
     auto bad = [](glm::vec3 c) {
@@ -36,11 +77,81 @@ void validate(const BlinnPhongMaterial& m) {
 struct MeshScatteringRenderer::Impl {
     MeshRenderOptions options;
     BlinnPhongMaterial material;
+    ScatteringMaterial scatteringMaterial;
+    std::uint64_t materialGeneration = 1;
     std::vector<Light> lights{DirectionalLight{}};
     glm::mat4 model{1.0f};
     std::optional<detail::GpuMesh> mesh;
-    detail::BlinnPhongPass blinnPhong;
+    std::uint64_t meshGeneration = 0;
     RenderStats stats;
+    // Passes are built on first use, so a Blinn-Phong-only renderer compiles no scattering shaders.
+    std::optional<detail::BlinnPhongPass> blinnPhong;
+    std::optional<detail::LightBufferPass> lightBuffer;
+    std::optional<detail::ScatteringMapPass> scatteringMaps;
+    std::optional<detail::CombinePass> combine;
+    detail::ScatteringCameras cameras;
+    std::optional<LightBufferInputs> lightBufferInputs;
+    std::optional<ScatteringMapInputs> scatteringMapInputs;
+
+    template <typename Work>
+    void timed(const char* pass, Work&& work) {
+        const auto start = std::chrono::steady_clock::now();
+        work();
+        if (options.finishEachPass) finishGpuWork();
+        stats.record(pass, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+
+    ScatteringMapInputs currentMapInputs() const {
+        return {{meshGeneration, model, lights, options.lightMapResolution},
+                materialGeneration,
+                options.cameras,
+                options.samples,
+                options.mapResolution,
+                options.millimetresPerUnit,
+                options.sampleRadius,
+                options.spread};
+    }
+
+    bool mapsConverged() const {
+        return scatteringMaps && scatteringMapInputs == currentMapInputs() &&
+               scatteringMaps->frames() >= options.accumulationFrames;
+    }
+
+    // Passes 1 and 2, each only when something it depends on changed.
+    void updateScattering() {
+        const ScatteringMapInputs inputs = currentMapInputs();
+        if (lightBufferInputs != inputs.lightBuffer) {
+            if (!lightBuffer) lightBuffer.emplace();
+            timed("light-buffer", [&] { lightBuffer->run(*mesh, model, lights, options.lightMapResolution); });
+            lightBufferInputs = inputs.lightBuffer;
+        }
+        if (scatteringMapInputs != inputs) {
+            if (!scatteringMaps || scatteringMaps->cameras() != options.cameras) scatteringMaps.emplace(options.cameras);
+            scatteringMaps->reset(options.mapResolution);
+            cameras = detail::makeScatteringCameras(options.cameras, mesh->bounds);
+            scatteringMapInputs = inputs;
+        }
+        if (scatteringMaps->frames() >= options.accumulationFrames) return;
+        const DipoleConstants dipole = deriveDipoleConstants(scatteringMaterial, options.millimetresPerUnit);
+        detail::ScatteringSampling sampling;
+        // The widest channel (smallest sigma_tr) sets the spread; sigma_tr = 0 (no absorption)
+        // falls back to the reduced extinction, the next shortest length scale.
+        double sigma = std::min({dipole.sigmaTr.x, dipole.sigmaTr.y, dipole.sigmaTr.z});
+        if (!(sigma > 0.0)) sigma = std::min({dipole.sigmaTPrime.x, dipole.sigmaTPrime.y, dipole.sigmaTPrime.z});
+        sampling.sigmaStar = static_cast<float>(sigma / options.spread);
+        // The near field falls off over a few diffusion lengths D = 1 / (3 sigma_t'), but the light
+        // buffer cannot resolve distances below about a texel: take whichever is wider.
+        const auto [centre, worldRadius] = detail::worldSphere(mesh->bounds, model);
+        const double texel = 2.0 * worldRadius / options.lightMapResolution;
+        const double sigmaT = std::min({dipole.sigmaTPrime.x, dipole.sigmaTPrime.y, dipole.sigmaTPrime.z});
+        sampling.sigmaNear = static_cast<float>(std::max(static_cast<double>(sampling.sigmaStar), std::min(sigmaT, 1.0 / texel)));
+        sampling.diskRadius = options.sampleRadius > 0.0f ? options.sampleRadius : 3.0f / sampling.sigmaStar;
+        sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
+        timed("scattering-maps", [&] {
+            scatteringMaps->accumulate(*mesh, model, cameras, lights, lightBuffer->viewProjections(),
+                                       lightBuffer->positions(), lightBuffer->normals(), dipole, sampling);
+        });
+    }
 };
 
 MeshScatteringRenderer::MeshScatteringRenderer(const MeshRenderOptions& options) {
@@ -57,6 +168,7 @@ void MeshScatteringRenderer::setMesh(const Mesh& mesh, const glm::mat4& model) {
     if (mesh.triangleCount() == 0)
         throw Error(ErrorKind::InvalidArgument, "MeshScatteringRenderer::setMesh: the mesh has no triangles");
     m_impl->mesh = detail::GpuMesh::upload(mesh);
+    ++m_impl->meshGeneration;
     m_impl->model = model;
 }
 
@@ -66,6 +178,14 @@ void MeshScatteringRenderer::setMaterial(const BlinnPhongMaterial& material) {
     validate(material);
     m_impl->material = material;
 }
+
+void MeshScatteringRenderer::setScatteringMaterial(const ScatteringMaterial& material) {
+    material.validate();
+    m_impl->scatteringMaterial = material;
+    ++m_impl->materialGeneration;
+}
+
+bool MeshScatteringRenderer::converged() const { return m_impl->mapsConverged(); }
 
 void MeshScatteringRenderer::setLights(std::vector<Light> lights) {
     detail::validateLights(lights, "MeshScatteringRenderer::setLights");
@@ -83,13 +203,32 @@ const RenderStats& MeshScatteringRenderer::stats() const { return m_impl->stats;
 void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) {
     if (!m_impl->mesh)
         throw Error(ErrorKind::InvalidArgument, "MeshScatteringRenderer::render: no mesh set (call setMesh first)");
-    const auto start = std::chrono::steady_clock::now();
-    target.bindForDrawing();
-    m_impl->blinnPhong.run(*m_impl->mesh, m_impl->model, m_impl->material, m_impl->lights, camera, target.aspect(),
-                           m_impl->options.gamma);
-    if (m_impl->options.finishEachPass) finishGpuWork();
-    m_impl->stats.record("blinn-phong",
-                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    Impl& r = *m_impl;
+    if (r.options.shading == MeshShading::BlinnPhong) {
+        if (!r.blinnPhong) r.blinnPhong.emplace();
+        r.timed("blinn-phong", [&] {
+            target.bindForDrawing();
+            r.blinnPhong->run(*r.mesh, r.model, r.material, r.lights, camera, target.aspect(), r.options.gamma);
+        });
+        return;
+    }
+    r.updateScattering();
+    if (!r.combine) r.combine.emplace();
+    // Bias and shrink are given in texels of the scattering maps; convert with the maps' extent
+    // (2 radii across, 3 radii of depth; see makeScatteringCameras).
+    const float texels = static_cast<float>(r.options.mapResolution);
+    const float radius = std::max(r.mesh->bounds.radius(), 1e-6f) * 1.01f;
+    detail::CombineSettings settings;
+    settings.eta = static_cast<float>(r.scatteringMaterial.eta);
+    settings.depthBias = r.options.depthBias * 2.0f / (3.0f * texels);
+    settings.seamShrink = r.options.seamShrink * 2.0f * radius / texels;
+    settings.specularStrength = r.options.specular;
+    settings.shininess = r.options.shininess;
+    settings.gamma = r.options.gamma;
+    r.timed("combine", [&] {
+        target.bindForDrawing();
+        r.combine->run(*r.mesh, r.model, r.cameras, *r.scatteringMaps, r.lights, camera, target.aspect(), settings);
+    });
 }
 
 }  // namespace sss

@@ -90,6 +90,31 @@ TEST_CASE("volume reference: an opaque volume shows the TF colour", "[cpu]") {
     CHECK(image.at(8, 8).a == Approx(1.0).margin(1e-9));
 }
 
+TEST_CASE("volume reference: 16-bit volumes map their data range onto the TF as the GPU does", "[cpu]") {
+    // 16-bit 3000 everywhere but one 1000 voxel must look exactly like 8-bit 255 with one 0.
+    const int n = 8;
+    std::vector<uint8_t> wideBytes(static_cast<size_t>(n * n * n) * 2), narrowBytes(static_cast<size_t>(n * n * n));
+    for (size_t i = 0; i < narrowBytes.size(); ++i) {
+        const uint16_t v = i == 0 ? 1000 : 3000;
+        wideBytes[2 * i] = static_cast<uint8_t>(v & 0xFF);
+        wideBytes[2 * i + 1] = static_cast<uint8_t>(v >> 8);
+        narrowBytes[i] = i == 0 ? 0 : 255;
+    }
+    const Volume wide = Volume::fromData({n, n, n}, VoxelType::UInt16, std::move(wideBytes));
+    const Volume narrow = Volume::fromData({n, n, n}, VoxelType::UInt8, std::move(narrowBytes));
+    const TransferFunction tf({{0.0f, {0, 0, 0}, 0.0f}, {0.9f, {1, 0, 0}, 0.0f}, {1.0f, {1, 0, 0}, 1.0f}});
+    Camera camera;
+    camera.setYaw(20.0f);
+    camera.setPitch(10.0f);
+    VolumeReferenceOptions options;
+    options.shading = ReferenceShading::Gradient;
+    const std::vector<Light> lights{DirectionalLight{}};
+    const Image a = renderVolumeReference(wide, tf, 256, glm::mat4(1.0f), lights, camera, 16, 16, options);
+    const Image b = renderVolumeReference(narrow, tf, 256, glm::mat4(1.0f), lights, camera, 16, 16, options);
+    CHECK(a.at(8, 8).r > 0.5f);
+    for (size_t i = 0; i < a.data().size(); ++i) REQUIRE(a.data()[i] == Approx(b.data()[i]).margin(1e-6));
+}
+
 TEST_CASE("volume reference: a fully transparent TF leaves exactly the background", "[cpu]") {
     const Volume volume = makeBlobsVolume(16);
     Camera camera;

@@ -231,7 +231,7 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
     // peak-sized source terms whose difference S_d is.
     int nonFinite = 0, skippedTir = 0, skippedEdge = 0, bssrdfCompared = 0;
     double maxRelSd = 0.0, maxRelS = 0.0, maxAbsT = 0.0;
-    std::vector<double> relSds; double big = 0;
+    std::vector<double> relSds;
     for (int i = 0; i < kPairs; ++i) {
         const GpuPair& q = pairs[i];
         if (!finite(results[2 * i]) || !finite(results[2 * i + 1])) {
@@ -242,7 +242,6 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
         const dvec3 xi = toD(q.xi), ni = toD(q.ni), wi = toD(q.wi), xo = toD(q.xo), no = toD(q.no), wo = toD(q.wo);
         const double ti = fresnelTransmittance(k.constants.eta, glm::dot(glm::normalize(wi), glm::normalize(ni)));
         const double to = fresnelTransmittance(k.constants.eta, glm::dot(glm::normalize(wo), glm::normalize(no)));
-        if (std::abs(double(results[2 * i].w) - ti) > maxAbsT) std::printf("T: eta %g cos %.9g gpu %.9g cpu %.9g\n", k.constants.eta, glm::dot(glm::normalize(wi), glm::normalize(ni)), results[2*i].w, ti);
         maxAbsT = std::max(maxAbsT, std::abs(double(results[2 * i].w) - ti));
         const Skip skip = classify(k.constants, q);
         if (skip != Skip::None) {
@@ -260,7 +259,6 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
             const double floor = 1e-6 * at(k.peak, c);
             const double relSd = std::abs(at(toD(results[2 * i]), c) - at(sd, c)) / std::max(std::abs(at(sd, c)), floor);
             worstChannel = std::max(worstChannel, relSd);
-            if (std::abs(at(sd, c)) > 1e-3 * at(k.peak, c)) big = std::max(big, relSd);
             if (compareS)
                 maxRelS = std::max(maxRelS, std::abs(at(toD(results[2 * i + 1]), c) - at(s, c)) /
                                                 std::max(std::abs(at(s, c)), floor));
@@ -268,7 +266,6 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
         relSds.push_back(worstChannel);
         maxRelSd = std::max(maxRelSd, worstChannel);
     }
-    std::printf("big %g\n", big);
     std::sort(relSds.begin(), relSds.end());
     const auto percentile = [&](double p) { return relSds[std::size_t(p * double(relSds.size() - 1))]; };
     std::printf("dirpole GLSL (float) vs C++ (double), %s: %d pairs (%d edge cases), %zu materials; %d non-finite; "
@@ -281,8 +278,18 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
     CHECK(nonFinite == 0);
     CHECK(skippedEdge < kPairs / 1000);
     CHECK(relSds.size() > 100000u);
-    CHECK(maxRelSd < 1.0);  // placeholder, set from the measurement
-    CHECK(maxRelS < 1.0);
-    CHECK(maxAbsT < 1.0);
+    // Bounds, from llvmpipe (IEEE float, correctly rounded sqrt and division): median 2.5e-7,
+    // 99.9th percentile 7.5e-5, max 1.9e-3. The maximum is not a float-evaluation flaw but the
+    // conditioning of S_d: where the real and virtual sources nearly cancel, and in the back-lit
+    // branch where the C_phi and C_E terms of S'_d nearly cancel, S_d amplifies input
+    // perturbations ~1e4-fold, so the 3e-8 by which float unit vectors miss unit length
+    // (normalised again in double on the CPU) already moves it by 3e-4. The bounds leave 5-10x
+    // for GPUs with approximate exp / division (NVIDIA: a few ulp).
+    CHECK(percentile(0.999) < 1e-3);
+    CHECK(maxRelSd < 1e-2);
+    CHECK(maxRelS < 1e-2);
+    // T is exact to ~1e-6 except next to the critical angle of eta < 1, where T ~ sqrt(cos_t)
+    // has an unbounded slope: measured max 4e-5.
+    CHECK(maxAbsT < 5e-4);
     gl.requireNoErrors();
 }

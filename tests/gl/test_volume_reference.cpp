@@ -9,6 +9,7 @@
 #include <sss/volume_scattering_renderer.h>
 
 #include <cstdio>
+#include <tuple>
 #include <vector>
 
 using namespace sss;
@@ -74,6 +75,9 @@ Image renderGpu(const Scene& scene, VolumeRenderOptions options) {
     return target.readColor();
 }
 
+// Gradient shading converges only to first order in the step (the two-sided normal flips where
+// n is perpendicular to v, so the integrand jumps there): it needs steps down to ~1/512 voxel
+// for a change below 1e-4; the other modes settle by 1/16.
 ConvergedReference renderReference(const Scene& scene) {
     VolumeReferenceOptions options;
     options.shading = scene.referenceShading;
@@ -81,7 +85,8 @@ ConvergedReference renderReference(const Scene& scene) {
     options.shadowStepVoxels = 0.25;
     options.stepVoxels = 0.125;  // only the ratio matters here: shadow step = 2 x view step
     return renderVolumeReferenceConverged(scene.volume, *scene.tf, 256, glm::mat4(1.0f), kLights, scene.camera, kWidth,
-                                          kHeight, options, 1e-4, 0.5, 1.0 / 32.0);
+                                          kHeight, options, 1e-4, 0.5,
+                                          scene.referenceShading == ReferenceShading::Gradient ? 1.0 / 512.0 : 1.0 / 32.0);
 }
 
 // GPU settings that target the model itself: no jitter, no early termination.
@@ -109,8 +114,8 @@ TEST_CASE("GPU emission-absorption matches the CPU reference", "[gl][volume][ref
     CHECK(reference.converged);
     const ErrorMetrics exact = compareAndPrint("emission-absorption, GPU step 0.25", renderGpu(scene, exactGpu(0.25f)),
                                                reference.image);
-    // Measured 2.2e-4 on llvmpipe; bound 5x that.
-    CHECK(exact.relRmse < 1.1e-3);
+    // Measured 8.5e-4 (llvmpipe, Mesa 22.3); bound about 2.4x that.
+    CHECK(exact.relRmse < 2e-3);
     // The renderer's defaults (early termination at 0.99) cost a little more; printed only.
     compareAndPrint("emission-absorption, GPU step 0.25 with early termination 0.99",
                     renderGpu(scene, {.stepSize = 0.25f, .jitter = false}), reference.image);
@@ -126,14 +131,17 @@ TEST_CASE("GPU gradient shading matches the CPU reference", "[gl][volume][refere
         CHECK(reference.converged);
         const ErrorMetrics m = compareAndPrint(shell ? "gradient shell, GPU step 0.25" : "gradient blobs, GPU step 0.25",
                                                renderGpu(scene, exactGpu(0.25f)), reference.image);
-        // Measured: shell 4.1e-3, blobs 3.4e-4 on llvmpipe; bounds about 3x.
-        CHECK(m.relRmse < (shell ? 1.2e-2 : 1.0e-3));
+        // Measured: shell 2.8e-3, blobs 4.1e-3 (llvmpipe, Mesa 22.3); bounds about 2x.
+        CHECK(m.relRmse < (shell ? 6e-3 : 8e-3));
     }
     gl.requireNoErrors();
 }
 
 TEST_CASE("the GPU converges to the CPU reference as its step shrinks", "[gl][volume][reference]") {
     test::GlTestScope gl;
+    // Measured relRmse at steps 2, 1, 0.5, 0.25 (llvmpipe, Mesa 22.3):
+    //   emission-absorption blobs 6.7e-3, 2.7e-3, 1.2e-3, 8.5e-4;
+    //   gradient shell            1.0e-1, 3.0e-2, 8.2e-3, 2.8e-3.
     for (const Scene& scene : {blobsScene(VolumeShading::EmissionAbsorption, ReferenceShading::EmissionAbsorption),
                                shellScene()}) {
         const bool shell = scene.tf == &shellTf();
@@ -150,6 +158,27 @@ TEST_CASE("the GPU converges to the CPU reference as its step shrinks", "[gl][vo
             previous = m.relRmse;
             first = false;
         }
+    }
+    gl.requireNoErrors();
+}
+
+TEST_CASE("GPU light-volume scattering stays near the CPU single-scattering reference", "[gl][volume][reference]") {
+    // The light volume discretises transport on the voxel grid (one sample per voxel, bilinear
+    // lookups, blended sweep axes, cone-blurred c) and stores at each voxel the light leaving the
+    // previous slice, i.e. the model's l and c half a voxel towards the light: it is brighter
+    // than the reference by a few percent whatever the ray step. Measured relRmse (llvmpipe,
+    // Mesa 22.3, g = 0.5, GPU step 0.25): Scattering 6.5e-2, ScatteringGradient 6.6e-2; the
+    // bound is 1.5x that, as a regression guard for the light volume.
+    test::GlTestScope gl;
+    for (auto [gpu, ref, name] : {std::tuple{VolumeShading::Scattering, ReferenceShading::Scattering, "scattering"},
+                                  std::tuple{VolumeShading::ScatteringGradient, ReferenceShading::ScatteringGradient,
+                                             "scattering-gradient"}}) {
+        const Scene scene = blobsScene(gpu, ref);
+        const ConvergedReference reference = renderReference(scene);
+        printReference(name, reference);
+        CHECK(reference.converged);
+        const ErrorMetrics m = compareAndPrint(name, renderGpu(scene, exactGpu(0.25f)), reference.image);
+        CHECK(m.relRmse < 0.1);
     }
     gl.requireNoErrors();
 }

@@ -1,0 +1,2 @@
+// Depth pre-pass: only depth is written (colour writes are masked off).
+void main() {}

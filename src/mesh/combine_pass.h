@@ -1,0 +1,36 @@
+#pragma once
+// Combine (Dal Corso et al. 2017, pass 3): the mesh from the viewer; each visible point reads
+// the scattering maps that see it (3x3 percentage-closer visibility against each layer's depth,
+// with a depth bias and a seam shrink), averages them, and applies exit Fresnel, an optional
+// specular highlight and gamma (shaders/mesh/combine.frag).
+#include "gl/program.h"
+#include "mesh/gpu_mesh.h"
+#include "mesh/scattering_map_pass.h"
+#include "sss/camera.h"
+#include "sss/light.h"
+
+#include <vector>
+
+namespace sss::detail {
+
+struct CombineSettings {
+    float eta = 1.3f;
+    float depthBias = 0.0f;   ///< window-space depth
+    float seamShrink = 0.0f;  ///< model units
+    float specularStrength = 1.0f;
+    float shininess = 40.0f;
+    float gamma = 2.2f;
+};
+
+class CombinePass {
+public:
+    CombinePass();
+    void run(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
+             const ScatteringMapPass& maps, const std::vector<Light>& lights, const Camera& camera, float aspect,
+             const CombineSettings& settings) const;
+
+private:
+    gl::Program m_program;
+};
+
+}  // namespace sss::detail

@@ -1,0 +1,40 @@
+#pragma once
+// Light buffer (Dal Corso et al. 2017, pass 1): for each light, the world position and normal of
+// the surface the light sees, one layer of a 2D array per light, all lights in one draw.
+// Directional lights use an orthographic view along the light, point lights a perspective view
+// from the light; both frame the object's bounding sphere.
+#include "gl/framebuffer.h"
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "mesh/gpu_mesh.h"
+#include "sss/light.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <vector>
+
+namespace sss::detail {
+
+/// World -> clip transform of the light's view of a sphere (centre, radius) in world space.
+glm::mat4 lightViewProjection(const Light& light, glm::vec3 centre, float radius);
+
+class LightBufferPass {
+public:
+    LightBufferPass();
+    void run(const GpuMesh& mesh, const glm::mat4& model, const std::vector<Light>& lights, int resolution);
+
+    const gl::Texture& positions() const { return m_positions; }  ///< xyz world, w = 1 where covered
+    const gl::Texture& normals() const { return m_normals; }
+    const std::vector<glm::mat4>& viewProjections() const { return m_viewProjections; }
+
+private:
+    gl::Program m_program;
+    gl::Texture m_positions, m_normals, m_depth;
+    gl::Framebuffer m_framebuffer;
+    std::vector<glm::mat4> m_viewProjections;
+};
+
+/// Bounding sphere of `bounds` after `model` (centre, radius), in world space.
+std::pair<glm::vec3, float> worldSphere(const Bounds& bounds, const glm::mat4& model);
+
+}  // namespace sss::detail
