@@ -5,7 +5,8 @@
 //   - the light arriving there is looked up where the light ray through the voxel crosses slice
 //     w-1: intensity l with one bilinear fetch (hard shadows), chromaticity c gathered over a
 //     cone whose aperture follows the Henyey-Greenstein g;
-//   - the arriving (c, l) is stored in the light volume (so a voxel does not shadow itself);
+//   - the (c, l) at the voxel centre, after half of the voxel's own path, is stored in the light
+//     volume (the light volume samples light at points, like the CPU reference);
 //   - the light leaving the voxel, c' = (1-a) c + a rgb and l' = (1-a) l, goes to the next slice,
 //     with the TF opacity a corrected for the oblique path through the slice.
 // Outside the volume the light is unattenuated white: (1, 1, 1, 1).
@@ -78,8 +79,11 @@ void main() {
         }
         chromaticity = coneWeights.x * centre.rgb + coneWeights.y * ring;
     }
-    vec4 arriving = vec4(chromaticity, centre.a);
     imageStore(currentSlice, uv, vec4((1.0 - alpha) * chromaticity + alpha * sampleTf.rgb, (1.0 - alpha) * centre.a));
+    // The light volume holds the light at the voxel centre: it has crossed half of this voxel's
+    // path (the two halves compose to the full step above).
+    float halfAlpha = correctOpacity(sampleTf.a, 0.5 * pathLength, referenceLength);
+    vec4 arriving = vec4((1.0 - halfAlpha) * chromaticity + halfAlpha * sampleTf.rgb, (1.0 - halfAlpha) * centre.a);
 
     if (pyramidMask != 0) {
         // Light inside the volume: six sweeps, each owning the voxels whose light arrives

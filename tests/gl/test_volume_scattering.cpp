@@ -201,11 +201,14 @@ TEST_CASE("a point light inside the volume lights it symmetrically and attenuate
         INFO("k = " << k << ": +x " << px << ", -x " << nx << ", +y " << py << ", -z " << nz);
         CHECK(nx == Approx(px).epsilon(1e-3));  // symmetric about the light
         CHECK(nz == Approx(px).epsilon(0.05));  // near-symmetric across sweep frames
-        // Distance to the light is roughly k + 0.5 voxels (off-axis for y and z by half a voxel);
-        // the propagation starts half a voxel late, so allow one voxel of attenuation either way.
-        const double exact = std::pow(1.0 - opacity, k + 0.5);
-        CHECK(px <= exact / (1.0 - opacity) + 1e-3);
-        CHECK(px >= exact * (1.0 - opacity) - 1e-3);
+        // Optical depth in voxels of opacity: the true distance d to the light, plus what slice
+        // propagation adds near a point light. The first slice is crossed along the steeper ray
+        // of the voxel next to the light (about 0.6-0.8 voxel too much, measured), and bilinear
+        // lookups add about 0.03 voxel per slice (measured 1.03 in total at k = 11).
+        const double d = std::sqrt((k + 0.5) * (k + 0.5) + 0.5);
+        const double depth = std::log(static_cast<double>(px)) / std::log(1.0 - opacity);
+        CHECK(depth >= d - 0.05);
+        CHECK(depth <= d + 1.25);
         if (k > 0) CHECK(px < lv.at(15 + k, 16, 16).a);  // decreasing with distance
     }
     SECTION("on the boundary and outside, the light is handled the same way") {
