@@ -1,0 +1,238 @@
+// The CPU mesh reference renderer (Monte Carlo over the surface with shadow rays) and its BVH:
+// brute-force ray checks, an analytic plane, translucency, convergence and light equivalence.
+#include "sss/mesh_reference.h"
+
+#include "mesh/bvh.h"
+#include "test_helpers.h"
+
+#include <sss/image_compare.h>
+#include <sss/materials.h>
+#include <sss/procedural.h>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <random>
+#include <vector>
+
+using Catch::Contains;
+using namespace sss;
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Axis-aligned box centred at the origin, each face an n x n grid of quads (flat normals,
+// counter-clockwise seen from outside): the +z and -z faces use nz, the others nSide.
+Mesh makeGridBox(glm::vec3 size, int nz, int nSide) {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<uint32_t> indices;
+    const glm::vec3 h = size * 0.5f;
+    auto face = [&](glm::vec3 n, glm::vec3 u, glm::vec3 v, int cells) {
+        // u x v = n; u, v, n unit axis vectors.
+        const float su = glm::dot(glm::abs(u), h), sv = glm::dot(glm::abs(v), h), sn = glm::dot(glm::abs(n), h);
+        const auto base = static_cast<uint32_t>(positions.size());
+        for (int j = 0; j <= cells; ++j)
+            for (int i = 0; i <= cells; ++i) {
+                const float a = -1.0f + 2.0f * float(i) / float(cells), b = -1.0f + 2.0f * float(j) / float(cells);
+                positions.push_back(n * sn + u * (a * su) + v * (b * sv));
+                normals.push_back(n);
+            }
+        const auto row = static_cast<uint32_t>(cells + 1);
+        for (uint32_t j = 0; j < uint32_t(cells); ++j)
+            for (uint32_t i = 0; i < uint32_t(cells); ++i) {
+                const uint32_t k = base + j * row + i;
+                indices.insert(indices.end(), {k, k + 1, k + row + 1, k, k + row + 1, k + row});
+            }
+    };
+    const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+    face(z, x, y, nz);
+    face(-z, y, x, nz);
+    face(x, y, z, nSide);
+    face(-x, z, y, nSide);
+    face(y, z, x, nSide);
+    face(-y, x, z, nSide);
+    return Mesh::fromArrays(std::move(positions), std::move(indices), std::move(normals), "grid box");
+}
+
+// Camera at (0, 0, distance) looking down -z, orthographic with the given view height.
+Camera orthoDown(float height, float distance = 3.0f) {
+    Camera camera;
+    camera.setDistance(distance);
+    camera.setProjectionType(Projection::Orthographic);
+    camera.setOrthoHeight(height);
+    camera.setClipPlanes(0.01f, 10.0f * distance + 1000.0f);
+    return camera;
+}
+
+glm::dvec3 meanRgb(const Image& image) {
+    glm::dvec3 sum(0.0);
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) sum += glm::dvec3(glm::vec3(image.at(x, y)));
+    return sum / double(image.width() * image.height());
+}
+
+// T(eta, 1)^2 * integral over the plane of S_d at normal incidence (x_i = (r, 0, 0), n = w = z),
+// by a 10^5-interval trapezoid rule in r with the 2 pi r of the ring.
+glm::dvec3 planeIntegral(const DipoleConstants& c, double rMax) {
+    const glm::dvec3 z(0.0, 0.0, 1.0);
+    const int n = 100000;
+    const double h = rMax / n;
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k <= n; ++k) {
+        const double r = k * h;
+        const glm::dvec3 sd = evaluateSd(c, glm::dvec3(r, 0.0, 0.0), z, z, glm::dvec3(0.0), z);
+        sum += (k == 0 || k == n ? 0.5 : 1.0) * 2.0 * std::numbers::pi * r * sd;
+    }
+    const double t = fresnelTransmittance(c.eta, 1.0);
+    return sum * h * t * t;
+}
+
+}  // namespace
+
+TEST_CASE("mesh reference BVH: closest and any hit equal brute force", "[cpu]") {
+    const auto start = std::chrono::steady_clock::now();
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    int rays = 0, hits = 0, nodes = 0;
+    for (const Mesh& mesh : {makeTorus(0.7f, 0.3f, 48, 24), makeUvSphere(32, 24, 0.8f)}) {
+        std::vector<glm::dvec3> positions;
+        for (const glm::vec3& p : mesh.positions()) positions.emplace_back(p);
+        const detail::TriangleBvh bvh(positions, mesh.indices());
+        REQUIRE(bvh.triangleCount() == mesh.triangleCount());
+        nodes += int(bvh.nodeCount());
+        const auto& idx = mesh.indices();
+        for (int i = 0; i < 5000; ++i) {
+            detail::BvhRay ray;
+            ray.origin = glm::dvec3(uni(rng), uni(rng), uni(rng)) * 1.5;
+            // Half the rays aim at a random vertex (sure hits), half go anywhere.
+            const glm::dvec3 aim = i % 2 ? positions[rng() % positions.size()] : glm::dvec3(uni(rng), uni(rng), uni(rng));
+            ray.direction = aim - ray.origin + glm::dvec3(uni(rng), uni(rng), uni(rng)) * 1e-3;
+            ray.tMax = i % 3 ? std::numeric_limits<double>::infinity() : 0.5 + 0.5 * uni(rng);
+            double bestT = ray.tMax;
+            int64_t best = -1;
+            for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+                double tt, u, v;
+                if (detail::intersectTriangle(ray.origin, ray.direction, ray.tMin, bestT, positions[idx[3 * t]],
+                                              positions[idx[3 * t + 1]], positions[idx[3 * t + 2]], tt, u, v)) {
+                    bestT = tt;
+                    best = int64_t(t);
+                }
+            }
+            const auto hit = bvh.closestHit(ray);
+            ++rays;
+            INFO("ray " << i);
+            REQUIRE(hit.has_value() == (best >= 0));
+            REQUIRE(bvh.anyHit(ray) == (best >= 0));
+            if (best < 0) continue;
+            ++hits;
+            REQUIRE(hit->t == bestT);  // same arithmetic, so bit-identical
+            if (hit->triangle != uint32_t(best)) {
+                // Only a tie on a shared edge may pick another triangle.
+                double tt, u, v;
+                REQUIRE(detail::intersectTriangle(ray.origin, ray.direction, ray.tMin, ray.tMax,
+                                                  positions[idx[3 * hit->triangle]], positions[idx[3 * hit->triangle + 1]],
+                                                  positions[idx[3 * hit->triangle + 2]], tt, u, v));
+                REQUIRE(tt == bestT);
+            }
+        }
+    }
+    CHECK(hits > rays / 3);
+    WARN("BVH vs brute force: " << rays << " rays, " << hits << " hits, " << nodes << " nodes, "
+                                << secondsSince(start) << " s");
+}
+
+TEST_CASE("mesh reference: BVH edge cases", "[cpu]") {
+    // A single triangle, rays exactly through a vertex and an edge, and parallel rays.
+    const std::vector<glm::dvec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    const detail::TriangleBvh bvh(p, {0, 1, 2});
+    CHECK(bvh.depth() == 1);
+    CHECK(bvh.closestHit({{0, 0, 1}, {0, 0, -1}})->t == 1.0);      // vertex
+    CHECK(bvh.closestHit({{0.5, 0.5, 1}, {0, 0, -2}})->t == 0.5);  // hypotenuse
+    CHECK_FALSE(bvh.closestHit({{0.6, 0.6, 1}, {0, 0, -1}}));
+    CHECK_FALSE(bvh.anyHit({{0.2, 0.2, 1}, {1, 0, 0}}));          // parallel
+    CHECK_FALSE(bvh.anyHit({{0.2, 0.2, 1}, {0, 0, -1}, 0.0, 1.0}));  // stops exactly at the plane: open interval
+    CHECK(bvh.anyHit({{0.2, 0.2, 1}, {0, 0, -1}, 0.0, 1.0 + 1e-12}));
+    // Many coincident triangles still build a bounded tree.
+    std::vector<uint32_t> same;
+    for (int i = 0; i < 1000; ++i) same.insert(same.end(), {0, 1, 2});
+    const detail::TriangleBvh stacked(p, same);
+    CHECK(stacked.depth() < 40);
+    CHECK(stacked.closestHit({{0.2, 0.2, 1}, {0, 0, -1}})->t == 1.0);
+}
+
+TEST_CASE("mesh reference: input validation", "[cpu]") {
+    const Mesh sphere = makeUvSphere(8, 6);
+    const ScatteringMaterial potato;
+    const std::vector<Light> lights{DirectionalLight{}};
+    const Camera camera;
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(1.0f), potato, lights, camera, 0, 4),
+                      ErrorKind::InvalidArgument, Contains("image size"));
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(1.0f), potato, lights, camera, 4, 20000),
+                      ErrorKind::InvalidArgument, Contains("image size"));
+    MeshReferenceOptions options;
+    options.targetRelativeError = -0.1;
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(1.0f), potato, lights, camera, 4, 4, options),
+                      ErrorKind::InvalidArgument, Contains("targetRelativeError"));
+    options = {};
+    options.maxSamples = 10;
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(1.0f), potato, lights, camera, 4, 4, options),
+                      ErrorKind::InvalidArgument, Contains("maxSamples"));
+    options = {};
+    options.millimetresPerUnit = 0.0;
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(1.0f), potato, lights, camera, 4, 4, options),
+                      ErrorKind::InvalidArgument, Contains("millimetresPerUnit"));
+    options = {};
+    options.threads = -1;
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(1.0f), potato, lights, camera, 4, 4, options),
+                      ErrorKind::InvalidArgument, Contains("threads"));
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(0.0f), potato, lights, camera, 4, 4),
+                      ErrorKind::InvalidArgument, Contains("singular"));
+    ScatteringMaterial bad;
+    bad.eta = 0.0;
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(1.0f), bad, lights, camera, 4, 4),
+                      ErrorKind::InvalidArgument, Contains("eta"));
+    DirectionalLight zero;
+    zero.direction = glm::vec3(0.0f);
+    REQUIRE_SSS_ERROR(renderMeshReference(sphere, glm::mat4(1.0f), potato, {zero}, camera, 4, 4),
+                      ErrorKind::InvalidArgument, Contains("lights[0]"));
+    const Mesh flat = Mesh::fromArrays({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {0, 1, 2}, {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    REQUIRE_SSS_ERROR(renderMeshReference(flat, glm::mat4(1.0f), potato, lights, camera, 4, 4),
+                      ErrorKind::InvalidArgument, Contains("zero surface area"));
+}
+
+TEST_CASE("mesh reference: a lit plane matches the radial integral of S_d", "[cpu]") {
+    // Potato in millimetres on a 600 mm square (21 transport lengths of its widest channel to the
+    // edge), lit and seen at normal incidence: every point of the top face sees the same
+    // integral T(1) * integral T(1) S_d E dA over the plane.
+    const auto start = std::chrono::steady_clock::now();
+    const ScatteringMaterial potato = materialPreset("potato");
+    const Mesh slab = makeGridBox({600.0f, 600.0f, 50.0f}, 48, 2);
+    const glm::mat4 model = glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -25.0f});  // top face at z = 0
+    DirectionalLight sun;
+    sun.direction = {0.0f, 0.0f, -1.0f};
+    sun.intensity = 2.0f;
+    MeshReferenceOptions options;
+    options.millimetresPerUnit = 1.0;
+    options.targetRelativeError = 0.005;
+    options.threads = 2;
+    const MeshReferenceResult result =
+        renderMeshReference(slab, model, potato, {sun}, orthoDown(8.0f, 10.0f), 4, 4, options);
+    const glm::dvec3 expected = 2.0 * planeIntegral(deriveDipoleConstants(potato, 1.0), 300.0);
+    const glm::dvec3 measured = meanRgb(result.image);
+    const glm::dvec3 rel = measured / expected - 1.0;
+    WARN("plane: reference " << measured.x << ' ' << measured.y << ' ' << measured.z << ", quadrature " << expected.x
+                             << ' ' << expected.y << ' ' << expected.z << ", relative difference " << rel.x << ' '
+                             << rel.y << ' ' << rel.z << "; max rel. std. error " << result.maxRelativeStandardError
+                             << ", " << result.meanSamplesPerPixel << " samples/pixel, " << secondsSince(start)
+                             << " s");
+    CHECK(result.coveredPixels == 16);
+    CHECK(result.unconvergedPixels == 0);
+    for (int c = 0; c < 3; ++c) CHECK(std::abs(rel[c]) < 0.02);
+}

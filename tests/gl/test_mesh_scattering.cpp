@@ -1,0 +1,201 @@
+// Mesh subsurface scattering (Dal Corso et al. 2017 with the directional dipole): golden images,
+// translucency, caching of the view-independent passes, and parameter validation.
+#include "support/gl_test.h"
+#include "support/golden.h"
+
+#include <catch2/catch.hpp>
+#include <sss/error.h>
+#include <sss/materials.h>
+#include <sss/mesh_scattering_renderer.h>
+#include <sss/procedural.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+using namespace sss;
+
+namespace {
+
+constexpr int kWidth = 256, kHeight = 144;
+const glm::vec4 kBackground{0.1f, 0.1f, 0.12f, 1.0f};
+
+// Small maps and few frames keep llvmpipe fast; the procedural meshes are 1 unit in radius, so
+// 20 mm per unit makes them 4 cm objects, where potato and cream are visibly translucent.
+MeshRenderOptions testOptions(int cameras = 8) {
+    MeshRenderOptions o;
+    o.shading = MeshShading::Scattering;
+    o.cameras = cameras;
+    o.samples = 16;
+    o.mapResolution = 256;
+    o.lightMapResolution = 256;
+    o.accumulationFrames = 4;
+    o.millimetresPerUnit = 20.0;
+    return o;
+}
+
+Camera orbitCamera(const Bounds& bounds, float yaw, float pitch) {
+    Camera camera;
+    camera.frame(bounds);
+    camera.setYaw(yaw);
+    camera.setPitch(pitch);
+    camera.setDistance(camera.distance() * 0.7f);
+    return camera;
+}
+
+// Renders until the maps have converged and returns the last frame.
+Image renderConverged(MeshScatteringRenderer& renderer, const Camera& camera, int width = kWidth,
+                      int height = kHeight) {
+    RenderTarget target(width, height);
+    do {
+        target.clear(kBackground);
+        renderer.render(camera, target);
+    } while (!renderer.converged());
+    return target.readColor();
+}
+
+}  // namespace
+
+TEST_CASE("cream sphere lit from the front matches the golden image", "[gl][mesh][scattering][golden]") {
+    test::GlTestScope gl;
+    const Mesh sphere = makeUvSphere(48, 32);
+    MeshScatteringRenderer renderer(testOptions());
+    renderer.setMesh(sphere);
+    renderer.setScatteringMaterial(materialPreset("cream"));
+    renderer.setLights({DirectionalLight{.direction = {-0.3f, -0.3f, -1.0f}}});
+    const Image image = renderConverged(renderer, orbitCamera(sphere.bounds(), 15.0f, 10.0f));
+    test::requireMatchesGolden(image.toRgba8(), "mesh_sss_cream_sphere");
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a thin potato slab lit from behind glows through (translucency)", "[gl][mesh][scattering][golden]") {
+    test::GlTestScope gl;
+    // 1.6 x 1.0 units and 0.2 thick: 4 mm of potato at 20 mm per unit, lit only from behind.
+    const Mesh slab = makeSlab({1.6f, 1.0f, 0.2f});
+    MeshScatteringRenderer renderer(testOptions());
+    renderer.setMesh(slab);
+    renderer.setScatteringMaterial(materialPreset("potato"));
+    renderer.setLights({DirectionalLight{.direction = {0.0f, 0.0f, 1.0f}}});  // travels towards the viewer
+    Camera camera;
+    camera.setDistance(2.5f);  // looking at the front face, which the light never reaches directly
+    const Image image = renderConverged(renderer, camera);
+    const glm::vec4 centre = image.at(kWidth / 2, kHeight / 2);
+    INFO("front-face centre " << centre.r << " " << centre.g << " " << centre.b);
+    CHECK(centre.r > 0.2f);  // light came through
+    // Potato absorbs blue most (sigma_a 0.0024 / 0.0090 / 0.12 per mm): red leads.
+    CHECK(centre.r > centre.g);
+    CHECK(centre.g > centre.b);
+    test::requireMatchesGolden(image.toRgba8(), "mesh_sss_potato_slab_backlit");
+
+    // The same slab 30 times thicker lets (next to) nothing through.
+    MeshScatteringRenderer thick(testOptions());
+    thick.setMesh(makeSlab({1.6f, 1.0f, 6.0f}));
+    thick.setScatteringMaterial(materialPreset("potato"));
+    thick.setLights({DirectionalLight{.direction = {0.0f, 0.0f, 1.0f}}});
+    Camera far;
+    far.setDistance(6.0f);
+    const glm::vec4 dark = renderConverged(thick, far).at(kWidth / 2, kHeight / 2);
+    INFO("thick slab front centre " << dark.r);
+    CHECK(dark.r < 0.25f * centre.r);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("torus with concavities at K = 4 and K = 16 matches the golden images", "[gl][mesh][scattering][golden]") {
+    test::GlTestScope gl;
+    const Mesh torus = makeTorus(0.7f, 0.3f, 64, 32);
+    const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(60.0f), glm::vec3(1, 0, 0));
+    for (int cameras : {4, 16}) {
+        MeshScatteringRenderer renderer(testOptions(cameras));
+        renderer.setMesh(torus, tilt);
+        renderer.setScatteringMaterial(materialPreset("marble"));
+        renderer.setLights({DirectionalLight{.direction = {0.4f, -1.0f, -0.5f}}});
+        const Image image = renderConverged(renderer, orbitCamera(torus.bounds(), -25.0f, 10.0f));
+        test::requireMatchesGolden(image.toRgba8(), "mesh_sss_marble_torus_k" + std::to_string(cameras));
+    }
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a camera-only change reruns only the combine pass", "[gl][mesh][scattering][caching]") {
+    test::GlTestScope gl;
+    const Mesh sphere = makeUvSphere();
+    MeshScatteringRenderer renderer(testOptions());
+    renderer.setMesh(sphere);
+    Camera camera = orbitCamera(sphere.bounds(), 0, 0);
+    RenderTarget target(64, 36);
+    auto frame = [&] {
+        target.clear(kBackground);
+        renderer.render(camera, target);
+    };
+    auto runs = [&](const char* pass) { return renderer.stats().runs(pass); };
+    do frame();
+    while (!renderer.converged());
+    CHECK(runs("light-buffer") == 1);
+    CHECK(runs("scattering-maps") == 4);  // accumulationFrames
+    for (int i = 0; i < 3; ++i) {
+        camera.orbit(20.0f, 5.0f);
+        frame();
+    }
+    CHECK(runs("light-buffer") == 1);
+    CHECK(runs("scattering-maps") == 4);
+    CHECK(runs("combine") == 7);
+    SECTION("a material change reruns the maps, not the light buffer") {
+        renderer.setScatteringMaterial(materialPreset("ketchup"));
+        frame();
+        CHECK(runs("light-buffer") == 1);
+        CHECK(runs("scattering-maps") == 5);
+    }
+    SECTION("a light change reruns both") {
+        renderer.setLights({DirectionalLight{.direction = {1, 0, 0}}});
+        frame();
+        CHECK(runs("light-buffer") == 2);
+        CHECK(runs("scattering-maps") == 5);
+    }
+    SECTION("an object transform change reruns both") {
+        renderer.setModelTransform(glm::translate(glm::mat4(1.0f), {0.1f, 0, 0}));
+        frame();
+        CHECK(runs("light-buffer") == 2);
+        CHECK(runs("scattering-maps") == 5);
+    }
+    SECTION("changing only the gamma or the specular term reruns nothing but the combine pass") {
+        MeshRenderOptions o = renderer.options();
+        o.gamma = 1.8f;
+        o.specular = 0.0f;
+        renderer.setOptions(o);
+        frame();
+        CHECK(runs("light-buffer") == 1);
+        CHECK(runs("scattering-maps") == 4);
+    }
+    SECTION("switching scattering off and on again keeps the maps") {
+        MeshRenderOptions o = renderer.options();
+        o.shading = MeshShading::BlinnPhong;
+        renderer.setOptions(o);
+        frame();
+        o.shading = MeshShading::Scattering;
+        renderer.setOptions(o);
+        frame();
+        CHECK(runs("blinn-phong") == 1);
+        CHECK(runs("scattering-maps") == 4);
+    }
+    gl.requireNoErrors();
+}
+
+TEST_CASE("bad scattering parameters give clear errors", "[gl][mesh][scattering][errors]") {
+    test::GlTestScope gl;
+    MeshScatteringRenderer renderer;
+    ScatteringMaterial negative = materialPreset("potato");
+    negative.sigmaA.x = -0.1;
+    CHECK_THROWS_WITH(renderer.setScatteringMaterial(negative), Catch::Contains("sigmaA"));
+    ScatteringMaterial badEta = materialPreset("potato");
+    badEta.eta = 0.0;
+    CHECK_THROWS_WITH(renderer.setScatteringMaterial(badEta), Catch::Contains("eta"));
+    MeshRenderOptions o;
+    o.cameras = 0;
+    CHECK_THROWS_WITH(MeshScatteringRenderer(o), Catch::Contains("cameras"));
+    o = {};
+    o.samples = 0;
+    CHECK_THROWS_WITH(MeshScatteringRenderer(o), Catch::Contains("samples"));
+    o = {};
+    o.millimetresPerUnit = -1.0;
+    CHECK_THROWS_WITH(MeshScatteringRenderer(o), Catch::Contains("millimetresPerUnit"));
+    CHECK_THROWS_WITH(Mesh::fromArrays({}, {}), Catch::Contains("no triangles"));
+    CHECK_THROWS_WITH(materialPreset("unobtainium"), Catch::Contains("unobtainium"));
+    gl.requireNoErrors();
+}
