@@ -55,7 +55,10 @@ shading:
   --no-specular             no specular highlight on the translucent surface
   --color R,G,B             mesh diffuse colour (default: 0.8,0.75,0.7)
   --shininess S             mesh Blinn-Phong exponent (default: 40)
-  --tf NAME                 transfer-function preset (default: ramp); names: see --list-tf
+  --tf NAME|FILE.json       transfer-function preset (default: ramp; see --list-tf) or a
+                            ParaView JSON colour map (RGBPoints/Points)
+  --tf-range LO,HI          data values the JSON's x axis spans (default: the file's own x range;
+                            x in data units, e.g. 0..255 for 8-bit data, needs this)
   --list-tf                 print the transfer-function presets and exit
   --step VOXELS             ray step in voxels (default: 1)
   --early-termination A     stop rays at this opacity, (0,1] (default: 0.99)
@@ -96,6 +99,7 @@ struct Args {
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
     float lightIntensity = 1.0f;
     std::optional<glm::vec3> pointLight;
+    std::optional<std::pair<double, double>> tfRange;
 };
 
 float parseFloat(const std::string& option, const std::string& text) {
@@ -157,6 +161,12 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--mode") a.mode = value();
         else if (opt == "--tf") a.tf = value();
         else if (opt == "--list-tf") a.listTf = true;
+        else if (opt == "--tf-range") {
+            const std::string v = value();
+            const auto parts = split(v, ',');
+            if (parts.size() != 2) throw UsageError("--tf-range: expected LO,HI, got \"" + v + "\"");
+            a.tfRange = std::pair<double, double>(parseFloat(opt, parts[0]), parseFloat(opt, parts[1]));
+        }
         else if (opt == "--material") a.material = value();
         else if (opt == "--list-materials") a.listMaterials = true;
         else if (opt == "--cameras") a.cameras = parseInt(opt, value());
@@ -287,7 +297,8 @@ int run(const Args& a) {
     const sss::ScatteringMaterial material = sss::materialPreset(a.material);
     if (!a.volume.empty()) {
         volume = loadVolume(a, dataDir);
-        tf = sss::TransferFunction::preset(a.tf);
+        const bool file = a.tf.size() > 5 && a.tf.substr(a.tf.size() - 5) == ".json";
+        tf = file ? sss::TransferFunction::loadParaViewJson(a.tf, a.tfRange) : sss::TransferFunction::preset(a.tf);
     }
     sss::Light light = a.pointLight ? sss::Light(sss::PointLight{*a.pointLight, a.lightColor, a.lightIntensity})
                                     : sss::Light(sss::DirectionalLight{a.lightDir, a.lightColor, a.lightIntensity});
