@@ -11,3 +11,11 @@ if(SSS_SANITIZE)
   target_link_options(sss_sanitize INTERFACE -fsanitize=address,undefined)
 endif()
 install(TARGETS sss_warnings sss_sanitize EXPORT sssTargets)
+
+# sss_gl_process(<target>): marks an executable that creates GL contexts (see the comment in
+# sss_gl_process_asan_options.c for why sanitized GL processes run without leak checking).
+function(sss_gl_process target)
+  if(SSS_SANITIZE)
+    target_sources(${target} PRIVATE "${PROJECT_SOURCE_DIR}/cmake/sss_gl_process_asan_options.c")
+  endif()
+endfunction()

@@ -42,18 +42,23 @@
 /// Alpha is 1 where the mesh is hit and 0 elsewhere.
 ///
 /// Estimator. Per pixel, independent unbiased samples x_i over the whole surface, weighted
-/// f / pdf. The pdf picks a triangle in proportion to
-///   0.9 * area * k(distance from x_o) * lightFactor / sum + 0.1 * area / total area,
-/// where k is the normal-incidence planar S_d profile of the material (each channel normalised
-/// to unit integral, summed) at a lower bound of the distance to the triangle, and lightFactor is
-/// how much the lights see the triangle's vertex normals; the uniform-area share keeps the pdf
-/// positive wherever the integrand may be. Triangles near x_o are split into m x m equal-area
-/// sub-triangles (m <= 32, cells about half their distance to x_o, down to half the kernel
-/// width), chosen with the same rule; the point is uniform within the cell. Sampling stops
-/// per pixel once every channel's standard error of the mean is at most
-/// max(targetRelativeError * mean, absoluteError) (checked from minSamples on), or at
-/// maxSamples. Each pixel has its own random stream (seed, pixel index), so the image does not
-/// depend on the number of threads.
+/// f / pdf; the lights share each sample (one shadow ray per light). The pdf picks a triangle
+/// in proportion to
+///   0.9 * area * kbar * lightFactor / sum + 0.1 * area / total area,
+/// where kbar is the sampling kernel averaged over the triangle and lightFactor says roughly how
+/// much light the triangle gets (mean radiance times the largest vertex-normal cosine, times
+/// 0.01 + 0.99 * the unshadowed fraction of four probe points). The kernel is the planar,
+/// normal-incidence S_d profile of the material with each channel normalised to unit integral,
+/// summed over channels. Triangles near x_o are split into m x m equal sub-triangles (m <= 32;
+/// cells about half as large as their distance to x_o, down to half the kernel's half-width);
+/// kbar is then the midpoint rule over the cells, one of which is chosen with probability
+/// 0.9 * k(cell) / sum + 0.1 / m^2, else kbar = k(distance to the centroid). The point is
+/// uniform within the chosen triangle or cell. The uniform-area share keeps the pdf positive
+/// wherever the integrand may be, so the heuristics cost only variance, never bias.
+/// Sampling stops per pixel once every channel's standard error of the mean is at most
+/// max(targetRelativeError * mean, absoluteError) (tested every 16 samples from minSamples
+/// on), or at maxSamples. Each pixel has its own random stream (seed, pixel index), so the
+/// image does not depend on the number of threads.
 
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
@@ -99,7 +104,8 @@ struct MeshReferenceResult {
     /// Standard error of each pixel's mean (rgb, radiance units; 0 on the background) and the
     /// number of samples taken there (a).
     Image standardError{1, 1};
-    /// Largest standard error / mean over covered pixels and channels with a mean > 0.
+    /// Largest standard error / mean over covered pixels and channels with a mean > 0 and a
+    /// standard error above absoluteError (those below it met the target absolutely).
     double maxRelativeStandardError = 0.0;
     /// sqrt(sum of squared standard errors / sum of squared means) over all covered pixels and
     /// channels: the expected relRmse (computeErrorMetrics) of this image against the exact one.

@@ -307,7 +307,7 @@ public:
                 for (int c = 0; c < 3; ++c) {
                     sumErr2 += p.standardError[c] * p.standardError[c];
                     sumMean2 += p.mean[c] * p.mean[c];
-                    if (p.mean[c] > 0.0)
+                    if (p.mean[c] > 0.0 && p.standardError[c] > m_options.absoluteError)
                         result.maxRelativeStandardError =
                             std::max(result.maxRelativeStandardError, p.standardError[c] / p.mean[c]);
                 }
@@ -321,6 +321,7 @@ private:
     struct CellTable {
         int m = 1;
         std::vector<double> cdf;  // inclusive, over the m^2 cells
+        double meanKernel = 0.0;  // mean of the kernel at the cell centroids
     };
     struct Scratch {
         std::vector<double> triangleCdf;
@@ -329,7 +330,7 @@ private:
 
     // How much the lights see a triangle, for the sampling heuristic only: sum over lights of
     // mean radiance (at the centroid for point lights) times the largest cosine of a vertex normal
-    // (flipped like n_i) to the light, times 0.05 + 0.95 * the unshadowed fraction of four
+    // (flipped like n_i) to the light, times 0.01 + 0.99 * the unshadowed fraction of four
     // probe points (the centroid and the vertices pulled a tenth towards it).
     double lightFactor(const TriInfo& tri) const {
         if (!(tri.area > 0.0)) return 0.0;
@@ -367,7 +368,7 @@ private:
                 if (!m_bvh->anyHit(ray)) ++unshadowed;
             }
             f += (l.radiance.x + l.radiance.y + l.radiance.z) / 3.0 * falloff * std::min(best, 1.0) *
-                 (0.05 + 0.95 * unshadowed / 4.0);
+                 (0.01 + 0.99 * unshadowed / 4.0);
         }
         return f;
     }
@@ -397,15 +398,15 @@ private:
         const TriInfo& tri = m_tris[t];
         table.m = subdivisionOf(tri, distanceBound(xo, tri.centroid, tri.radius));
         const auto& cells = m_cells[table.m - 1];
-        const double radius = tri.radius / table.m;
         table.cdf.resize(cells.size());
         double sum = 0.0;
         for (size_t c = 0; c < cells.size(); ++c) {
             const glm::dvec2 b = (cells[c][0] + cells[c][1] + cells[c][2]) / 3.0;
             const glm::dvec3 p = tri.p0 + b.x * tri.e1 + b.y * tri.e2;
-            table.cdf[c] = (*m_kernel)(distanceBound(xo, p, radius));
+            table.cdf[c] = (*m_kernel)(glm::distance(xo, p));
             sum += table.cdf[c];
         }
+        table.meanKernel = sum / static_cast<double>(cells.size());
         const double uniform = 1.0 / static_cast<double>(cells.size());
         double acc = 0.0;
         for (double& w : table.cdf) {
@@ -437,14 +438,21 @@ private:
         const double exitT = fresnelTransmittance(m_constants.eta, glm::dot(no, wo));
         if (!(exitT > 0.0) || m_lights.empty()) return result;
 
-        // Triangle pdf for this x_o.
+        // Triangle pdf for this x_o: the kernel integrated over the triangle by the midpoint rule
+        // on its cells (one cell far from x_o), times the light factor.
         std::vector<double>& cdf = scratch.triangleCdf;
         cdf.resize(m_tris.size());
+        scratch.cells.clear();
         double sum = 0.0;
         for (size_t t = 0; t < m_tris.size(); ++t) {
             const TriInfo& tri = m_tris[t];
-            const double w =
-                tri.light > 0.0 ? tri.area * tri.light * (*m_kernel)(distanceBound(xo, tri.centroid, tri.radius)) : 0.0;
+            double w = 0.0;
+            if (tri.light > 0.0) {
+                const double kernel = subdivisionOf(tri, distanceBound(xo, tri.centroid, tri.radius)) > 1
+                                          ? cellTable(static_cast<uint32_t>(t), xo, scratch).meanKernel
+                                          : (*m_kernel)(glm::distance(xo, tri.centroid));
+                w = tri.area * tri.light * kernel;
+            }
             cdf[t] = w;
             sum += w;
         }
@@ -460,7 +468,6 @@ private:
                 break;
             }
         }
-        scratch.cells.clear();
 
         Rng rng{mix64(m_options.seed * 0x9e3779b97f4a7c15ull ^ mix64(static_cast<uint64_t>(y) * m_width + x + 1))};
         glm::dvec3 sumF(0.0), sumF2(0.0);

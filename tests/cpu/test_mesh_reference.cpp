@@ -78,21 +78,38 @@ glm::dvec3 meanRgb(const Image& image) {
     return sum / double(image.width() * image.height());
 }
 
-// T(eta, 1)^2 * integral over the plane of S_d at normal incidence (x_i = (r, 0, 0), n = w = z),
-// by a 10^5-interval trapezoid rule in r with the 2 pi r of the ring.
-glm::dvec3 planeIntegral(const DipoleConstants& c, double rMax) {
-    const glm::dvec3 z(0.0, 0.0, 1.0);
-    const int n = 100000;
-    const double h = rMax / n;
+// T(eta, 1)^2 * integral over a plane of S_d E at normal incidence, by a 10^5-interval trapezoid
+// rule in r with the 2 pi r of the ring. x_o = 0 with n_o = +z. Front-lit (depth 0): x_i =
+// (r, 0, 0), n_i = w_i = +z. Back-lit (depth > 0): the far face of a slab, x_i = (r, 0, -depth),
+// n_i = w_i = -z.
+glm::dvec3 planeIntegral(const DipoleConstants& c, double rMax, double depth = 0.0) {
+    const glm::dvec3 n = depth > 0.0 ? glm::dvec3(0.0, 0.0, -1.0) : glm::dvec3(0.0, 0.0, 1.0);
+    const int steps = 100000;
+    const double h = rMax / steps;
     glm::dvec3 sum(0.0);
-    for (int k = 0; k <= n; ++k) {
+    for (int k = 0; k <= steps; ++k) {
         const double r = k * h;
-        const glm::dvec3 sd = evaluateSd(c, glm::dvec3(r, 0.0, 0.0), z, z, glm::dvec3(0.0), z);
-        sum += (k == 0 || k == n ? 0.5 : 1.0) * 2.0 * std::numbers::pi * r * sd;
+        const glm::dvec3 sd = evaluateSd(c, glm::dvec3(r, 0.0, -depth), n, n, glm::dvec3(0.0), glm::dvec3(0, 0, 1));
+        sum += (k == 0 || k == steps ? 0.5 : 1.0) * 2.0 * std::numbers::pi * r * sd;
     }
     const double t = fresnelTransmittance(c.eta, 1.0);
     return sum * h * t * t;
 }
+
+// A potato sphere of radius 1 at 150 mm per unit (sigma_tr * radius = 10.5 / 20.8 / 73.7), seen
+// by the default perspective camera at (0, 0, 3). Lit pixels are about 0.1 to 0.5; the absolute
+// error floor keeps deep-shadow pixels (1e-5 and far less in blue) from running to maxSamples.
+struct SphereScene {
+    Mesh mesh = makeUvSphere(32, 24, 1.0f);
+    ScatteringMaterial material = materialPreset("potato");
+    Camera camera;
+    MeshReferenceOptions options;
+    SphereScene() {
+        options.millimetresPerUnit = 150.0;
+        options.absoluteError = 1e-4;
+        options.threads = 2;
+    }
+};
 
 }  // namespace
 
@@ -235,4 +252,132 @@ TEST_CASE("mesh reference: a lit plane matches the radial integral of S_d", "[cp
     CHECK(result.coveredPixels == 16);
     CHECK(result.unconvergedPixels == 0);
     for (int c = 0; c < 3; ++c) CHECK(std::abs(rel[c]) < 0.02);
+}
+
+TEST_CASE("mesh reference: back-lit slabs, thin translucent and thick opaque", "[cpu]") {
+    // Light from below, viewer above: only the far face is lit, so the top sees
+    // T(1) * integral T(1) S_d E dA over the bottom plane (the back-lit branch of S_d).
+    const auto start = std::chrono::steady_clock::now();
+    const ScatteringMaterial potato = materialPreset("potato");
+    const DipoleConstants c = deriveDipoleConstants(potato, 1.0);
+    DirectionalLight below;
+    below.direction = {0.0f, 0.0f, 1.0f};
+    MeshReferenceOptions options;
+    options.millimetresPerUnit = 1.0;
+    options.targetRelativeError = 0.01;
+    options.threads = 2;
+    const float thin = 5.0f;
+    const Mesh thinSlab = makeGridBox({300.0f, 300.0f, thin}, 48, 2);
+    const glm::mat4 thinModel = glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -thin / 2});
+    const MeshReferenceResult thinResult =
+        renderMeshReference(thinSlab, thinModel, potato, {below}, orthoDown(8.0f, 10.0f), 4, 4, options);
+    const glm::dvec3 thinMeasured = meanRgb(thinResult.image);
+    const glm::dvec3 thinExpected = planeIntegral(c, 150.0, thin);
+    const glm::dvec3 frontLit = planeIntegral(c, 150.0);
+    const glm::dvec3 rel = thinMeasured / thinExpected - 1.0;
+    WARN("thin back-lit slab (5 mm): reference " << thinMeasured.x << ' ' << thinMeasured.y << ' ' << thinMeasured.z
+                                                 << ", quadrature " << thinExpected.x << ' ' << thinExpected.y << ' '
+                                                 << thinExpected.z << " (front-lit " << frontLit.x << ' '
+                                                 << frontLit.y << ' ' << frontLit.z << "), relative difference "
+                                                 << rel.x << ' ' << rel.y << ' ' << rel.z << ", "
+                                                 << thinResult.meanSamplesPerPixel << " samples/pixel");
+    for (int ch = 0; ch < 3; ++ch) {
+        CHECK(thinMeasured[ch] > 0.01 * frontLit[ch]);
+        CHECK(std::abs(rel[ch]) < 0.03);
+    }
+    CHECK(thinResult.unconvergedPixels == 0);
+
+    // 300 mm thick: exp(-sigma_tr 300 mm) <= 7e-10, zero at any sensible precision.
+    const Mesh thickSlab = makeGridBox({300.0f, 300.0f, 300.0f}, 48, 16);
+    const glm::mat4 thickModel = glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -150.0f});
+    options.absoluteError = 1e-7 * frontLit.x;
+    options.maxSamples = 4096;
+    const MeshReferenceResult thick =
+        renderMeshReference(thickSlab, thickModel, potato, {below}, orthoDown(8.0f, 10.0f), 4, 4, options);
+    const glm::dvec3 thickMeasured = meanRgb(thick.image);
+    WARN("thick back-lit slab (300 mm): " << thickMeasured.x << ' ' << thickMeasured.y << ' ' << thickMeasured.z
+                                          << ", " << thick.meanSamplesPerPixel << " samples/pixel; both slabs "
+                                          << secondsSince(start) << " s");
+    for (int ch = 0; ch < 3; ++ch) CHECK(thickMeasured[ch] < 1e-6 * frontLit[ch]);
+}
+
+TEST_CASE("mesh reference: sphere image, coverage, thread independence", "[cpu]") {
+    const auto start = std::chrono::steady_clock::now();
+    SphereScene scene;
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(1.0f, -0.5f, -1.0f));  // from the upper left, in front
+    scene.options.targetRelativeError = 0.02;
+    scene.options.background = {0.1, 0.2, 0.3};
+    const MeshReferenceResult two = renderMeshReference(scene.mesh, glm::mat4(1.0f), scene.material, {sun},
+                                                        scene.camera, 24, 16, scene.options);
+    const double seconds = secondsSince(start);
+    scene.options.threads = 1;
+    const MeshReferenceResult one = renderMeshReference(scene.mesh, glm::mat4(1.0f), scene.material, {sun},
+                                                        scene.camera, 24, 16, scene.options);
+    WARN("sphere 24x16 at 2 %: " << seconds << " s (2 threads), " << two.meanSamplesPerPixel
+                                 << " samples/pixel, max rel. std. error " << two.maxRelativeStandardError
+                                 << ", relRmse estimate " << two.relativeRmseEstimate << ", " << two.coveredPixels
+                                 << " covered, " << two.unconvergedPixels << " unconverged");
+    CHECK(one.image.data() == two.image.data());
+    CHECK(two.image.at(0, 0) == glm::vec4(0.1f, 0.2f, 0.3f, 0.0f));
+    CHECK(two.image.at(12, 8).a == 1.0f);
+    // Lit side brighter than the unlit side; the unlit limb still glows a little (translucency).
+    const glm::vec4 lit = two.image.at(9, 6), unlit = two.image.at(16, 10);
+    CHECK(lit.r > 3.0f * unlit.r);
+    CHECK(unlit.r > 0.0f);
+    // Potato: red scatters farthest, blue is absorbed most.
+    CHECK(lit.r > lit.b);
+    CHECK(two.relativeRmseEstimate < 0.02);
+}
+
+TEST_CASE("mesh reference: the error falls as 1 / sqrt(samples)", "[cpu]") {
+    const auto start = std::chrono::steady_clock::now();
+    SphereScene scene;
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(1.0f, -0.5f, -1.0f));
+    const int w = 16, h = 12;
+    auto render = [&](int samples, uint64_t seed) {
+        MeshReferenceOptions options = scene.options;
+        options.targetRelativeError = 0.0;
+        options.minSamples = options.maxSamples = samples;
+        options.seed = seed;
+        return renderMeshReference(scene.mesh, glm::mat4(1.0f), scene.material, {sun}, scene.camera, w, h, options);
+    };
+    const MeshReferenceResult truth = render(8192, 99);
+    const MeshReferenceResult low = render(64, 1), high = render(256, 2);
+    const double lowError = computeErrorMetrics(low.image, truth.image).relRmse;
+    const double highError = computeErrorMetrics(high.image, truth.image).relRmse;
+    WARN("convergence: estimated relRmse " << low.relativeRmseEstimate << " (64 spp), " << high.relativeRmseEstimate
+                                           << " (256 spp), " << truth.relativeRmseEstimate
+                                           << " (8192 spp); measured against 8192 spp " << lowError << ", "
+                                           << highError << "; " << secondsSince(start) << " s");
+    CHECK(low.relativeRmseEstimate / high.relativeRmseEstimate == Approx(2.0).epsilon(0.15));
+    CHECK(lowError / highError == Approx(2.0).epsilon(0.3));
+    // The estimate predicts the real error.
+    CHECK(lowError / low.relativeRmseEstimate == Approx(1.0).epsilon(0.3));
+    CHECK(highError / high.relativeRmseEstimate == Approx(1.0).epsilon(0.3));
+}
+
+TEST_CASE("mesh reference: a far point light equals a directional light of the same irradiance", "[cpu]") {
+    const auto start = std::chrono::steady_clock::now();
+    SphereScene scene;
+    scene.options.targetRelativeError = 0.02;
+    const glm::vec3 direction = glm::normalize(glm::vec3(-1.0f, -1.0f, -1.0f));
+    DirectionalLight sun;
+    sun.direction = direction;
+    sun.color = {1.0f, 0.9f, 0.8f};
+    sun.intensity = 1.5f;
+    PointLight lamp;
+    const float distance = 1000.0f;  // radius 1: irradiance within +-0.2 % over the sphere
+    lamp.position = -direction * distance;
+    lamp.color = sun.color;
+    lamp.intensity = sun.intensity * distance * distance;
+    const MeshReferenceResult a = renderMeshReference(scene.mesh, glm::mat4(1.0f), scene.material, {sun},
+                                                      scene.camera, 24, 16, scene.options);
+    const MeshReferenceResult b = renderMeshReference(scene.mesh, glm::mat4(1.0f), scene.material, {lamp},
+                                                      scene.camera, 24, 16, scene.options);
+    const ErrorMetrics m = computeErrorMetrics(b.image, a.image);
+    WARN("point vs directional: relRmse " << m.relRmse << " (estimates " << a.relativeRmseEstimate << ", "
+                                          << b.relativeRmseEstimate << "), " << secondsSince(start) << " s");
+    CHECK(m.relRmse < 0.02);
 }
