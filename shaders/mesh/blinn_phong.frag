@@ -1,10 +1,10 @@
+#include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/blinn_phong.glsl"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
 
-uniform vec3 cameraPosition;
 uniform vec3 ambient;
 uniform vec3 diffuseColor;
 uniform vec3 specularColor;
@@ -14,7 +14,7 @@ uniform float inverseGamma;   // 1/gamma; 1 writes linear values
 layout(location = 0) out vec4 fragColor;
 
 void main() {
-    vec3 v = normalize(cameraPosition - worldPosition);
+    vec3 v = towardsViewer(worldPosition);
     vec3 n = normalize(worldNormal);
     // Two-sided lighting: back faces seen through open meshes are lit like front faces.
     if (!gl_FrontFacing) n = -n;

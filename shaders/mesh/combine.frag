@@ -1,6 +1,7 @@
 // Combine (Dal Corso et al. 2017, pass 3): look the visible point up in every scattering map
 // like a shadow map, average the layers that see it, apply the exit Fresnel factor, add an
 // optional specular highlight and encode gamma.
+#include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
 
@@ -17,7 +18,6 @@ uniform vec3 cameraAxis[MAX_CAMERAS];            // model space, from the object
 uniform float depthBias;     // window-space depth
 uniform float seamShrink;    // model units
 uniform float eta;
-uniform vec3 cameraPosition;
 uniform float specularStrength;
 uniform float shininess;
 uniform float inverseGamma;
@@ -58,7 +58,7 @@ void main() {
 
     vec3 nWorld = normalize(worldNormal);
     if (!gl_FrontFacing) nWorld = -nWorld;
-    vec3 wo = normalize(cameraPosition - worldPosition);
+    vec3 wo = towardsViewer(worldPosition);
     float exitT = dirpoleFresnelT(eta, dot(wo, nWorld));
     // The maps hold the integral of T_in S_d E over the lit surface (S_d is per steradian), so the
     // radiance leaving towards the eye is that times the exit transmittance.

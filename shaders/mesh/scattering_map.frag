@@ -71,10 +71,11 @@ void main() {
             if (point) {
                 vec3 toLight = lightVector[l].xyz - p;
                 float d2 = dot(toLight, toLight);
-                // Disk area maps to area facing the light by (|x_i - L| / |p - L|)^2 / cos, which
-                // cancels the 1/|x_i - L|^2 falloff: what remains is I / (|p - L|^2 cos).
-                float cosDisk = max(dot(normalize(-toLight), axis), 1e-3);
-                irradiance = lightRadiance[l] / (d2 * cosDisk);
+                // Disk area dA_p subtends dw = cos dA_p / |p - L|^2 from the light, and the surface
+                // behind it receives I dw in total (the 1/|x_i - L|^2 falloff cancels against the
+                // area growth): per unit disk area, I cos / |p - L|^2.
+                float cosDisk = max(dot(normalize(-toLight), axis), 0.0);
+                irradiance = lightRadiance[l] * cosDisk / d2;
                 wi = normalize(lightVector[l].xyz - xi);
             } else {
                 irradiance = lightRadiance[l];

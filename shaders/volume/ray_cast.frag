@@ -4,6 +4,7 @@
 //   SHADING_SCATTERING 0|1 : light from the light volumes (chromaticity c, intensity l)
 //   EMPTY_SPACE_SKIPPING 0|1 : jump over bricks the transfer function makes fully transparent
 // Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
+#include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/blinn_phong.glsl"
 #include "volume/ray_setup.glsl"
@@ -32,7 +33,6 @@ uniform float diffuseStrength;
 #endif
 #if SHADING_GRADIENT
 uniform mat3 normalToWorld;
-uniform vec3 cameraPosition;
 uniform vec3 specularColor;
 uniform float shininess;
 uniform float gradientThreshold;   // |gradient| (per voxel) below which shading fades out
@@ -73,7 +73,7 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
 vec3 shade(vec3 p, vec3 tc, vec3 color) {
     vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
 #if SHADING_GRADIENT
-    vec3 v = normalize(cameraPosition - worldPosition);
+    vec3 v = towardsViewer(worldPosition);
     SurfaceNormal surface = gradientNormal(tc, v);
 #endif
     vec3 lit = ambientStrength * color;

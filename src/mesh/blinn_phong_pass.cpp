@@ -1,5 +1,6 @@
 #include "mesh/blinn_phong_pass.h"
 
+#include "camera_uniforms.h"
 #include "light_uniforms.h"
 
 #include <glm/mat3x3.hpp>
@@ -16,7 +17,7 @@ void BlinnPhongPass::run(const GpuMesh& mesh, const glm::mat4& model, const Blin
     m_program.set("model", model);
     m_program.set("viewProjection", camera.projection(aspect) * camera.view());
     m_program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
-    m_program.set("cameraPosition", camera.position());
+    setCameraUniforms(m_program, camera);
     m_program.set("ambient", material.ambient);
     m_program.set("diffuseColor", material.diffuse);
     m_program.set("specularColor", material.specular);

@@ -1,5 +1,6 @@
 #include "mesh/combine_pass.h"
 
+#include "camera_uniforms.h"
 #include "light_uniforms.h"
 
 #include <glm/matrix.hpp>
@@ -19,7 +20,7 @@ void CombinePass::run(const GpuMesh& mesh, const glm::mat4& model, const Scatter
     p.set("model", model);
     p.set("viewProjection", camera.projection(aspect) * camera.view());
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
-    p.set("cameraPosition", camera.position());
+    setCameraUniforms(p, camera);
     p.set("scatteringMaps", 0);
     p.set("scatteringDepth", 1);
     p.set("cameraCount", maps.cameras());

@@ -1,5 +1,6 @@
 #include "volume/ray_cast_pass.h"
 
+#include "camera_uniforms.h"
 #include "light_uniforms.h"
 
 #include <glm/mat3x3.hpp>
@@ -69,7 +70,7 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
     }
     if (usesGradient(m_shading)) {
         p.set("normalToWorld", glm::mat3(glm::transpose(glm::inverse(model))));
-        p.set("cameraPosition", camera.position());
+        setCameraUniforms(p, camera);
         p.set("specularColor", options.specular);
         p.set("shininess", options.shininess);
         p.set("gradientThreshold", options.gradientThreshold);

@@ -22,6 +22,14 @@
 namespace sss {
 namespace {
 
+// Where shading looks from; like shaders/common/camera.glsl towardsViewer().
+struct Viewer {
+    glm::dvec3 position, forward;
+    bool orthographic;
+    glm::dvec3 towards(glm::dvec3 p) const { return orthographic ? -forward : glm::normalize(position - p); }
+};
+
+
 constexpr double kMinStepVoxels = 1.0 / 1024.0;
 
 template <typename T>
@@ -250,7 +258,7 @@ struct VolumeReference::Impl {
         return toLight / std::sqrt(d2);
     }
 
-    glm::dvec3 shade(glm::dvec3 p, glm::dvec3 tc, glm::dvec3 color, glm::dvec3 cameraPosition) const {
+    glm::dvec3 shade(glm::dvec3 p, glm::dvec3 tc, glm::dvec3 color, const Viewer& viewer) const {
         const ReferenceShading mode = options.shading;
         if (mode == ReferenceShading::EmissionAbsorption) return color;
         const glm::dvec3 worldP = glm::dvec3(modelToWorld * glm::dvec4(p, 1.0));
@@ -258,7 +266,7 @@ struct VolumeReference::Impl {
         glm::dvec3 v(0.0);
         Normal surface{glm::dvec3(0.0), 0.0};
         if (gradient) {
-            v = glm::normalize(cameraPosition - worldP);
+            v = viewer.towards(worldP);
             surface = gradientNormal(tc, v);
         }
         glm::dvec3 lit = options.ambient * color;
@@ -285,7 +293,7 @@ struct VolumeReference::Impl {
         return lit;
     }
 
-    glm::dvec4 tracePixel(const glm::dmat4& inverseViewProjection, glm::dvec2 ndc, glm::dvec3 cameraPosition) const {
+    glm::dvec4 tracePixel(const glm::dmat4& inverseViewProjection, glm::dvec2 ndc, const Viewer& viewer) const {
         const glm::dvec4 nearWorld = inverseViewProjection * glm::dvec4(ndc, -1.0, 1.0);
         const glm::dvec4 farWorld = inverseViewProjection * glm::dvec4(ndc, 1.0, 1.0);
         const glm::dvec3 nearModel = glm::dvec3(worldToModel * glm::dvec4(glm::dvec3(nearWorld) / nearWorld.w, 1.0));
@@ -305,7 +313,7 @@ struct VolumeReference::Impl {
                 const glm::dvec4 tf = classifySample(field(tc));
                 if (!(tf.a > 0.0)) continue;
                 const double a = pieceOpacity(tf.a, h);
-                const glm::dvec3 c = shade(p, tc, glm::dvec3(tf), cameraPosition);
+                const glm::dvec3 c = shade(p, tc, glm::dvec3(tf), viewer);
                 color += (1.0 - alpha) * a * c;
                 alpha += (1.0 - alpha) * a;
                 if (alpha >= options.earlyTermination) break;
@@ -415,7 +423,8 @@ Image VolumeReference::render(const Camera& camera, int width, int height) const
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     const glm::dmat4 inverseViewProjection =
         glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()));
-    const glm::dvec3 cameraPosition(camera.position());
+    const Viewer viewer{glm::dvec3(camera.position()), glm::dvec3(camera.forward()),
+                        camera.projectionType() == Projection::Orthographic};
     Image image(width, height);
 
     int threads = m_impl->options.threads;
@@ -429,7 +438,7 @@ Image VolumeReference::render(const Camera& camera, int width, int height) const
             for (int y = nextRow++; y < height; y = nextRow++) {
                 for (int x = 0; x < width; ++x) {
                     const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, 1.0 - (y + 0.5) / height * 2.0);
-                    image.at(x, y) = glm::vec4(m_impl->tracePixel(inverseViewProjection, ndc, cameraPosition));
+                    image.at(x, y) = glm::vec4(m_impl->tracePixel(inverseViewProjection, ndc, viewer));
                 }
             }
         } catch (...) {
