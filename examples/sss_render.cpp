@@ -41,7 +41,8 @@ output:
   --repeat N                render N times and report median/min/max (default: 1)
 shading:
   --mode MODE               blinn-phong or sss (mesh); emission-absorption, gradient,
-                            scattering or scattering-gradient (volume);
+                            scattering or scattering-gradient (volume); hybrid (a mesh and a
+                            volume: sss + scattering, sharing light and shadows);
                             default: blinn-phong for a mesh, emission-absorption for a volume.
                             With both a mesh and a volume, MODE is the volume's; the mesh is
                             drawn in blinn-phong and cuts the volume's rays.
@@ -75,6 +76,8 @@ camera and light:
   --light-color R,G,B       light colour (default: 1,1,1)
   --light-intensity I       light intensity (default: 1)
   --point-light X,Y,Z       use a point light at this position instead
+  --cornell-box             put the scene in a Cornell box (default light: a point light
+                            under its ceiling)
   --help                    this text
 )";
 
@@ -94,7 +97,7 @@ struct Args {
     glm::vec3 background{0.1f, 0.1f, 0.12f};
     glm::vec3 color{0.8f, 0.75f, 0.7f};
     float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
-    bool jitter = true, skipping = true, ortho = false, listTf = false;
+    bool jitter = true, skipping = true, ortho = false, listTf = false, cornellBox = false, lightGiven = false;
     float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
     float lightIntensity = 1.0f;
@@ -214,20 +217,25 @@ Args parseArgs(int argc, char** argv) {
             if (!(a.zoom > 0.0f)) throw UsageError("--zoom: must be > 0");
         } else if (opt == "--fov") a.fov = parseFloat(opt, value());
         else if (opt == "--ortho") a.ortho = true;
-        else if (opt == "--light-dir") a.lightDir = parseVec3(opt, value());
+        else if (opt == "--cornell-box") a.cornellBox = true;
+        else if (opt == "--light-dir") a.lightDir = parseVec3(opt, value()), a.lightGiven = true;
         else if (opt == "--light-color") a.lightColor = parseVec3(opt, value());
         else if (opt == "--light-intensity") a.lightIntensity = parseFloat(opt, value());
-        else if (opt == "--point-light") a.pointLight = parseVec3(opt, value());
+        else if (opt == "--point-light") a.pointLight = parseVec3(opt, value()), a.lightGiven = true;
         else throw UsageError("unknown option \"" + opt + "\" (see --help)");
     }
     if (a.listTf || a.listMaterials) return a;
     if (a.mesh.empty() && a.volume.empty()) throw UsageError("nothing to render: give --mesh PATH and/or --volume PATH");
     if (a.mode.empty()) a.mode = a.volume.empty() ? "blinn-phong" : "emission-absorption";
+    if (a.mode == "hybrid") {
+        if (a.mesh.empty() || a.volume.empty()) throw UsageError("--mode hybrid needs --mesh and --volume");
+        return a;
+    }
     const bool meshMode = a.mode == "blinn-phong" || a.mode == "sss";
     const bool volumeMode = volumeShading(a.mode).has_value();
     if (!meshMode && !volumeMode)
         throw UsageError("--mode: unknown mode \"" + a.mode +
-                         "\" (blinn-phong, sss, emission-absorption, gradient, scattering, scattering-gradient)");
+                         "\" (blinn-phong, sss, emission-absorption, gradient, scattering, scattering-gradient, hybrid)");
     if (meshMode && a.mesh.empty()) throw UsageError("--mode " + a.mode + " needs --mesh");
     if (volumeMode && a.volume.empty()) throw UsageError("--mode " + a.mode + " needs --volume");
     if (meshMode && !a.volume.empty())
@@ -292,40 +300,20 @@ int run(const Args& a) {
     std::optional<sss::Mesh> mesh;
     std::optional<sss::Volume> volume;
     std::optional<sss::TransferFunction> tf;
+    // (GL objects below are created only after every input is valid.)
     if (!a.mesh.empty()) mesh = loadMesh(a, dataDir);
-    const bool scattering = a.mode == "sss" && !a.mesh.empty();
+    const bool scattering = (a.mode == "sss" || a.mode == "hybrid") && !a.mesh.empty();
     const sss::ScatteringMaterial material = sss::materialPreset(a.material);
     if (!a.volume.empty()) {
         volume = loadVolume(a, dataDir);
         const bool file = a.tf.size() > 5 && a.tf.substr(a.tf.size() - 5) == ".json";
         tf = file ? sss::TransferFunction::loadParaViewJson(a.tf, a.tfRange) : sss::TransferFunction::preset(a.tf);
     }
-    sss::Light light = a.pointLight ? sss::Light(sss::PointLight{*a.pointLight, a.lightColor, a.lightIntensity})
-                                    : sss::Light(sss::DirectionalLight{a.lightDir, a.lightColor, a.lightIntensity});
-    sss::validateLight(light, "--light");
-
-    sss::Bounds sceneBounds;
-    if (mesh) {
-        sceneBounds.extend(mesh->bounds().min);
-        sceneBounds.extend(mesh->bounds().max);
-    }
-    if (volume) {
-        sceneBounds.extend(volume->worldBounds().min);
-        sceneBounds.extend(volume->worldBounds().max);
-    }
-    sss::Camera camera;
-    camera.setFovY(a.fov);
-    camera.frame(sceneBounds);
-    camera.setYaw(a.yaw);
-    camera.setPitch(a.pitch);
-    camera.setDistance(camera.distance() * a.zoom);
-    camera.setOrthoHeight(2.0f * sceneBounds.radius() * 1.1f);
-    camera.setProjectionType(a.ortho ? sss::Projection::Orthographic : sss::Projection::Perspective);
-
+    // Load and check everything before touching GL: bad input fails fast and clearly.
     auto context = sss::EglContext::create();
     sss::RenderTarget target(a.width, a.height);
-
-    std::optional<sss::MeshScatteringRenderer> meshRenderer;
+    sss::HybridCompositor scene({.background = glm::vec4(a.background, 1.0f), .cornellBox = a.cornellBox});
+    sss::MeshScatteringRenderer* meshRenderer = nullptr;
     if (mesh) {
         sss::MeshRenderOptions options;
         options.shading = scattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
@@ -335,47 +323,57 @@ int run(const Args& a) {
         options.accumulationFrames = a.frames;
         options.millimetresPerUnit = a.scale;
         options.specular = a.specular ? 1.0f : 0.0f;
-        meshRenderer.emplace(options);
-        meshRenderer->setMesh(*mesh);
+        meshRenderer = &scene.addMesh(*mesh, glm::mat4(1.0f), options);
         meshRenderer->setScatteringMaterial(material);
         meshRenderer->setMaterial({.diffuse = a.color, .shininess = a.shininess});
-        meshRenderer->setLights({light});
     }
-    std::optional<sss::VolumeScatteringRenderer> volumeRenderer;
     if (volume) {
-        volumeRenderer.emplace(sss::VolumeRenderOptions{
-            .shading = *volumeShading(a.mode),
+        sss::VolumeRenderOptions options{
+            .shading = a.mode == "hybrid" ? sss::VolumeShading::Scattering : *volumeShading(a.mode),
             .stepSize = a.step,
             .earlyTermination = a.earlyTermination,
             .jitter = a.jitter,
             .emptySpaceSkipping = a.skipping,
             .lightVolumeScale = a.lightVolumeScale,
-            .anisotropy = a.anisotropy});
-        volumeRenderer->setVolume(*volume);
-        volumeRenderer->setTransferFunction(*tf);
-        volumeRenderer->setLights({light});
+            .anisotropy = a.anisotropy};
+        scene.addVolume(*volume, glm::mat4(1.0f), options).setTransferFunction(*tf);
     }
+    const sss::Bounds sceneBounds = a.cornellBox ? sss::makeCornellBox(scene.bounds()).bounds : scene.bounds();
+    // In a Cornell box the default light hangs under the ceiling, as in the classic scene.
+    sss::Light light = a.pointLight ? sss::Light(sss::PointLight{*a.pointLight, a.lightColor, a.lightIntensity})
+                                    : sss::Light(sss::DirectionalLight{a.lightDir, a.lightColor, a.lightIntensity});
+    if (a.cornellBox && !a.lightGiven)
+        light = sss::PointLight{sceneBounds.center() + glm::vec3(0.0f, 0.4f * sceneBounds.size().y, 0.0f), a.lightColor,
+                                a.lightIntensity * 0.5f * sceneBounds.size().y * sceneBounds.size().y};
+    sss::validateLight(light, "--light");
+    scene.setLights({light});
+
+    sss::Camera camera;
+    camera.setFovY(a.fov);
+    camera.frame(sceneBounds);
+    camera.setYaw(a.cornellBox ? 0.0f : a.yaw);
+    camera.setPitch(a.cornellBox ? 0.0f : a.pitch);
+    camera.setDistance(camera.distance() * a.zoom);
+    camera.setOrthoHeight(2.0f * sceneBounds.radius() * 1.1f);
+    camera.setProjectionType(a.ortho ? sss::Projection::Orthographic : sss::Projection::Perspective);
 
     sss::GpuTimer timer(*context);
     std::vector<double> times;
     // Scattering maps converge over their first frames; build them before the timed frames so
-    // the timing shows what a static scene costs ("fixed": the combine pass only).
+    // the timing shows what a static scene costs ("fixed": no view-independent pass reruns).
     double convergeMs = 0.0;
     int convergeFrames = 0;
     if (scattering) {
         timer.begin();
         while (!meshRenderer->converged()) {
-            target.clear(glm::vec4(a.background, 1.0f));
-            meshRenderer->render(camera, target);
+            scene.render(camera, target);
             ++convergeFrames;
         }
         convergeMs = timer.endMilliseconds();
     }
     for (int i = 0; i < a.repeat; ++i) {
         timer.begin();
-        target.clear(glm::vec4(a.background, 1.0f));
-        if (meshRenderer) meshRenderer->render(camera, target);
-        if (volumeRenderer) volumeRenderer->render(camera, target);
+        scene.render(camera, target);
         times.push_back(timer.endMilliseconds());
     }
     const sss::Image image = target.readColor();

@@ -181,6 +181,38 @@ Mesh makeSlab(glm::vec3 size) {
     return Mesh::fromArrays(std::move(positions), std::move(indices), std::move(normals), "slab");
 }
 
+CornellBox makeCornellBox(const Bounds& content) {
+    if (content.empty()) throw Error(ErrorKind::InvalidArgument, "makeCornellBox: the content bounds are empty");
+    const glm::vec3 size = content.size();
+    const float half = 0.8f * std::max({size.x, size.y, size.z, 1e-6f});
+    const glm::vec3 c = content.center();
+    // Each wall: a quad with its inward normal, corners counter-clockwise seen from inside.
+    auto quad = [&](std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals, std::vector<uint32_t>& indices,
+                    glm::vec3 n, glm::vec3 u, glm::vec3 v) {
+        const uint32_t base = static_cast<uint32_t>(positions.size());
+        const glm::vec3 centre = c - n * half;
+        for (glm::vec3 corner : {centre - u * half - v * half, centre + u * half - v * half,
+                                 centre + u * half + v * half, centre - u * half + v * half}) {
+            positions.push_back(corner);
+            normals.push_back(n);
+        }
+        indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    };
+    std::vector<glm::vec3> wp, wn, rp, rn, gp, gn;
+    std::vector<uint32_t> wi, ri, gi;
+    quad(wp, wn, wi, {0, 1, 0}, {0, 0, 1}, {1, 0, 0});    // floor
+    quad(wp, wn, wi, {0, -1, 0}, {1, 0, 0}, {0, 0, 1});   // ceiling
+    quad(wp, wn, wi, {0, 0, 1}, {1, 0, 0}, {0, 1, 0});    // back wall
+    quad(rp, rn, ri, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});    // left wall (red), faces +x
+    quad(gp, gn, gi, {-1, 0, 0}, {0, 0, 1}, {0, 1, 0});   // right wall (green), faces -x
+    CornellBox box{Mesh::fromArrays(std::move(wp), std::move(wi), std::move(wn), "cornell box white walls"),
+                   Mesh::fromArrays(std::move(rp), std::move(ri), std::move(rn), "cornell box red wall"),
+                   Mesh::fromArrays(std::move(gp), std::move(gi), std::move(gn), "cornell box green wall")};
+    box.bounds.extend(c - glm::vec3(half));
+    box.bounds.extend(c + glm::vec3(half));
+    return box;
+}
+
 Volume makeBlobsVolume(int n) {
     checkRange("makeBlobsVolume: n", n, 2, 1024);
     const std::vector<Blob> blobs = {

@@ -27,6 +27,10 @@
 
 namespace sss {
 
+namespace detail {
+struct MeshRendererAccess;  // hybrid-scene hooks (src/hybrid/shared_lighting.h)
+}
+
 enum class MeshShading { BlinnPhong, Scattering };
 
 /// Surface parameters of the Blinn-Phong baseline (linear RGB).
@@ -96,6 +100,7 @@ public:
     const RenderStats& stats() const;
 
 private:
+    friend struct detail::MeshRendererAccess;
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

@@ -2,6 +2,7 @@
 /// @file
 /// Procedural test meshes and volumes, deterministic on every platform we build for.
 
+#include "sss/bounds.h"
 #include "sss/mesh.h"
 #include "sss/volume.h"
 
@@ -28,6 +29,19 @@ Mesh makeTorus(float majorRadius = 0.7f, float minorRadius = 0.3f, int majorSegm
 /// normals), 12 triangles. Default 1.6 x 1.0 x 0.2, a slab for translucency tests.
 /// @throws Error InvalidArgument unless every size component is finite and > 0.
 Mesh makeSlab(glm::vec3 size = glm::vec3(1.6f, 1.0f, 0.2f));
+
+/// The walls of a Cornell box (open towards +z) around `content`: a cube of side
+/// 1.6 x the content's largest extent, centred on it, with normals facing inwards. White floor,
+/// ceiling and back wall; red left (-x) and green right (+x) walls.
+struct CornellBox {
+    Mesh white, red, green;
+    glm::vec3 whiteColor{0.73f, 0.71f, 0.68f};
+    glm::vec3 redColor{0.63f, 0.065f, 0.05f};
+    glm::vec3 greenColor{0.14f, 0.45f, 0.09f};
+    Bounds bounds;   ///< the box itself
+};
+/// @throws Error InvalidArgument if `content` is empty.
+CornellBox makeCornellBox(const Bounds& content);
 
 /// n^3 uint8 volume with four soft Gaussian blobs of different sizes and peak values.
 /// @throws Error InvalidArgument unless n in [2, 1024].

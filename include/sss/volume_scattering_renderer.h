@@ -30,6 +30,10 @@
 
 namespace sss {
 
+namespace detail {
+struct VolumeRendererAccess;  // hybrid-scene hooks (src/hybrid/shared_lighting.h)
+}
+
 enum class VolumeShading { EmissionAbsorption, Gradient, Scattering, ScatteringGradient };
 
 struct VolumeRenderOptions {
@@ -93,6 +97,7 @@ public:
     const RenderStats& stats() const;
 
 private:
+    friend struct detail::VolumeRendererAccess;
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

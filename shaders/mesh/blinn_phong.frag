@@ -1,6 +1,7 @@
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/blinn_phong.glsl"
+#include "common/volume_shadow.glsl"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -22,6 +23,7 @@ void main() {
     for (int i = 0; i < lightCount; ++i) {
         vec3 radiance;
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
+        radiance *= volumeTransmittance(i, worldPosition, l);
         color += blinnPhong(n, l, v, radiance, diffuseColor, specularColor, shininess);
     }
     fragColor = vec4(pow(max(color, vec3(0.0)), vec3(inverseGamma)), 1.0);

@@ -4,6 +4,7 @@
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
+#include "common/volume_shadow.glsl"
 
 in vec3 modelPosition;
 in vec3 modelNormal;
@@ -67,6 +68,7 @@ void main() {
         for (int i = 0; i < lightCount; ++i) {
             vec3 radiance;
             vec3 l = lightDirectionAt(i, worldPosition, radiance);
+            radiance *= volumeTransmittance(i, worldPosition, l);
             float nDotL = dot(nWorld, l);
             if (nDotL <= 0.0) continue;
             vec3 h = normalize(l + wo);

@@ -10,6 +10,7 @@
 // The exit Fresnel factor T(eta, w_o) is view-dependent and applied in the combine pass.
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
+#include "common/volume_shadow.glsl"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -81,6 +82,7 @@ void main() {
                 irradiance = lightRadiance[l];
                 wi = -axis;
             }
+            irradiance *= volumeTransmittance(l, xi, wi);  // a volume between the light and x_i
             float entry = dirpoleFresnelT(dipole.eta, dot(wi, ni));
             sum += dirpoleSd(dipole, xi, ni, wi, xo, no) * (entry / pdf) * irradiance;
         }

@@ -39,6 +39,20 @@ uniform float gradientThreshold;   // |gradient| (per voxel) below which shading
 #endif
 #if SHADING_SCATTERING
 uniform sampler3D lightVolumes[MAX_LIGHTS];   // one per light: (c, l) arriving at each point
+// Hybrid scenes: meshes between a light and the volume cast hard shadows into it (shadow maps
+// of the meshes from each light; see src/hybrid/shared_lighting.h).
+uniform int meshShadows;
+uniform sampler2DArray meshShadowDepth;
+uniform mat4 worldToShadowClip[MAX_LIGHTS];
+uniform float meshShadowBias;
+
+float meshVisibility(int light, vec3 worldPosition) {
+    if (meshShadows == 0) return 1.0;
+    vec4 clip = worldToShadowClip[light] * vec4(worldPosition, 1.0);
+    vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
+    if (any(lessThan(window, vec3(0.0))) || any(greaterThan(window, vec3(1.0)))) return 1.0;
+    return window.z - meshShadowBias > texture(meshShadowDepth, vec3(window.xy, float(light))).r ? 0.0 : 1.0;
+}
 #endif
 
 layout(location = 0) out vec4 fragColor;   // premultiplied colour, alpha = opacity
@@ -83,6 +97,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
 #if SHADING_SCATTERING
         // Diffuse light is what the light volume says arrives here: tinted by c, dimmed by l.
         vec4 arriving = texture(lightVolumes[i], tc);
+        arriving.a *= meshVisibility(i, worldPosition);
         lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
 #if SHADING_GRADIENT
         vec3 h = normalize(l + v);

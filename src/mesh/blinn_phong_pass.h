@@ -4,6 +4,7 @@
 #include "mesh/gpu_mesh.h"
 #include "sss/camera.h"
 #include "sss/light.h"
+#include "hybrid/shared_lighting.h"
 #include "sss/mesh_scattering_renderer.h"
 
 #include <vector>
@@ -14,7 +15,8 @@ class BlinnPhongPass {
 public:
     BlinnPhongPass();
     void run(const GpuMesh& mesh, const glm::mat4& model, const BlinnPhongMaterial& material,
-             const std::vector<Light>& lights, const Camera& camera, float aspect, float gamma) const;
+             const std::vector<Light>& lights, const Camera& camera, float aspect, float gamma,
+             const VolumeShadows* volumeShadows = nullptr) const;
 
 private:
     gl::Program m_program;

@@ -15,7 +15,7 @@ CombinePass::CombinePass()
 
 void CombinePass::run(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
                       const ScatteringMapPass& maps, const std::vector<Light>& lights, const Camera& camera,
-                      float aspect, const CombineSettings& s) const {
+                      float aspect, const CombineSettings& s, const VolumeShadows* volumeShadows) const {
     const gl::Program& p = m_program;
     p.set("model", model);
     p.set("viewProjection", camera.projection(aspect) * camera.view());
@@ -36,6 +36,7 @@ void CombinePass::run(const GpuMesh& mesh, const glm::mat4& model, const Scatter
     p.set("shininess", s.shininess);
     p.set("inverseGamma", 1.0f / s.gamma);
     setLightUniforms(p, lights);
+    setVolumeShadowUniforms(p, volumeShadows, lights.size());
     maps.maps().bind(0);
     maps.depth().bind(1);
 

@@ -4,6 +4,7 @@
 // with a depth bias and a seam shrink), averages them, and applies exit Fresnel, an optional
 // specular highlight and gamma (shaders/mesh/combine.frag).
 #include "gl/program.h"
+#include "hybrid/shared_lighting.h"
 #include "mesh/gpu_mesh.h"
 #include "mesh/scattering_map_pass.h"
 #include "sss/camera.h"
@@ -27,7 +28,7 @@ public:
     CombinePass();
     void run(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
              const ScatteringMapPass& maps, const std::vector<Light>& lights, const Camera& camera, float aspect,
-             const CombineSettings& settings) const;
+             const CombineSettings& settings, const VolumeShadows* volumeShadows = nullptr) const;
 
 private:
     gl::Program m_program;

@@ -6,6 +6,7 @@
 #include "mesh/gpu_mesh.h"
 #include "mesh/light_buffer_pass.h"
 #include "mesh/scattering_map_pass.h"
+#include "hybrid/shared_lighting.h"
 #include "sss/error.h"
 #include "sss/timing.h"
 
@@ -58,6 +59,7 @@ struct ScatteringMapInputs {
     int cameras = 0, samples = 0, resolution = 0;
     double millimetresPerUnit = 0.0;
     float sampleRadius = 0.0f, spread = 0.0f;
+    std::uint64_t volumeShadowRevision = 0;  // hybrid scenes: volumes between lights and mesh
     bool operator==(const ScatteringMapInputs&) const = default;
 };
 
@@ -92,6 +94,7 @@ struct MeshScatteringRenderer::Impl {
     detail::ScatteringCameras cameras;
     std::optional<LightBufferInputs> lightBufferInputs;
     std::optional<ScatteringMapInputs> scatteringMapInputs;
+    std::optional<detail::VolumeShadows> volumeShadows;  // set by HybridCompositor
 
     template <typename Work>
     void timed(const char* pass, Work&& work) {
@@ -109,7 +112,8 @@ struct MeshScatteringRenderer::Impl {
                 options.mapResolution,
                 options.millimetresPerUnit,
                 options.sampleRadius,
-                options.spread};
+                options.spread,
+                volumeShadows ? volumeShadows->revision : 0};
     }
 
     bool mapsConverged() const {
@@ -149,7 +153,8 @@ struct MeshScatteringRenderer::Impl {
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
         timed("scattering-maps", [&] {
             scatteringMaps->accumulate(*mesh, model, cameras, lights, lightBuffer->viewProjections(),
-                                       lightBuffer->positions(), lightBuffer->normals(), dipole, sampling);
+                                       lightBuffer->positions(), lightBuffer->normals(), dipole, sampling,
+                                       volumeShadows ? &*volumeShadows : nullptr);
         });
     }
 };
@@ -208,7 +213,8 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         if (!r.blinnPhong) r.blinnPhong.emplace();
         r.timed("blinn-phong", [&] {
             target.bindForDrawing();
-            r.blinnPhong->run(*r.mesh, r.model, r.material, r.lights, camera, target.aspect(), r.options.gamma);
+            r.blinnPhong->run(*r.mesh, r.model, r.material, r.lights, camera, target.aspect(), r.options.gamma,
+                              r.volumeShadows ? &*r.volumeShadows : nullptr);
         });
         return;
     }
@@ -227,8 +233,25 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.gamma = r.options.gamma;
     r.timed("combine", [&] {
         target.bindForDrawing();
-        r.combine->run(*r.mesh, r.model, r.cameras, *r.scatteringMaps, r.lights, camera, target.aspect(), settings);
+        r.combine->run(*r.mesh, r.model, r.cameras, *r.scatteringMaps, r.lights, camera, target.aspect(), settings,
+                       r.volumeShadows ? &*r.volumeShadows : nullptr);
     });
 }
 
+namespace detail {
+
+void MeshRendererAccess::setVolumeShadows(MeshScatteringRenderer& r, const VolumeShadows* shadows) {
+    if (shadows)
+        r.m_impl->volumeShadows = *shadows;
+    else
+        r.m_impl->volumeShadows.reset();
+}
+
+const GpuMesh* MeshRendererAccess::mesh(const MeshScatteringRenderer& r) {
+    return r.m_impl->mesh ? &*r.m_impl->mesh : nullptr;
+}
+
+const glm::mat4& MeshRendererAccess::model(const MeshScatteringRenderer& r) { return r.m_impl->model; }
+
+}  // namespace detail
 }  // namespace sss

@@ -7,6 +7,7 @@
 #include "gl/framebuffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
+#include "hybrid/shared_lighting.h"
 #include "mesh/gpu_mesh.h"
 #include "sss/bssrdf.h"
 #include "sss/light.h"
@@ -48,7 +49,8 @@ public:
     void accumulate(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
                     const std::vector<Light>& lights, const std::vector<glm::mat4>& lightViewProjections,
                     const gl::Texture& lightPositions, const gl::Texture& lightNormals,
-                    const DipoleConstants& dipole, const ScatteringSampling& sampling);
+                    const DipoleConstants& dipole, const ScatteringSampling& sampling,
+                    const VolumeShadows* volumeShadows = nullptr);
 
     int frames() const { return m_frames; }
     const gl::Texture& maps() const { return m_maps; }

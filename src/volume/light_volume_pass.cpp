@@ -125,6 +125,7 @@ void LightVolumePass::run(const GpuVolume& volume, const gl::Texture& transferFu
     p.set("coneTangent", std::tan(cone));
     p.set("coneWeights", glm::vec2(centreWeight, ringWeight) / norm);
 
+
     volume.texture.bind(0);
     transferFunction.bind(1);
     output.bindImage(0, GL_READ_WRITE);

@@ -33,7 +33,8 @@ RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping)
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
-                      const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes, const glm::mat4& model,
+                      const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes,
+                      const MeshShadowMaps* meshShadows, const glm::mat4& model,
                       const std::vector<Light>& lights, const VolumeRenderOptions& options, const Camera& camera,
                       float aspect) const {
     const glm::mat4 viewProjection = camera.projection(aspect) * camera.view();
@@ -76,6 +77,16 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
         p.set("gradientThreshold", options.gradientThreshold);
     }
     if (usesLightVolume(m_shading)) {
+        const bool shadowed = meshShadows && meshShadows->worldToClip.size() >= lights.size();
+        p.set("meshShadows", shadowed ? 1 : 0);
+        p.set("meshShadowDepth", kMeshShadowUnit);
+        if (shadowed) {
+            for (size_t i = 0; i < lights.size(); ++i)
+                p.set("worldToShadowClip[" + std::to_string(i) + "]", meshShadows->worldToClip[i]);
+            // About two shadow-map texels' worth of depth (the maps span the scene's diameter).
+            p.set("meshShadowBias", 2.0f / static_cast<float>(meshShadows->depth.size().x));
+            meshShadows->depth.bind(kMeshShadowUnit);
+        }
         for (size_t i = 0; i < lightVolumes.size(); ++i) {
             const int unit = kFirstLightVolumeUnit + static_cast<int>(i);
             p.set("lightVolumes[" + std::to_string(i) + "]", unit);

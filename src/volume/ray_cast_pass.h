@@ -7,6 +7,7 @@
 #include "gl/vertex_array.h"
 #include "sss/camera.h"
 #include "sss/volume_scattering_renderer.h"
+#include "hybrid/shared_lighting.h"
 #include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
 
@@ -27,11 +28,13 @@ public:
     /// `sceneDepth` is a copy of the target's depth (rays stop there); `lightVolumes` has one
     /// texture per light in the scattering modes. The target is bound.
     void run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
-             const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes, const glm::mat4& model, const std::vector<Light>& lights,
+             const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes,
+             const MeshShadowMaps* meshShadows, const glm::mat4& model, const std::vector<Light>& lights,
              const VolumeRenderOptions& options, const Camera& camera, float aspect) const;
 
 private:
     static constexpr int kFirstLightVolumeUnit = 4;  // 0 volume, 1 TF, 2 scene depth, 3 occupancy
+    static constexpr int kMeshShadowUnit = 12;       // after the light volumes (4..11)
     VolumeShading m_shading;
     bool m_emptySpaceSkipping;
     gl::Program m_program;

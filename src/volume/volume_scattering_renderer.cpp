@@ -9,6 +9,9 @@
 #include "volume/light_volume_pass.h"
 #include "volume/ray_cast_pass.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cmath>
@@ -70,6 +73,7 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<detail::LightVolumePass> lightVolumePass;  // built on first use
     std::vector<gl::Texture> lightVolumes;                  // one per light
     std::optional<LightVolumeInputs> lightVolumeInputs;     // what lightVolumes were built from
+    const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
     gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
 
     // Sampling the depth attachment of the framebuffer being drawn would be a feedback loop,
@@ -165,11 +169,43 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     m_impl->copyDepth(target);
     target.bindForDrawing();
     m_impl->rayCast->run(*m_impl->volume, m_impl->transferFunctionTable, m_impl->sceneDepth,
-                         m_impl->occupancy->texture(), m_impl->lightVolumes,
+                         m_impl->occupancy->texture(), m_impl->lightVolumes, m_impl->meshShadows,
                          m_impl->model, m_impl->lights, m_impl->options, camera, target.aspect());
     if (m_impl->options.finishEachPass) finishGpuWork();
     m_impl->stats.record("ray-cast",
                          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
+namespace detail {
+
+void VolumeRendererAccess::setMeshShadows(VolumeScatteringRenderer& r, const MeshShadowMaps* shadows) {
+    r.m_impl->meshShadows = shadows;
+}
+
+void VolumeRendererAccess::updateLightVolumes(VolumeScatteringRenderer& r) {
+    if (r.m_impl->volume && usesLightVolume(r.m_impl->options.shading)) r.m_impl->updateLightVolumes();
+}
+
+std::optional<VolumeShadows> VolumeRendererAccess::shadows(const VolumeScatteringRenderer& r) {
+    const auto& impl = *r.m_impl;
+    if (!impl.volume || !usesLightVolume(impl.options.shading) || impl.lightVolumes.size() != impl.lights.size())
+        return std::nullopt;
+    // World -> model -> the box's [0,1]^3 texture space.
+    const Bounds& box = impl.volume->box;
+    const glm::mat4 modelToTexture = glm::scale(glm::mat4(1.0f), 1.0f / box.size()) *
+                                     glm::translate(glm::mat4(1.0f), -box.min);
+    return VolumeShadows{&impl.lightVolumes, modelToTexture * glm::inverse(impl.model), impl.stats.runs("light-volume")};
+}
+
+Bounds VolumeRendererAccess::worldBounds(const VolumeScatteringRenderer& r) {
+    Bounds world;
+    if (!r.m_impl->volume) return world;
+    const Bounds& b = r.m_impl->volume->box;
+    for (int i = 0; i < 8; ++i)
+        world.extend(glm::vec3(r.m_impl->model * glm::vec4((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                                                            (i & 4) ? b.max.z : b.min.z, 1.0f)));
+    return world;
+}
+
+}  // namespace detail
 }  // namespace sss

@@ -11,6 +11,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
+
 using namespace sss;
 
 namespace {
@@ -197,5 +199,25 @@ TEST_CASE("bad scattering parameters give clear errors", "[gl][mesh][scattering]
     CHECK_THROWS_WITH(MeshScatteringRenderer(o), Catch::Contains("millimetresPerUnit"));
     CHECK_THROWS_WITH(Mesh::fromArrays({}, {}), Catch::Contains("no triangles"));
     CHECK_THROWS_WITH(materialPreset("unobtainium"), Catch::Contains("unobtainium"));
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a point light lights the translucent mesh (no GL errors, finite, non-empty)", "[gl][mesh][scattering]") {
+    test::GlTestScope gl;
+    MeshScatteringRenderer renderer(testOptions(4));
+    renderer.setMesh(makeTorus());
+    renderer.setLights({PointLight{.position = {0.0f, 3.0f, 1.0f}, .intensity = 8.0f}});
+    Camera camera;
+    camera.setDistance(4.0f);
+    camera.setPitch(30.0f);
+    const Image image = renderConverged(renderer, camera, 64, 48);
+    int lit = 0;
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+            const glm::vec4 p = image.at(x, y);
+            REQUIRE(std::isfinite(p.r + p.g + p.b));
+            lit += p.r > kBackground.r + 0.05f ? 1 : 0;
+        }
+    CHECK(lit > 100);
     gl.requireNoErrors();
 }

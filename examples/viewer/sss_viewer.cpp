@@ -1,0 +1,753 @@
+// sss-viewer: interactive viewer for light scattering in meshes and volumes (GLFW + Dear ImGui).
+// Run `sss-viewer --help` for the options. Exit codes: 0 ok, 1 runtime failure, 2 bad usage.
+#include "present_gl.h"
+#include "tf_editor_widget.h"
+#include "viewer_options.h"
+
+#include <sss/glfw_context.h>
+#include <sss/hybrid_compositor.h>
+#include <sss/materials.h>
+#include <sss/sss.h>
+#include <sss/transfer_function_editor.h>
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using viewer::UsageError;
+using viewer::ViewerOptions;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Meshes are scaled to a largest side of 1 and centred, like Volume::worldBounds(), so any two
+// inputs fit side by side; --scale then says how many millimetres that unit is.
+sss::Mesh normalised(const sss::Mesh& mesh) {
+    const sss::Bounds b = mesh.bounds();
+    const glm::vec3 size = b.size();
+    const float largest = std::max({size.x, size.y, size.z, 1e-12f});
+    return mesh.transformed(glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / largest)) *
+                            glm::translate(glm::mat4(1.0f), -b.center()));
+}
+
+constexpr std::array<int, 5> kMapResolutions{128, 256, 512, 1024, 2048};
+constexpr std::array<int, 4> kShadowResolutions{256, 512, 1024, 2048};
+
+bool comboInt(const char* label, int& value, const int* options, std::size_t count) {
+    bool changed = false;
+    if (ImGui::BeginCombo(label, std::to_string(value).c_str())) {
+        for (std::size_t i = 0; i < count; ++i) {
+            if (ImGui::Selectable(std::to_string(options[i]).c_str(), options[i] == value)) {
+                changed = options[i] != value;
+                value = options[i];
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+bool colorEdit(const char* label, glm::vec3& color) {
+    float c[3] = {color.r, color.g, color.b};
+    if (!ImGui::ColorEdit3(label, c, ImGuiColorEditFlags_Float)) return false;
+    color = glm::clamp(glm::vec3(c[0], c[1], c[2]), glm::vec3(0.0f), glm::vec3(1.0f));
+    return true;
+}
+
+bool dragDvec3(const char* label, glm::dvec3& v, float speed, float lo, float hi, const char* format) {
+    float f[3] = {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+    if (!ImGui::DragFloat3(label, f, speed, lo, hi, format)) return false;
+    v = glm::dvec3(f[0], f[1], f[2]);
+    return true;
+}
+
+class Viewer {
+public:
+    Viewer(const ViewerOptions& args, std::unique_ptr<sss::GlfwContext> context)
+        : m_args(args), m_dataDir(viewer::dataDirectory(args.dataDir)), m_context(std::move(context)) {
+        m_gl.emplace();
+        m_compositor.emplace(m_hybrid);
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
+        ImGui::StyleColorsDark();
+        ImGui::GetStyle().WindowRounding = 4.0f;
+        ImGui_ImplGlfw_InitForOpenGL(static_cast<GLFWwindow*>(m_context->nativeWindow()), true);
+        ImGui_ImplOpenGL3_Init("#version 450");
+
+        m_meshPath = args.mesh;
+        m_volumePath = args.volume;
+        m_showUi = !args.hideUi;
+        m_meshOptions.shading = args.meshScattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
+        m_meshOptions.cameras = args.cameras;
+        m_meshOptions.samples = args.samples;
+        m_meshOptions.mapResolution = m_meshOptions.lightMapResolution = args.mapResolution;
+        m_meshOptions.accumulationFrames = args.accumulation;
+        m_meshOptions.millimetresPerUnit = args.scale;
+        m_volumeScattering = args.volumeMode == "scattering" || args.volumeMode == "scattering-gradient";
+        m_volumeHighlights = args.volumeMode == "scattering-gradient";
+        m_volumeBaselineGradient = args.volumeMode != "emission-absorption";
+        m_volumeOptions.lightVolumeScale = args.lightVolumeScale;
+        m_hybrid.cornellBox = args.cornellBox;
+        m_lightAzimuth = args.lightAzimuth;
+        m_lightElevation = args.lightElevation;
+        m_material = sss::materialPreset(args.material);
+        const auto names = sss::materialPresetNames();
+        const auto found = std::find(names.begin(), names.end(), m_material.name);
+        m_materialIndex = found == names.end() ? -1 : static_cast<int>(found - names.begin());
+    }
+
+    ~Viewer() {
+        // GL objects go before the ImGui backend, and both before the context.
+        m_compositor.reset();
+        m_target.reset();
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+        m_context.reset();
+    }
+
+    Viewer(const Viewer&) = delete;
+    Viewer& operator=(const Viewer&) = delete;
+
+    /// Shows what the command line named (loaded before the window opened, see run()).
+    void setInitialScene(std::optional<sss::Mesh> mesh, std::optional<sss::Volume> volume, sss::TransferFunction tf,
+                         const std::string& tfName) {
+        if (mesh) m_mesh = normalised(*mesh);
+        if (volume) setVolume(std::move(*volume), m_args.volume);
+        m_tfEditor = sss::TransferFunctionEditor(std::move(tf));
+        if (tfName.size() > 5 && tfName.substr(tfName.size() - 5) == ".json") m_tfPath = tfName;
+        else m_tfPreset = tfName;
+        rebuildScene();
+        reframe();
+        m_camera.setYaw(m_args.yaw.value_or(m_hybrid.cornellBox ? 0.0f : 25.0f));
+        m_camera.setPitch(m_args.pitch.value_or(m_hybrid.cornellBox ? 8.0f : 15.0f));
+    }
+
+    int run() {
+        const int frames = m_args.frames;
+        for (int frame = 0; frames == 0 || frame < frames; ++frame) {
+            if (m_context->shouldClose()) break;
+            const bool last = frames > 0 && frame + 1 == frames;
+            drawFrame(last && !m_args.screenshot.empty());
+        }
+        if (m_args.frames > 0) {
+            // Batch runs double as tests: a GL error reported through KHR_debug is a failure.
+            const sss::DebugMessageCounts counts = m_context->debugMessages();
+            if (counts.errors > 0) {
+                std::fprintf(stderr, "sss-viewer: %llu GL error(s), the last: %s\n",
+                             static_cast<unsigned long long>(counts.errors), m_context->lastDebugError().c_str());
+                return 1;
+            }
+            std::printf("rendered %d frames\n", m_frameIndex);
+        }
+        return 0;
+    }
+
+private:
+    // ---- scene -------------------------------------------------------------------------------
+    void setVolume(sss::Volume volume, const std::string& label) {
+        m_histogram.histogram = sss::TransferFunctionEditor::histogramBars(volume, 128);
+        m_histogram.rawMax = volume.type() == sss::VoxelType::UInt16 ? 65535 : 255;
+        m_volume = std::move(volume);
+        m_volumeLabel = label;
+    }
+
+    sss::MeshRenderOptions meshOptions() const {
+        sss::MeshRenderOptions o = m_meshOptions;
+        o.finishEachPass = m_honestTimings;
+        return o;
+    }
+
+    sss::VolumeRenderOptions volumeOptions() const {
+        sss::VolumeRenderOptions o = m_volumeOptions;
+        if (m_volumeScattering)
+            o.shading = m_volumeHighlights ? sss::VolumeShading::ScatteringGradient : sss::VolumeShading::Scattering;
+        else
+            o.shading = m_volumeBaselineGradient ? sss::VolumeShading::Gradient : sss::VolumeShading::EmissionAbsorption;
+        o.finishEachPass = m_honestTimings;
+        return o;
+    }
+
+    sss::Light light() const {
+        // The light travels from the direction given by azimuth (around +y) and elevation.
+        const float az = glm::radians(m_lightAzimuth), el = glm::radians(m_lightElevation);
+        const glm::vec3 towardsLight(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+        return sss::DirectionalLight{-towardsLight, m_lightColor, m_lightIntensity};
+    }
+
+    glm::mat4 meshModel() const {
+        return glm::translate(glm::mat4(1.0f), glm::vec3(m_volume ? -0.6f : 0.0f, 0.0f, 0.0f));
+    }
+    glm::mat4 volumeModel() const {
+        return glm::translate(glm::mat4(1.0f), glm::vec3(m_mesh ? 0.6f : 0.0f, 0.0f, 0.0f));
+    }
+
+    void rebuildScene() {
+        m_compositor->clear();
+        m_compositor->setOptions(m_hybrid);
+        if (m_mesh) {
+            sss::MeshScatteringRenderer& r = m_compositor->addMesh(*m_mesh, meshModel(), meshOptions());
+            r.setScatteringMaterial(m_material);
+            r.setMaterial(m_blinnPhong);
+        }
+        if (m_volume) {
+            sss::VolumeScatteringRenderer& r = m_compositor->addVolume(*m_volume, volumeModel(), volumeOptions());
+            r.setTransferFunction(m_tfEditor.transferFunction());
+        }
+        m_uploadedTf = m_tfEditor.transferFunction().revision();
+        m_compositor->setLights({light()});
+        m_mapFrames = 0;
+    }
+
+    void reframe() {
+        const sss::Bounds content = m_compositor->bounds();
+        if (content.empty()) return;
+        // In a Cornell box, show the whole box (its sphere fits the view: 0.8 of it is plenty).
+        const sss::Bounds bounds = m_hybrid.cornellBox ? sss::makeCornellBox(content).bounds : content;
+        m_camera.setTarget(glm::vec3(0.0f));
+        m_camera.frame(bounds);
+        if (m_hybrid.cornellBox) m_camera.setDistance(m_camera.distance() * 0.8f);
+        m_camera.setClipPlanes(m_camera.distance() * 0.01f, m_camera.distance() * 10.0f);
+        // Centre the content in the part of the window the panel leaves free (if there is room).
+        if (m_showUi && m_target && static_cast<float>(m_target->width()) > 2.5f * kPanelWidth) {
+            const float pixels = 0.5f * kPanelWidth;
+            const float perPixel = 2.0f * std::tan(glm::radians(m_camera.fovY()) * 0.5f) /
+                                   static_cast<float>(m_target->height());
+            m_camera.pan(glm::vec2(-pixels * perPixel, 0.0f));
+        }
+    }
+
+    // Pushes the UI's settings into the renderers; a bad value shows an error instead of throwing.
+    void applyChanges() {
+        try {
+            if (m_sceneDirty) {
+                rebuildScene();
+                reframe();
+                m_sceneDirty = false;
+                m_meshDirty = m_volumeDirty = m_lightsDirty = m_hybridDirty = false;
+            }
+            if (m_hybridDirty) m_compositor->setOptions(m_hybrid);
+            if (m_lightsDirty) m_compositor->setLights({light()});
+            for (std::size_t i = 0; i < m_compositor->meshCount() && m_meshDirty; ++i) {
+                m_compositor->mesh(i).setOptions(meshOptions());
+                m_compositor->mesh(i).setScatteringMaterial(m_material);
+                m_compositor->mesh(i).setMaterial(m_blinnPhong);
+            }
+            for (std::size_t i = 0; i < m_compositor->volumeCount(); ++i) {
+                if (m_volumeDirty) m_compositor->volume(i).setOptions(volumeOptions());
+                if (m_uploadedTf != m_tfEditor.transferFunction().revision())
+                    m_compositor->volume(i).setTransferFunction(m_tfEditor.transferFunction());
+            }
+            if (m_meshDirty || m_lightsDirty || m_hybridDirty) m_mapFrames = 0;
+        } catch (const sss::Error& e) {
+            showMessage(e.what(), true);
+        }
+        m_uploadedTf = m_tfEditor.transferFunction().revision();
+        m_meshDirty = m_volumeDirty = m_lightsDirty = m_hybridDirty = false;
+    }
+
+    // ---- frame -------------------------------------------------------------------------------
+    void drawFrame(bool saveScreenshot) {
+        const Clock::time_point start = Clock::now();
+        m_context->pollEvents();
+        const glm::ivec2 fb = m_context->framebufferSize();
+        if (fb.x <= 0 || fb.y <= 0) {  // minimised: nothing to draw into
+            glfwWaitEventsTimeout(0.1);
+            return;
+        }
+        if (!m_target || m_target->width() != fb.x || m_target->height() != fb.y) m_target.emplace(fb.x, fb.y);
+        if (m_frameIndex == 0) reframe();  // the panel offset needs the target's size
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        handleInput();
+        if (m_showUi) {
+            drawPanel();
+            drawOverlay();
+        }
+        applyChanges();
+
+        // The scene.
+        const Clock::time_point renderStart = Clock::now();
+        try {
+            m_compositor->render(m_camera, *m_target);
+        } catch (const sss::Error& e) {
+            // Bad settings must not end an interactive session; the message says what failed.
+            showMessage(e.what(), true);
+            m_target->clear(m_hybrid.background);
+        }
+        if (m_honestTimings) sss::finishGpuWork();
+        m_renderMs = msSince(renderStart);
+        trackProgress();
+
+        if (saveScreenshot && !m_args.screenshotUi) writeScreenshot(m_args.screenshot, false);
+        if (m_screenshotRequested) writeScreenshot(m_screenshotPath, false);
+
+        m_gl->present(m_target->framebufferId(), fb.x, fb.y, fb.x, fb.y);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (saveScreenshot && m_args.screenshotUi) writeScreenshot(m_args.screenshot, true);
+        m_context->swapBuffers();
+
+        // Mean over the last frames, so the display is readable but follows changes quickly.
+        m_frameTimes[static_cast<std::size_t>(m_frameIndex) % m_frameTimes.size()] = msSince(start);
+        ++m_frameIndex;
+        const std::size_t n = std::min(m_frameTimes.size(), static_cast<std::size_t>(m_frameIndex));
+        m_frameMs = 0.0;
+        for (std::size_t i = 0; i < n; ++i) m_frameMs += m_frameTimes[i] / static_cast<double>(n);
+    }
+
+    void writeScreenshot(const std::string& path, bool withUi) {
+        m_screenshotRequested = false;
+        try {
+            if (withUi) {
+                const glm::ivec2 fb = m_context->framebufferSize();
+                m_gl->readBackBuffer(fb.x, fb.y).savePng(path);
+            } else {
+                m_target->readColor().toRgba8().savePng(path);
+            }
+            std::printf("wrote %s\n", path.c_str());
+            std::fflush(stdout);
+            showMessage("saved " + path, false);
+        } catch (const sss::Error& e) {
+            if (m_args.frames > 0) throw;  // batch: a screenshot that cannot be written is a failure
+            showMessage(e.what(), true);
+        }
+    }
+
+    // Counts map frames while the scattering maps accumulate, and notes light-volume rebuilds.
+    void trackProgress() {
+        bool converged = true;
+        for (std::size_t i = 0; i < m_compositor->meshCount(); ++i)
+            converged = converged && m_compositor->mesh(i).converged();
+        m_mapsConverged = converged || m_meshOptions.shading != sss::MeshShading::Scattering;
+        m_mapFrames = m_mapsConverged ? 0 : m_mapFrames + 1;
+        std::uint64_t runs = 0;
+        double lastMs = 0.0;
+        for (std::size_t i = 0; i < m_compositor->volumeCount(); ++i)
+            if (const sss::PassStats* p = m_compositor->volume(i).stats().find("light-volume")) {
+                runs += p->runs;
+                lastMs = p->lastMs;
+            }
+        if (runs != m_lightVolumeRuns) {
+            m_lightVolumeRuns = runs;
+            m_lightVolumeBuiltFrame = m_frameIndex;
+            m_lightVolumeMs = lastMs;
+        }
+    }
+
+    void handleInput() {
+        ImGuiIO& io = ImGui::GetIO();
+        if (!io.WantCaptureKeyboard) {
+            if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) m_showUi = !m_showUi;
+            if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) reframe();
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) m_screenshotRequested = true;
+        if (io.WantCaptureMouse) return;
+        const glm::vec2 delta(io.MouseDelta.x, io.MouseDelta.y);
+        if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f)) m_camera.orbit(-0.3f * delta.x, 0.3f * delta.y);
+        if (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f) ||
+            ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f)) {
+            // Scene points under the cursor follow it (at the target's depth).
+            const float perPixel = 2.0f * std::tan(glm::radians(m_camera.fovY()) * 0.5f) /
+                                   static_cast<float>(std::max(1, m_target->height()));
+            m_camera.pan(glm::vec2(-delta.x, delta.y) * perPixel);
+        }
+        if (io.MouseWheel != 0.0f) m_camera.zoom(std::pow(0.88f, io.MouseWheel));
+    }
+
+    void showMessage(std::string text, bool error) {
+        if (error && m_args.frames > 0) std::fprintf(stderr, "sss-viewer: %s\n", text.c_str());
+        m_message = std::move(text);
+        m_messageIsError = error;
+        m_messageTime = Clock::now();
+    }
+
+    // ---- UI ----------------------------------------------------------------------------------
+    static constexpr float kPanelWidth = 390.0f;
+
+    void drawPanel() {
+        const ImGuiViewport* vp = ImGui::GetMainViewport();
+        ImGui::SetNextWindowPos(vp->WorkPos, ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(kPanelWidth, vp->WorkSize.y), ImGuiCond_Always);
+        ImGui::SetNextWindowBgAlpha(0.88f);
+        ImGui::Begin("libsss viewer", nullptr,
+                     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+        ImGui::PushItemWidth(-150.0f);
+        if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) sceneSection();
+        if (ImGui::CollapsingHeader("Light and camera", ImGuiTreeNodeFlags_DefaultOpen)) lightSection();
+        if (m_mesh && ImGui::CollapsingHeader("Mesh: subsurface scattering", ImGuiTreeNodeFlags_DefaultOpen))
+            meshSection();
+        if (m_volume && ImGui::CollapsingHeader("Volume: light-volume scattering", ImGuiTreeNodeFlags_DefaultOpen))
+            volumeSection();
+        if (m_volume && ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen))
+            transferFunctionSection();
+        if (ImGui::CollapsingHeader("Timings")) timingSection();
+        ImGui::PopItemWidth();
+        ImGui::End();
+    }
+
+    void sceneSection() {
+        ImGui::InputText("mesh (.obj)", &m_meshPath);
+        if (ImGui::Button("Open mesh")) openMesh();
+        ImGui::SameLine();
+        ImGui::BeginDisabled(!m_mesh);
+        if (ImGui::Button("Remove mesh")) {
+            m_mesh.reset();
+            m_sceneDirty = true;
+        }
+        ImGui::EndDisabled();
+        ImGui::InputText("volume (.raw)", &m_volumePath);
+        ImGui::InputInt3("dims (0: name)", &m_volumeDims.x);
+        ImGui::Checkbox("16-bit voxels", &m_volume16);
+        if (ImGui::Button("Open volume")) openVolume();
+        ImGui::SameLine();
+        ImGui::BeginDisabled(!m_volume);
+        if (ImGui::Button("Remove volume")) {
+            m_volume.reset();
+            m_sceneDirty = true;
+        }
+        ImGui::EndDisabled();
+        ImGui::TextDisabled("procedural: sphere torus slab | blobs shell bucky");
+        m_hybridDirty |= ImGui::Checkbox("Cornell box", &m_hybrid.cornellBox);
+        ImGui::SameLine();
+        if (ImGui::Button("Reframe (F)")) reframe();
+        m_hybridDirty |= ImGui::Checkbox("meshes shadow volumes", &m_hybrid.meshShadowsInVolumes);
+        m_hybridDirty |= ImGui::Checkbox("volumes shadow meshes", &m_hybrid.volumeShadowsOnMeshes);
+        float background[3] = {m_hybrid.background.r, m_hybrid.background.g, m_hybrid.background.b};
+        if (ImGui::ColorEdit3("background", background)) {
+            m_hybrid.background = glm::vec4(background[0], background[1], background[2], 1.0f);
+            m_hybridDirty = true;
+        }
+        ImGui::InputText("screenshot", &m_screenshotPath);
+        ImGui::SameLine();
+        if (ImGui::Button("Save (F12)")) m_screenshotRequested = true;
+    }
+
+    void openMesh() {
+        try {
+            m_mesh = normalised(viewer::loadMesh(m_meshPath, m_dataDir));
+            m_sceneDirty = true;
+            showMessage("opened " + m_meshPath, false);
+        } catch (const std::exception& e) {  // sss::Error or UsageError: shown, never fatal
+            showMessage(e.what(), true);
+        }
+    }
+
+    void openVolume() {
+        try {
+            sss::RawLoadOptions overrides;
+            if (m_volumeDims.x > 0 && m_volumeDims.y > 0 && m_volumeDims.z > 0) overrides.dims = m_volumeDims;
+            if (m_volume16) overrides.type = sss::VoxelType::UInt16;
+            setVolume(viewer::loadVolume(m_volumePath, m_dataDir, overrides), m_volumePath);
+            m_sceneDirty = true;
+            showMessage("opened " + m_volumePath, false);
+        } catch (const std::exception& e) {
+            showMessage(e.what(), true);
+        }
+    }
+
+    void lightSection() {
+        m_lightsDirty |= ImGui::SliderFloat("light azimuth", &m_lightAzimuth, -180.0f, 180.0f, "%.0f deg");
+        m_lightsDirty |= ImGui::SliderFloat("light elevation", &m_lightElevation, -89.0f, 89.0f, "%.0f deg");
+        m_lightsDirty |= colorEdit("light colour", m_lightColor);
+        m_lightsDirty |= ImGui::SliderFloat("light intensity", &m_lightIntensity, 0.0f, 4.0f, "%.2f");
+        ImGui::TextDisabled("left drag: orbit, right/middle: pan, wheel: zoom");
+    }
+
+    void meshSection() {
+        bool scattering = m_meshOptions.shading == sss::MeshShading::Scattering;
+        if (ImGui::Checkbox("scattering (off: Blinn-Phong)", &scattering)) {
+            m_meshOptions.shading = scattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
+            m_meshDirty = true;
+        }
+        if (!scattering) {
+            m_meshDirty |= colorEdit("diffuse", m_blinnPhong.diffuse);
+            m_meshDirty |= ImGui::SliderFloat("shininess", &m_blinnPhong.shininess, 1.0f, 200.0f, "%.0f");
+            return;
+        }
+        const std::vector<std::string> names = sss::materialPresetNames();
+        const char* current = m_materialIndex >= 0 ? names[static_cast<std::size_t>(m_materialIndex)].c_str()
+                                                    : "(custom)";
+        if (ImGui::BeginCombo("material", current)) {
+            for (std::size_t i = 0; i < names.size(); ++i) {
+                if (ImGui::Selectable(names[i].c_str(), static_cast<int>(i) == m_materialIndex)) {
+                    m_materialIndex = static_cast<int>(i);
+                    m_material = sss::materialPreset(names[i]);
+                    m_meshDirty = true;
+                }
+            }
+            ImGui::EndCombo();
+        }
+        sss::ScatteringMaterial edited = m_material;
+        bool changed = dragDvec3("sigma_a (1/mm)", edited.sigmaA, 0.001f, 0.0f, 100.0f, "%.4f");
+        changed |= dragDvec3("sigma_s (1/mm)", edited.sigmaS, 0.01f, 0.0f, 1000.0f, "%.3f");
+        float eta = static_cast<float>(edited.eta);
+        if (ImGui::SliderFloat("eta", &eta, 1.0f, 2.0f, "%.3f")) {
+            edited.eta = eta;
+            changed = true;
+        }
+        if (changed) {
+            try {
+                edited.validate();
+                edited.name = "custom";
+                m_material = edited;
+                m_materialIndex = -1;
+                m_meshDirty = true;
+            } catch (const sss::Error& e) {
+                showMessage(e.what(), true);
+            }
+        }
+        float scale = static_cast<float>(m_meshOptions.millimetresPerUnit);
+        if (ImGui::DragFloat("scale (mm/unit)", &scale, 0.5f, 1.0f, 5000.0f, "%.1f",
+                             ImGuiSliderFlags_Logarithmic)) {
+            m_meshOptions.millimetresPerUnit = std::max(1.0f, scale);
+            m_meshDirty = true;
+        }
+        m_meshDirty |= ImGui::SliderInt("K (map cameras)", &m_meshOptions.cameras, 1, 32);
+        m_meshDirty |= ImGui::SliderInt("N (samples)", &m_meshOptions.samples, 1, 256);
+        if (comboInt("map resolution", m_meshOptions.mapResolution, kMapResolutions.data(), kMapResolutions.size())) {
+            m_meshOptions.lightMapResolution = m_meshOptions.mapResolution;
+            m_meshDirty = true;
+        }
+        m_meshDirty |= ImGui::SliderInt("frames accumulated", &m_meshOptions.accumulationFrames, 1, 64);
+        m_meshDirty |= ImGui::SliderFloat("specular", &m_meshOptions.specular, 0.0f, 2.0f, "%.2f");
+        if (m_mapsConverged) {
+            ImGui::TextColored(ImVec4(0.5f, 0.9f, 0.5f, 1.0f), "scattering maps converged");
+        } else {
+            const float done = std::min(1.0f, static_cast<float>(m_mapFrames) /
+                                                  static_cast<float>(m_meshOptions.accumulationFrames));
+            const std::string text = "accumulating maps: frame " + std::to_string(m_mapFrames) + " / " +
+                                     std::to_string(m_meshOptions.accumulationFrames);
+            ImGui::ProgressBar(done, ImVec2(-1.0f, 0.0f), text.c_str());
+        }
+    }
+
+    void volumeSection() {
+        const auto dims = m_volume->dims();
+        ImGui::Text("%s: %dx%dx%d %s", m_volumeLabel.c_str(), dims.x, dims.y, dims.z,
+                    m_volume->type() == sss::VoxelType::UInt16 ? "uint16" : "uint8");
+        m_volumeDirty |= ImGui::Checkbox("scattering", &m_volumeScattering);
+        ImGui::SameLine();
+        if (m_volumeScattering) {
+            m_volumeDirty |= ImGui::Checkbox("+ gradient highlights", &m_volumeHighlights);
+        } else {
+            int baseline = m_volumeBaselineGradient ? 0 : 1;
+            ImGui::SetNextItemWidth(150.0f);
+            if (ImGui::Combo("##off", &baseline, "gradient (Phong)\0emission-absorption\0")) {
+                m_volumeBaselineGradient = baseline == 0;
+                m_volumeDirty = true;
+            }
+        }
+        m_volumeDirty |= ImGui::SliderFloat("ray step (voxels)", &m_volumeOptions.stepSize, 0.25f, 4.0f, "%.2f");
+        if (m_volumeScattering) {
+            m_volumeDirty |= ImGui::SliderFloat("light-volume scale", &m_volumeOptions.lightVolumeScale, 0.1f, 1.0f,
+                                                "%.2f");
+            m_volumeDirty |= ImGui::SliderFloat("anisotropy g", &m_volumeOptions.anisotropy, -0.9f, 0.9f, "%.2f");
+        }
+        m_volumeDirty |= ImGui::SliderFloat("ambient", &m_volumeOptions.ambient, 0.0f, 1.0f, "%.2f");
+        m_volumeDirty |= ImGui::SliderFloat("diffuse", &m_volumeOptions.diffuse, 0.0f, 2.0f, "%.2f");
+        if (m_volumeScattering) {
+            const bool recent = m_frameIndex - m_lightVolumeBuiltFrame < 3 && m_lightVolumeRuns > 0;
+            if (recent)
+                ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "light volume rebuilt (%.1f ms)", m_lightVolumeMs);
+            else
+                ImGui::TextColored(ImVec4(0.5f, 0.9f, 0.5f, 1.0f), "light volume up to date");
+        }
+    }
+
+    void transferFunctionSection() {
+        const std::vector<std::string> presets = sss::TransferFunction::presetNames();
+        if (ImGui::BeginCombo("preset", m_tfPreset.empty() ? "(edited)" : m_tfPreset.c_str())) {
+            for (const std::string& name : presets)
+                if (ImGui::Selectable(name.c_str(), name == m_tfPreset)) {
+                    m_tfEditor.setTransferFunction(sss::TransferFunction::preset(name));
+                    m_tfPreset = name;
+                }
+            ImGui::EndCombo();
+        }
+        const uint64_t before = m_tfEditor.transferFunction().revision();
+        viewer::transferFunctionEditorWidget(m_tfEditor, m_histogram);
+        if (m_tfEditor.transferFunction().revision() != before) m_tfPreset.clear();
+        ImGui::InputText("ParaView JSON", &m_tfPath);
+        if (ImGui::Button("Save JSON")) {
+            try {
+                m_tfEditor.transferFunction().saveParaViewJson(m_tfPath, "sss-viewer");
+                showMessage("saved " + m_tfPath, false);
+            } catch (const sss::Error& e) {
+                showMessage(e.what(), true);
+            }
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Load JSON")) {
+            try {
+                m_tfEditor.setTransferFunction(sss::TransferFunction::loadParaViewJson(m_tfPath));
+                m_tfPreset.clear();
+                showMessage("loaded " + m_tfPath, false);
+            } catch (const sss::Error& e) {
+                showMessage(e.what(), true);
+            }
+        }
+    }
+
+    void statsTable(const char* owner, const sss::RenderStats& stats) {
+        for (const auto& [name, pass] : stats.passes()) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::Text("%s %s", owner, name.c_str());
+            ImGui::TableNextColumn();
+            ImGui::Text("%.2f", pass.lastMs);
+            ImGui::TableNextColumn();
+            ImGui::Text("%llu", static_cast<unsigned long long>(pass.runs));
+        }
+    }
+
+    void timingSection() {
+        if (ImGui::Checkbox("wait for the GPU after each pass", &m_honestTimings)) m_meshDirty = m_volumeDirty = true;
+        ImGui::TextDisabled(m_honestTimings ? "times below are GPU times"
+                                            : "times below are CPU submission times");
+        if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+            ImGui::TableSetupColumn("pass");
+            ImGui::TableSetupColumn("last ms");
+            ImGui::TableSetupColumn("runs");
+            ImGui::TableHeadersRow();
+            statsTable("hybrid", m_compositor->stats());
+            for (std::size_t i = 0; i < m_compositor->meshCount(); ++i) statsTable("mesh", m_compositor->mesh(i).stats());
+            for (std::size_t i = 0; i < m_compositor->volumeCount(); ++i)
+                statsTable("volume", m_compositor->volume(i).stats());
+            ImGui::EndTable();
+        }
+    }
+
+    // Frame time, progress and messages, top right.
+    void drawOverlay() {
+        const ImGuiViewport* vp = ImGui::GetMainViewport();
+        ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + vp->WorkSize.x - 10.0f, vp->WorkPos.y + 10.0f),
+                                ImGuiCond_Always, ImVec2(1.0f, 0.0f));
+        ImGui::SetNextWindowBgAlpha(0.6f);
+        ImGui::Begin("##overlay", nullptr,
+                     ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
+                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                         ImGuiWindowFlags_NoNav);
+        ImGui::Text("frame %.1f ms (%.1f fps), scene %.1f ms", m_frameMs, m_frameMs > 0 ? 1000.0 / m_frameMs : 0.0,
+                    m_renderMs);
+        ImGui::Text("%dx%d, %s", m_target ? m_target->width() : 0, m_target ? m_target->height() : 0,
+                    m_context->info().renderer.c_str());
+        if (!m_mapsConverged)
+            ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "accumulating scattering maps %d / %d", m_mapFrames,
+                               m_meshOptions.accumulationFrames);
+        if (m_volume && m_volumeScattering && m_frameIndex - m_lightVolumeBuiltFrame < 3 && m_lightVolumeRuns > 0)
+            ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "light volume rebuilt (%.1f ms)", m_lightVolumeMs);
+        if (!m_message.empty() && msSince(m_messageTime) < 8000.0)
+            ImGui::TextColored(m_messageIsError ? ImVec4(1.0f, 0.45f, 0.4f, 1.0f) : ImVec4(0.6f, 0.9f, 0.6f, 1.0f),
+                               "%s", m_message.c_str());
+        ImGui::End();
+    }
+
+    // ---- state -------------------------------------------------------------------------------
+    ViewerOptions m_args;
+    fs::path m_dataDir;
+    std::unique_ptr<sss::GlfwContext> m_context;
+    std::optional<viewer::PresentGl> m_gl;
+    std::optional<sss::HybridCompositor> m_compositor;
+    std::optional<sss::RenderTarget> m_target;
+    sss::Camera m_camera;
+
+    std::optional<sss::Mesh> m_mesh;
+    std::optional<sss::Volume> m_volume;
+    std::string m_volumeLabel;
+    viewer::TfEditorWidgetState m_histogram;
+
+    sss::HybridOptions m_hybrid;
+    sss::MeshRenderOptions m_meshOptions;
+    sss::BlinnPhongMaterial m_blinnPhong;
+    sss::ScatteringMaterial m_material;
+    int m_materialIndex = -1;
+    sss::VolumeRenderOptions m_volumeOptions;
+    bool m_volumeScattering = true, m_volumeHighlights = false, m_volumeBaselineGradient = true;
+    float m_lightAzimuth = 35.0f, m_lightElevation = 40.0f, m_lightIntensity = 1.0f;
+    glm::vec3 m_lightColor{1.0f};
+    sss::TransferFunctionEditor m_tfEditor;
+    std::uint64_t m_uploadedTf = 0;
+    std::string m_tfPreset, m_tfPath = "transfer-function.json";
+
+    bool m_sceneDirty = false, m_meshDirty = false, m_volumeDirty = false, m_lightsDirty = false,
+         m_hybridDirty = false;
+    bool m_showUi = true, m_honestTimings = false, m_screenshotRequested = false;
+    std::string m_meshPath, m_volumePath, m_screenshotPath = "sss-viewer.png";
+    glm::ivec3 m_volumeDims{0};
+    bool m_volume16 = false;
+
+    int m_frameIndex = 0, m_mapFrames = 0, m_lightVolumeBuiltFrame = -100;
+    bool m_mapsConverged = true;
+    std::uint64_t m_lightVolumeRuns = 0;
+    std::array<double, 16> m_frameTimes{};
+    double m_frameMs = 0.0, m_renderMs = 0.0, m_lightVolumeMs = 0.0;
+    std::string m_message;
+    bool m_messageIsError = false;
+    Clock::time_point m_messageTime;
+};
+
+bool isJson(const std::string& name) { return name.size() > 5 && name.substr(name.size() - 5) == ".json"; }
+
+int run(const ViewerOptions& args) {
+    // Load and check everything before opening a window, so bad input fails fast and clearly.
+    const fs::path dataDir = viewer::dataDirectory(args.dataDir);
+    std::optional<sss::Mesh> mesh;
+    std::optional<sss::Volume> volume;
+    if (!args.mesh.empty()) mesh = viewer::loadMesh(args.mesh, dataDir);
+    if (!args.volume.empty())
+        volume = viewer::loadVolume(args.volume, dataDir, {args.dims, args.type, args.spacing});
+    const std::string tfName = args.tf.empty() ? viewer::guessPreset(args.volume) : args.tf;
+    sss::TransferFunction tf =
+        isJson(tfName) ? sss::TransferFunction::loadParaViewJson(tfName) : sss::TransferFunction::preset(tfName);
+    sss::materialPreset(args.material);
+
+    auto context = sss::GlfwContext::create({.width = args.width,
+                                             .height = args.height,
+                                             .title = "sss-viewer",
+                                             .visible = true,
+                                             .vsync = args.vsync});
+    Viewer viewer(args, std::move(context));
+    viewer.setInitialScene(std::move(mesh), std::move(volume), std::move(tf), tfName);
+    return viewer.run();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(viewer::parseArgs(argc, argv));
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "sss-viewer: %s\n", e.what());
+        return 2;
+    } catch (const sss::Error& e) {
+        std::fprintf(stderr, "sss-viewer: %s\n", e.what());
+        return e.kind() == sss::ErrorKind::InvalidArgument ? 2 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "sss-viewer: %s\n", e.what());
+        return 1;
+    }
+}

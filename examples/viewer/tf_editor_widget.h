@@ -1,0 +1,22 @@
+#pragma once
+// Dear ImGui front end of sss::TransferFunctionEditor: a canvas with the histogram backdrop,
+// the opacity polyline and the control points, plus the selected point's controls.
+
+#include <sss/transfer_function_editor.h>
+
+#include <string>
+#include <vector>
+
+namespace viewer {
+
+struct TfEditorWidgetState {
+    std::vector<float> histogram;  ///< bar heights in [0,1] (TransferFunctionEditor::histogramBars)
+    int rawMax = 255;              ///< largest raw voxel value, for the tooltip (255 or 65535)
+};
+
+/// Draws the editor canvas (full available width, `height` pixels) and the selected point's
+/// controls, and applies the user's edits to `editor`. Returns true if the function changed.
+bool transferFunctionEditorWidget(sss::TransferFunctionEditor& editor, const TfEditorWidgetState& state,
+                                  float height = 150.0f);
+
+}  // namespace viewer

@@ -1,0 +1,251 @@
+#include "viewer_options.h"
+
+#include <sss/procedural.h>
+#include <sss/transfer_function.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace viewer {
+namespace {
+
+constexpr const char* kUsage = R"(usage: sss-viewer [--mesh PATH] [--volume PATH] [options]
+
+Interactive viewer for light scattering in meshes (subsurface scattering) and volumes (light
+volume), alone or together in one hybrid scene. Needs a display (X11, or xvfb-run).
+PATH may be a file or procedural:sphere | procedural:torus | procedural:slab (meshes),
+procedural:blobs | procedural:shell | procedural:bucky (volumes). Relative paths not found as
+given are looked up in the data directory (and its meshes/ and volumes/ folders): --data-dir,
+else $SSS_DATA_DIR, else ../shared/data if it exists. Both can also be opened from the UI.
+
+input:
+  --mesh PATH               triangle mesh (.obj)
+  --volume PATH             raw volume; dims/type parsed from names like bonsai_256x256x256_uint8.raw
+  --dims XxYxZ              volume dimensions (overrides the name)
+  --type uint8|uint16       voxel type (overrides the name; default uint8)
+  --spacing X,Y,Z           voxel spacing (default 1,1,1)
+  --data-dir DIR            where to look for relative paths
+scene:
+  --cornell-box             put the scene in a Cornell box
+  --mesh-mode sss|blinn-phong                 mesh shading (default: sss)
+  --volume-mode scattering|scattering-gradient|gradient|emission-absorption
+                            volume shading (default: scattering)
+  --material NAME           translucent material (default: marble; see sss-render --list-materials)
+  --scale MM                millimetres per scene unit (default: 40; the scene is 1-2 units wide)
+  --cameras K               scattering maps, 1..32 (default: 8)
+  --samples N               samples per texel and frame, 1..4096 (default: 24)
+  --map-resolution R        scattering-map and light-buffer side in texels (default: 512)
+  --accumulation F          map frames accumulated while the scene is static (default: 8)
+  --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
+  --tf NAME|FILE.json       transfer-function preset or ParaView JSON (default: from the volume's name)
+  --yaw DEG --pitch DEG     initial camera orbit angles (default: 25, 15; 0, 8 with --cornell-box)
+  --light-angles AZ,EL      light azimuth and elevation in degrees (default: 35,40)
+window:
+  --size WxH                window size (default: 1280x720)
+  --no-vsync                do not wait for the display's refresh
+  --no-ui                   hide the UI (toggle with F1)
+batch (scripts, tests):
+  --frames N                render N frames, then exit
+  --screenshot FILE.png     after the last frame save the scene image (without UI) and exit 0;
+                            --frames defaults to 10
+  --screenshot-ui           save the window with its UI instead
+  --help                    this text
+
+controls: left drag orbits, right or middle drag pans, the wheel zooms, F key reframes;
+F12 saves a screenshot, F1 toggles the UI; in the transfer-function editor click to add a
+point, drag to move it, right-click or Delete removes it, Ctrl+Z / Ctrl+Y undo and redo.
+)";
+
+float parseFloat(const std::string& option, const std::string& text) {
+    try {
+        size_t used = 0;
+        const float v = std::stof(text, &used);
+        if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(option + ": expected a number, got \"" + text + "\"");
+}
+
+int parseInt(const std::string& option, const std::string& text) {
+    try {
+        size_t used = 0;
+        const int v = std::stoi(text, &used);
+        if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(option + ": expected an integer, got \"" + text + "\"");
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+    std::vector<std::string> parts;
+    std::stringstream ss(text);
+    std::string part;
+    while (std::getline(ss, part, separator)) parts.push_back(part);
+    return parts;
+}
+
+void requireRange(const std::string& option, int value, int lo, int hi) {
+    if (value < lo || value > hi)
+        throw UsageError(option + ": must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " +
+                         std::to_string(value));
+}
+
+fs::path resolveInput(const std::string& path, const fs::path& dataDir, const char* subfolder) {
+    const fs::path given(path);
+    if (fs::exists(given) || given.is_absolute() || dataDir.empty()) return given;
+    for (const fs::path& candidate : {dataDir / given, dataDir / subfolder / given})
+        if (fs::exists(candidate)) return candidate;
+    return given;  // the loader reports the missing file by the name the user gave
+}
+
+std::optional<std::string> proceduralName(const std::string& path) {
+    const std::string prefix = "procedural:";
+    if (path.rfind(prefix, 0) == 0) return path.substr(prefix.size());
+    return std::nullopt;
+}
+
+}  // namespace
+
+ViewerOptions parseArgs(int argc, char** argv) {
+    ViewerOptions o;
+    bool framesGiven = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string opt = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw UsageError(opt + ": missing value");
+            return argv[++i];
+        };
+        if (opt == "--help" || opt == "-h") {
+            std::cout << kUsage;
+            std::exit(0);
+        } else if (opt == "--mesh") o.mesh = value();
+        else if (opt == "--volume") o.volume = value();
+        else if (opt == "--dims") {
+            const std::string v = value();
+            const auto parts = split(v, 'x');
+            if (parts.size() != 3) throw UsageError("--dims: expected XxYxZ, got \"" + v + "\"");
+            o.dims = glm::ivec3(parseInt(opt, parts[0]), parseInt(opt, parts[1]), parseInt(opt, parts[2]));
+        } else if (opt == "--type") {
+            const std::string v = value();
+            if (v == "uint8") o.type = sss::VoxelType::UInt8;
+            else if (v == "uint16") o.type = sss::VoxelType::UInt16;
+            else throw UsageError("--type: expected uint8 or uint16, got \"" + v + "\"");
+        } else if (opt == "--spacing") {
+            const std::string v = value();
+            const auto parts = split(v, ',');
+            if (parts.size() != 3) throw UsageError("--spacing: expected X,Y,Z, got \"" + v + "\"");
+            o.spacing = glm::vec3(parseFloat(opt, parts[0]), parseFloat(opt, parts[1]), parseFloat(opt, parts[2]));
+        } else if (opt == "--data-dir") o.dataDir = value();
+        else if (opt == "--tf") o.tf = value();
+        else if (opt == "--material") o.material = value();
+        else if (opt == "--scale") {
+            o.scale = parseFloat(opt, value());
+            if (!(o.scale > 0.0) || !std::isfinite(o.scale)) throw UsageError("--scale: must be > 0");
+        } else if (opt == "--mesh-mode") {
+            const std::string v = value();
+            if (v == "sss") o.meshScattering = true;
+            else if (v == "blinn-phong") o.meshScattering = false;
+            else throw UsageError("--mesh-mode: expected sss or blinn-phong, got \"" + v + "\"");
+        } else if (opt == "--volume-mode") {
+            o.volumeMode = value();
+            if (o.volumeMode != "scattering" && o.volumeMode != "scattering-gradient" && o.volumeMode != "gradient" &&
+                o.volumeMode != "emission-absorption")
+                throw UsageError("--volume-mode: unknown mode \"" + o.volumeMode +
+                                 "\" (scattering, scattering-gradient, gradient, emission-absorption)");
+        } else if (opt == "--cameras") {
+            o.cameras = parseInt(opt, value());
+            requireRange(opt, o.cameras, 1, 32);
+        } else if (opt == "--samples") {
+            o.samples = parseInt(opt, value());
+            requireRange(opt, o.samples, 1, 4096);
+        } else if (opt == "--map-resolution") {
+            o.mapResolution = parseInt(opt, value());
+            requireRange(opt, o.mapResolution, 16, 8192);
+        } else if (opt == "--accumulation") {
+            o.accumulation = parseInt(opt, value());
+            requireRange(opt, o.accumulation, 1, 1 << 20);
+        } else if (opt == "--light-volume-scale") {
+            o.lightVolumeScale = parseFloat(opt, value());
+            if (!(o.lightVolumeScale > 0.0f && o.lightVolumeScale <= 1.0f))
+                throw UsageError("--light-volume-scale: must be in (0, 1]");
+        } else if (opt == "--cornell-box") o.cornellBox = true;
+        else if (opt == "--yaw") o.yaw = parseFloat(opt, value());
+        else if (opt == "--pitch") o.pitch = parseFloat(opt, value());
+        else if (opt == "--light-angles") {
+            const std::string v = value();
+            const auto parts = split(v, ',');
+            if (parts.size() != 2) throw UsageError("--light-angles: expected AZ,EL, got \"" + v + "\"");
+            o.lightAzimuth = parseFloat(opt, parts[0]);
+            o.lightElevation = parseFloat(opt, parts[1]);
+        } else if (opt == "--size") {
+            const std::string v = value();
+            const auto parts = split(v, 'x');
+            if (parts.size() != 2) throw UsageError("--size: expected WxH, got \"" + v + "\"");
+            o.width = parseInt(opt, parts[0]);
+            o.height = parseInt(opt, parts[1]);
+            if (o.width <= 0 || o.height <= 0 || o.width > 16384 || o.height > 16384)
+                throw UsageError("--size: width and height must be in 1..16384, got \"" + v + "\"");
+        } else if (opt == "--no-vsync") o.vsync = false;
+        else if (opt == "--no-ui") o.hideUi = true;
+        else if (opt == "--frames") {
+            o.frames = parseInt(opt, value());
+            if (o.frames < 1) throw UsageError("--frames: must be >= 1");
+            framesGiven = true;
+        } else if (opt == "--screenshot") {
+            o.screenshot = value();
+            if (o.screenshot.empty()) throw UsageError("--screenshot: empty file name");
+        } else if (opt == "--screenshot-ui") o.screenshotUi = true;
+        else throw UsageError("unknown option \"" + opt + "\" (see --help)");
+    }
+    if (o.screenshotUi && o.screenshot.empty()) throw UsageError("--screenshot-ui needs --screenshot FILE.png");
+    if (!o.screenshot.empty() && !framesGiven) o.frames = 10;
+    if (!o.screenshot.empty()) o.vsync = false;  // batch runs need not wait for a display refresh
+    if (!o.screenshot.empty() && o.mesh.empty() && o.volume.empty())
+        throw UsageError("--screenshot: nothing to render: give --mesh PATH and/or --volume PATH");
+    return o;
+}
+
+fs::path dataDirectory(const std::string& dataDirOption) {
+    if (!dataDirOption.empty()) return dataDirOption;
+    if (const char* env = std::getenv("SSS_DATA_DIR"); env && *env) return env;
+    if (fs::is_directory("../shared/data")) return "../shared/data";
+    return {};
+}
+
+sss::Mesh loadMesh(const std::string& path, const fs::path& dataDir) {
+    if (auto name = proceduralName(path)) {
+        if (*name == "sphere") return sss::makeUvSphere(64, 32);
+        if (*name == "torus") return sss::makeTorus();
+        if (*name == "slab") return sss::makeSlab();
+        throw UsageError("--mesh: unknown procedural mesh \"" + *name + "\" (sphere, torus, slab)");
+    }
+    if (path.empty()) throw UsageError("--mesh: empty path");
+    return sss::Mesh::load(resolveInput(path, dataDir, "meshes"));
+}
+
+sss::Volume loadVolume(const std::string& path, const fs::path& dataDir, const sss::RawLoadOptions& overrides) {
+    if (auto name = proceduralName(path)) {
+        if (*name == "blobs") return sss::makeBlobsVolume();
+        if (*name == "shell") return sss::makeShellVolume();
+        if (*name == "bucky") return sss::makeBuckyLikeVolume();
+        throw UsageError("--volume: unknown procedural volume \"" + *name + "\" (blobs, shell, bucky)");
+    }
+    if (path.empty()) throw UsageError("--volume: empty path");
+    return sss::Volume::loadRaw(resolveInput(path, dataDir, "volumes"), overrides);
+}
+
+std::string guessPreset(const std::string& volumePath) {
+    const std::string name = fs::path(volumePath).filename().string();
+    for (const std::string& preset : sss::TransferFunction::presetNames())
+        if (preset != "ramp" && name.find(preset) != std::string::npos) return preset;
+    if (name.find("cthead") != std::string::npos) return "ct-skin";
+    if (name.find("blobs") != std::string::npos || name.find("shell") != std::string::npos) return "bucky";
+    return "ramp";
+}
+
+}  // namespace viewer

@@ -1,0 +1,66 @@
+#pragma once
+// Command line of sss-viewer, and loading what it names (shared with the UI's path fields).
+
+#include <sss/mesh.h>
+#include <sss/volume.h>
+
+#include <glm/vec3.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace viewer {
+
+/// Bad command-line usage: reported on stderr, exit code 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct ViewerOptions {
+    std::string mesh;                      ///< --mesh PATH or procedural:NAME
+    std::string volume;                    ///< --volume PATH or procedural:NAME
+    std::optional<glm::ivec3> dims;        ///< --dims XxYxZ
+    std::optional<sss::VoxelType> type;    ///< --type uint8|uint16
+    std::optional<glm::vec3> spacing;      ///< --spacing X,Y,Z
+    std::string dataDir;                   ///< --data-dir DIR
+    std::string tf;                        ///< --tf NAME|FILE.json (default: guessed from the volume's name)
+    std::string material = "marble";       ///< --material NAME
+    double scale = 40.0;                   ///< --scale MM: millimetres per scene unit (the scene is ~1-2 units)
+    bool meshScattering = true;            ///< --mesh-mode sss|blinn-phong
+    std::string volumeMode = "scattering"; ///< --volume-mode
+    int cameras = 8, samples = 24, mapResolution = 512, accumulation = 8;
+    float lightVolumeScale = 1.0f;         ///< --light-volume-scale
+    bool cornellBox = false;               ///< --cornell-box
+    std::optional<float> yaw, pitch;       ///< --yaw/--pitch (degrees; default 25, 15; 0, 8 in a Cornell box)
+    float lightAzimuth = 35.0f, lightElevation = 40.0f;  ///< --light-angles AZ,EL (degrees)
+    int width = 1280, height = 720;        ///< --size WxH (window)
+    std::string screenshot;                ///< --screenshot FILE.png
+    bool screenshotUi = false;             ///< --screenshot-ui: the window with its UI instead of the scene only
+    int frames = 0;                        ///< --frames N: exit after N frames (0: run until closed)
+    bool hideUi = false;                   ///< --no-ui
+    bool vsync = true;                     ///< --no-vsync
+};
+
+/// Parses argv. Prints the usage and exits 0 for --help.
+/// @throws UsageError naming the option and the problem.
+ViewerOptions parseArgs(int argc, char** argv);
+
+/// --data-dir, else $SSS_DATA_DIR, else ../shared/data if it exists, else empty.
+std::filesystem::path dataDirectory(const std::string& dataDirOption);
+
+/// A mesh from a path (looked up in dataDir and dataDir/meshes when not found as given) or
+/// procedural:sphere|torus|slab. @throws UsageError for an unknown procedural name, sss::Error
+/// for a file that cannot be loaded.
+sss::Mesh loadMesh(const std::string& path, const std::filesystem::path& dataDir);
+
+/// A volume from a .raw path (looked up in dataDir and dataDir/volumes) or
+/// procedural:blobs|shell|bucky; the optional overrides as in sss::RawLoadOptions.
+sss::Volume loadVolume(const std::string& path, const std::filesystem::path& dataDir,
+                       const sss::RawLoadOptions& overrides = {});
+
+/// A transfer-function preset that suits a volume name ("bonsai_256x..." -> bonsai), or "ramp".
+std::string guessPreset(const std::string& volumePath);
+
+}  // namespace viewer

@@ -1,0 +1,243 @@
+#include "sss/hybrid_compositor.h"
+
+#include "gl/framebuffer.h"
+#include "gl/program.h"
+#include "hybrid/shared_lighting.h"
+#include "light_uniforms.h"
+#include "mesh/light_buffer_pass.h"
+#include "sss/error.h"
+#include "sss/procedural.h"
+#include "sss/timing.h"
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+#include <string>
+
+namespace sss {
+namespace {
+
+void validate(const HybridOptions& o) {
+    if (o.shadowMapResolution < 64 || o.shadowMapResolution > 8192)
+        throw Error(ErrorKind::InvalidArgument, "HybridOptions::shadowMapResolution must be in 64..8192, got " +
+                                                    std::to_string(o.shadowMapResolution));
+}
+
+}  // namespace
+
+struct HybridCompositor::Impl {
+    HybridOptions options;
+    std::vector<Light> lights{DirectionalLight{}};
+    // unique_ptr: the references addMesh/addVolume return stay valid as more are added.
+    std::vector<std::unique_ptr<MeshScatteringRenderer>> meshes;
+    std::vector<std::unique_ptr<VolumeScatteringRenderer>> volumes;
+    std::vector<std::unique_ptr<MeshScatteringRenderer>> walls;  // Cornell box: white, red, green
+    std::optional<Bounds> wallsFor;                              // content bounds the walls were built for
+    RenderStats stats;
+
+    // Meshes seen from the lights, for the volumes (rebuilt when meshes, lights or bounds change).
+    detail::MeshShadowMaps meshShadows;
+    std::uint64_t sceneRevision = 1;      // bumped by every change the shadow maps depend on
+    std::uint64_t shadowMapsRevision = 0; // sceneRevision the maps were drawn for
+    std::optional<gl::Program> shadowProgram;
+    gl::Framebuffer shadowFramebuffer;
+
+    Bounds contentBounds() const {
+        Bounds b;
+        for (const auto& m : meshes)
+            if (const detail::GpuMesh* gpu = detail::MeshRendererAccess::mesh(*m)) {
+                const auto [c, r] = detail::worldSphere(gpu->bounds, detail::MeshRendererAccess::model(*m));
+                b.extend(c - glm::vec3(r));
+                b.extend(c + glm::vec3(r));
+            }
+        for (const auto& v : volumes) b.extend(detail::VolumeRendererAccess::worldBounds(*v));
+        return b;
+    }
+
+    void updateWalls() {
+        if (!options.cornellBox) {
+            walls.clear();
+            wallsFor.reset();
+            return;
+        }
+        const Bounds content = contentBounds();
+        if (content.empty() || (wallsFor && wallsFor->min == content.min && wallsFor->max == content.max)) return;
+        const CornellBox box = makeCornellBox(content);
+        walls.clear();
+        for (auto [mesh, color] : {std::pair{&box.white, box.whiteColor}, std::pair{&box.red, box.redColor},
+                                   std::pair{&box.green, box.greenColor}}) {
+            auto wall = std::make_unique<MeshScatteringRenderer>();
+            wall->setMesh(*mesh);
+            wall->setMaterial({.diffuse = color, .specular = glm::vec3(0.0f), .ambient = glm::vec3(0.03f)});
+            walls.push_back(std::move(wall));
+        }
+        wallsFor = content;
+    }
+
+    void updateMeshShadowMaps() {
+        if (shadowMapsRevision == sceneRevision && meshShadows.depth) return;
+        const auto start = std::chrono::steady_clock::now();
+        const int size = options.shadowMapResolution;
+        const int layers = std::max<int>(1, static_cast<int>(lights.size()));
+        if (!meshShadows.depth || meshShadows.depth.size() != glm::ivec3(size, size, layers)) {
+            meshShadows.depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, layers);
+            meshShadows.depth.setFilter(GL_NEAREST, GL_NEAREST);
+            meshShadows.depth.setWrap(GL_CLAMP_TO_EDGE);
+            meshShadows.depth.setLabel("hybrid mesh shadow maps");
+        }
+        if (!shadowProgram)
+            shadowProgram = gl::Program::link({{GL_VERTEX_SHADER, "mesh/shadow_depth.vert"},
+                                               {GL_FRAGMENT_SHADER, "mesh/depth_only.frag"}});
+        // One view per light that holds everything it may shadow: meshes and volumes.
+        const Bounds content = contentBounds();
+        const glm::vec3 centre = content.center();
+        const float radius = std::max(content.radius(), 1e-6f);
+        meshShadows.worldToClip.clear();
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_CULL_FACE);
+        glViewport(0, 0, size, size);
+        for (size_t i = 0; i < lights.size(); ++i) {
+            meshShadows.worldToClip.push_back(detail::lightViewProjection(lights[i], centre, radius));
+            if (!shadowFramebuffer) shadowFramebuffer = gl::Framebuffer::create();
+            shadowFramebuffer.attachLayer(GL_DEPTH_ATTACHMENT, meshShadows.depth, static_cast<int>(i));
+            glNamedFramebufferDrawBuffer(shadowFramebuffer.id(), GL_NONE);
+            shadowFramebuffer.checkComplete("hybrid mesh shadow map");
+            const float one = 1.0f;
+            glClearNamedFramebufferfv(shadowFramebuffer.id(), GL_DEPTH, 0, &one);
+            shadowFramebuffer.bind();
+            shadowProgram->use();
+            for (const auto& m : meshes) {
+                const detail::GpuMesh* gpu = detail::MeshRendererAccess::mesh(*m);
+                if (!gpu) continue;
+                shadowProgram->set("modelToClip", meshShadows.worldToClip.back() * detail::MeshRendererAccess::model(*m));
+                gpu->draw();
+            }
+        }
+        glBindVertexArray(0);
+        glUseProgram(0);
+        meshShadows.revision = sceneRevision;
+        shadowMapsRevision = sceneRevision;
+        stats.record("mesh-shadow-maps",
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+};
+
+HybridCompositor::HybridCompositor(const HybridOptions& options) : m_impl(std::make_unique<Impl>()) {
+    validate(options);
+    m_impl->options = options;
+}
+
+HybridCompositor::~HybridCompositor() = default;
+HybridCompositor::HybridCompositor(HybridCompositor&&) noexcept = default;
+HybridCompositor& HybridCompositor::operator=(HybridCompositor&&) noexcept = default;
+
+MeshScatteringRenderer& HybridCompositor::addMesh(const Mesh& mesh, const glm::mat4& model, const MeshRenderOptions& options) {
+    auto renderer = std::make_unique<MeshScatteringRenderer>(options);
+    renderer->setMesh(mesh, model);
+    renderer->setLights(m_impl->lights);
+    m_impl->meshes.push_back(std::move(renderer));
+    ++m_impl->sceneRevision;
+    return *m_impl->meshes.back();
+}
+
+VolumeScatteringRenderer& HybridCompositor::addVolume(const Volume& volume, const glm::mat4& model,
+                                                      const VolumeRenderOptions& options) {
+    auto renderer = std::make_unique<VolumeScatteringRenderer>(options);
+    renderer->setVolume(volume, model);
+    renderer->setLights(m_impl->lights);
+    m_impl->volumes.push_back(std::move(renderer));
+    ++m_impl->sceneRevision;  // the shadow maps' view must hold the new volume too
+    return *m_impl->volumes.back();
+}
+
+std::size_t HybridCompositor::meshCount() const { return m_impl->meshes.size(); }
+std::size_t HybridCompositor::volumeCount() const { return m_impl->volumes.size(); }
+
+MeshScatteringRenderer& HybridCompositor::mesh(std::size_t index) {
+    if (index >= m_impl->meshes.size())
+        throw Error(ErrorKind::InvalidArgument, "HybridCompositor::mesh: index " + std::to_string(index) +
+                                                    " out of range (" + std::to_string(m_impl->meshes.size()) + " meshes)");
+    return *m_impl->meshes[index];
+}
+
+VolumeScatteringRenderer& HybridCompositor::volume(std::size_t index) {
+    if (index >= m_impl->volumes.size())
+        throw Error(ErrorKind::InvalidArgument, "HybridCompositor::volume: index " + std::to_string(index) +
+                                                    " out of range (" + std::to_string(m_impl->volumes.size()) + " volumes)");
+    return *m_impl->volumes[index];
+}
+
+void HybridCompositor::setMeshTransform(std::size_t index, const glm::mat4& model) {
+    mesh(index).setModelTransform(model);
+    ++m_impl->sceneRevision;
+}
+
+void HybridCompositor::clear() {
+    m_impl->meshes.clear();
+    m_impl->volumes.clear();
+    ++m_impl->sceneRevision;
+}
+
+void HybridCompositor::setLights(std::vector<Light> lights) {
+    detail::validateLights(lights, "HybridCompositor::setLights");
+    m_impl->lights = std::move(lights);
+    for (auto& m : m_impl->meshes) m->setLights(m_impl->lights);
+    for (auto& v : m_impl->volumes) v->setLights(m_impl->lights);
+    for (auto& w : m_impl->walls) w->setLights(m_impl->lights);
+    ++m_impl->sceneRevision;
+}
+
+const std::vector<Light>& HybridCompositor::lights() const { return m_impl->lights; }
+
+void HybridCompositor::setOptions(const HybridOptions& options) {
+    validate(options);
+    if (options.shadowMapResolution != m_impl->options.shadowMapResolution) ++m_impl->sceneRevision;
+    m_impl->options = options;
+}
+
+const HybridOptions& HybridCompositor::options() const { return m_impl->options; }
+Bounds HybridCompositor::bounds() const { return m_impl->contentBounds(); }
+const RenderStats& HybridCompositor::stats() const { return m_impl->stats; }
+
+void HybridCompositor::render(const Camera& camera, RenderTarget& target) {
+    Impl& r = *m_impl;
+    r.updateWalls();
+    for (auto& w : r.walls) w->setLights(r.lights);
+
+    // 1. Meshes shadow the volumes' light volumes.
+    const bool meshShadows = r.options.meshShadowsInVolumes && !r.meshes.empty() && !r.volumes.empty();
+    if (meshShadows) r.updateMeshShadowMaps();
+    for (auto& v : r.volumes) {
+        detail::VolumeRendererAccess::setMeshShadows(*v, meshShadows ? &r.meshShadows : nullptr);
+        detail::VolumeRendererAccess::updateLightVolumes(*v);
+    }
+    // 2. The first scattering volume attenuates the light reaching meshes and walls.
+    std::optional<detail::VolumeShadows> volumeShadows;
+    if (r.options.volumeShadowsOnMeshes)
+        for (auto& v : r.volumes)
+            if ((volumeShadows = detail::VolumeRendererAccess::shadows(*v))) break;
+    for (auto* list : {&r.meshes, &r.walls})
+        for (auto& m : *list) detail::MeshRendererAccess::setVolumeShadows(*m, volumeShadows ? &*volumeShadows : nullptr);
+
+    // 3. Opaque surfaces with depth, then volumes back to front, each stopping at that depth.
+    target.clear(r.options.background);
+    if (!r.walls.empty()) {
+        const auto start = std::chrono::steady_clock::now();
+        for (auto& w : r.walls) w->render(camera, target);
+        r.stats.record("cornell-box",
+                       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    for (auto& m : r.meshes) m->render(camera, target);
+    std::vector<VolumeScatteringRenderer*> order;
+    for (auto& v : r.volumes) order.push_back(v.get());
+    const glm::vec3 eye = camera.position();
+    std::sort(order.begin(), order.end(), [&](VolumeScatteringRenderer* a, VolumeScatteringRenderer* b) {
+        return glm::length(detail::VolumeRendererAccess::worldBounds(*a).center() - eye) >
+               glm::length(detail::VolumeRendererAccess::worldBounds(*b).center() - eye);
+    });
+    for (VolumeScatteringRenderer* v : order) v->render(camera, target);
+}
+
+}  // namespace sss

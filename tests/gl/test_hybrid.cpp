@@ -1,0 +1,218 @@
+// HybridCompositor: depth-correct compositing of meshes and volumes, shared light, caching.
+#include "support/gl_test.h"
+#include "support/golden.h"
+
+#include <catch2/catch.hpp>
+#include <sss/hybrid_compositor.h>
+#include <sss/materials.h>
+#include <sss/procedural.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+
+using namespace sss;
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+
+MeshRenderOptions smallScattering() {
+    MeshRenderOptions o;
+    o.shading = MeshShading::Scattering;
+    o.cameras = 4;
+    o.samples = 8;
+    o.mapResolution = o.lightMapResolution = 128;
+    o.accumulationFrames = 2;
+    o.millimetresPerUnit = 20.0;
+    return o;
+}
+
+TransferFunction blobsTf(float opacityScale = 1.0f) {
+    return TransferFunction({{0.0f, {0, 0, 0}, 0.0f},
+                             {0.2f, {0.9f, 0.4f, 0.1f}, 0.0f},
+                             {0.5f, {1.0f, 0.8f, 0.3f}, 0.15f * opacityScale},
+                             {1.0f, {0.4f, 0.7f, 1.0f}, 0.6f * opacityScale}});
+}
+
+Image renderScene(HybridCompositor& scene, const Camera& camera, int frames = 3) {
+    RenderTarget target(kWidth, kHeight);
+    for (int i = 0; i < frames; ++i) scene.render(camera, target);
+    return target.readColor();
+}
+
+Camera frontCamera(float distance = 3.0f) {
+    Camera camera;
+    camera.setDistance(distance);
+    return camera;
+}
+
+}  // namespace
+
+TEST_CASE("an opaque mesh in front of a volume: its pixels do not change without the volume", "[gl][hybrid]") {
+    test::GlTestScope gl;
+    // A small sphere in front of the volume, off its centre so both show.
+    const glm::mat4 inFront = glm::scale(glm::translate(glm::mat4(1.0f), {0.25f, 0.2f, 1.0f}), glm::vec3(0.2f));
+    HybridCompositor with, without;
+    for (HybridCompositor* scene : {&with, &without}) {
+        scene->setLights({DirectionalLight{.direction = {-0.5f, -0.5f, -1.0f}}});
+        scene->addMesh(makeUvSphere(), inFront, smallScattering()).setScatteringMaterial(materialPreset("marble"));
+    }
+    with.addVolume(makeBlobsVolume(32), glm::mat4(1.0f), {.shading = VolumeShading::Scattering}).setTransferFunction(blobsTf());
+    // Volume shadows on the mesh would change it legitimately; this case is about occlusion.
+    with.setOptions({.volumeShadowsOnMeshes = false});
+    const Camera camera = frontCamera();
+    const Image a = renderScene(with, camera), b = renderScene(without, camera);
+    RenderTarget probe(kWidth, kHeight);
+    int covered = 0, changedCovered = 0, changedElsewhere = 0;
+    // The sphere covers the centre of the image; compare exactly there and count elsewhere.
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const bool onMesh = b.at(x, y) != glm::vec4(0.1f, 0.1f, 0.12f, 1.0f);
+            if (onMesh) {
+                ++covered;
+                changedCovered += a.at(x, y) != b.at(x, y) ? 1 : 0;
+            } else {
+                changedElsewhere += a.at(x, y) != b.at(x, y) ? 1 : 0;
+            }
+        }
+    INFO("mesh pixels " << covered << ", of them changed " << changedCovered << "; other pixels changed " << changedElsewhere);
+    CHECK(covered > 200);
+    CHECK(changedCovered == 0);
+    CHECK(changedElsewhere > 100);  // the volume is there
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a volume with a transparent transfer function leaves the mesh image unchanged", "[gl][hybrid]") {
+    test::GlTestScope gl;
+    HybridCompositor with, without;
+    for (HybridCompositor* scene : {&with, &without}) {
+        scene->setLights({PointLight{.position = {1.5f, 2.0f, 2.0f}, .intensity = 6.0f}});
+        scene->addMesh(makeTorus(), glm::mat4(1.0f), smallScattering());
+    }
+    with.addVolume(makeBlobsVolume(32), glm::mat4(1.0f), {.shading = VolumeShading::Scattering})
+        .setTransferFunction(TransferFunction({{0.0f, {1, 0, 0}, 0.0f}, {1.0f, {0, 0, 1}, 0.0f}}));
+    const Camera camera = frontCamera(3.5f);
+    const Image a = renderScene(with, camera), b = renderScene(without, camera);
+    int different = 0;
+    float largest = 0.0f;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            different += a.at(x, y) != b.at(x, y) ? 1 : 0;
+            const glm::vec4 d = glm::abs(a.at(x, y) - b.at(x, y));
+            largest = std::max({largest, d.r, d.g, d.b, d.a});
+        }
+    INFO("largest difference " << largest);
+    CHECK(different == 0);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a mesh inside a volume cuts the rays at its surface (golden)", "[gl][hybrid][golden]") {
+    test::GlTestScope gl;
+    HybridCompositor scene;
+    scene.setLights({DirectionalLight{.direction = {-0.6f, -1.0f, -0.5f}}});
+    scene.addMesh(makeUvSphere(), glm::scale(glm::mat4(1.0f), glm::vec3(0.28f)), smallScattering())
+        .setScatteringMaterial(materialPreset("ketchup"));
+    scene.addVolume(makeBlobsVolume(48), glm::mat4(1.0f), {.shading = VolumeShading::Scattering})
+        .setTransferFunction(blobsTf(0.5f));
+    Camera camera = frontCamera(2.2f);
+    camera.orbit(25.0f, 15.0f);
+    test::requireMatchesGolden(renderScene(scene, camera).toRgba8(), "hybrid_mesh_inside_volume");
+    gl.requireNoErrors();
+}
+
+TEST_CASE("Cornell box with a translucent mesh and a scattering volume (golden)", "[gl][hybrid][golden]") {
+    test::GlTestScope gl;
+    HybridCompositor scene({.cornellBox = true});
+    scene.addMesh(makeTorus(), glm::translate(glm::mat4(1.0f), {-0.4f, -0.6f, 0.0f}), smallScattering())
+        .setScatteringMaterial(materialPreset("skin1"));
+    scene.addVolume(makeBlobsVolume(32), glm::translate(glm::mat4(1.0f), {0.5f, 0.4f, 0.0f}),
+                    {.shading = VolumeShading::Scattering})
+        .setTransferFunction(blobsTf());
+    const Bounds box = makeCornellBox(scene.bounds()).bounds;
+    scene.setLights({PointLight{.position = box.center() + glm::vec3(0, 0.4f * box.size().y, 0), .intensity = 4.0f}});
+    Camera camera;
+    camera.frame(box);
+    test::requireMatchesGolden(renderScene(scene, camera).toRgba8(), "hybrid_cornell_box");
+    gl.requireNoErrors();
+}
+
+TEST_CASE("light is shared: meshes shadow volumes and volumes shadow meshes", "[gl][hybrid]") {
+    test::GlTestScope gl;
+    // A dense volume above a floor slab, lit from above: the floor under it darkens only when
+    // volume shadows are on. A mesh above the volume darkens the volume only with mesh shadows.
+    auto build = [](bool meshShadows, bool volumeShadows, bool withBlocker) {
+        auto scene = std::make_unique<HybridCompositor>(
+            HybridOptions{.meshShadowsInVolumes = meshShadows, .volumeShadowsOnMeshes = volumeShadows});
+        scene->setLights({DirectionalLight{.direction = {0.0f, -1.0f, 0.0f}}});
+        MeshRenderOptions floor;  // Blinn-Phong floor
+        scene->addMesh(makeSlab({3.0f, 0.1f, 3.0f}), glm::translate(glm::mat4(1.0f), {0, -1.0f, 0}), floor);
+        if (withBlocker)
+            scene->addMesh(makeSlab({1.2f, 0.1f, 1.2f}), glm::translate(glm::mat4(1.0f), {0, 0.9f, 0}), floor);
+        const TransferFunction dense({{0.0f, {1, 1, 1}, 0.0f}, {0.1f, {1, 1, 1}, 0.0f}, {0.3f, {1, 1, 1}, 0.8f},
+                                      {1.0f, {1, 1, 1}, 0.8f}});
+        scene->addVolume(makeShellVolume(32), glm::mat4(1.0f), {.shading = VolumeShading::Scattering}).setTransferFunction(dense);
+        return scene;
+    };
+    Camera camera;
+    camera.setDistance(4.0f);
+    camera.setPitch(35.0f);
+    // Floor pixel straight below the volume, seen from above at an angle: find it by projecting.
+    const glm::vec4 clip = camera.projection(static_cast<float>(kWidth) / kHeight) * camera.view() * glm::vec4(0, -0.95f, 0, 1);
+    const int fx = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * kWidth);
+    const int fy = static_cast<int>((0.5f - clip.y / clip.w * 0.5f) * kHeight);
+    auto floorBelow = [&](bool meshShadows, bool volumeShadows) {
+        auto scene = build(meshShadows, volumeShadows, false);
+        return renderScene(*scene, camera, 1).at(fx, fy).r;
+    };
+    const float lit = floorBelow(true, false), shadowed = floorBelow(true, true);
+    INFO("floor below the volume: " << lit << " without volume shadows, " << shadowed << " with");
+    CHECK(shadowed < 0.7f * lit);
+
+    // Volume pixel in the middle of the shell: darker when a slab above it casts its shadow.
+    auto volumeCentre = [&](bool meshShadows) {
+        auto scene = build(meshShadows, true, true);
+        const glm::vec4 c = camera.projection(static_cast<float>(kWidth) / kHeight) * camera.view() * glm::vec4(0, 0.3f, 0.3f, 1);
+        return renderScene(*scene, camera, 1).at(static_cast<int>((c.x / c.w * 0.5f + 0.5f) * kWidth),
+                                                 static_cast<int>((0.5f - c.y / c.w * 0.5f) * kHeight)).r;
+    };
+    const float open = volumeCentre(false), blocked = volumeCentre(true);
+    INFO("volume under the slab: " << open << " without mesh shadows, " << blocked << " with");
+    CHECK(blocked < 0.8f * open);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a camera-only change in a hybrid scene reruns neither scattering maps nor light volumes",
+          "[gl][hybrid][caching]") {
+    test::GlTestScope gl;
+    HybridCompositor scene({.cornellBox = true});
+    MeshScatteringRenderer& mesh = scene.addMesh(makeTorus(), glm::mat4(1.0f), smallScattering());
+    VolumeScatteringRenderer& volume =
+        scene.addVolume(makeBlobsVolume(24), glm::translate(glm::mat4(1.0f), {0, 0.6f, 0}), {.shading = VolumeShading::Scattering});
+    volume.setTransferFunction(blobsTf());
+    scene.setLights({PointLight{.position = {0, 1.5f, 0.5f}, .intensity = 3.0f}});
+    Camera camera = frontCamera(4.0f);
+    RenderTarget target(64, 48);
+    do scene.render(camera, target);
+    while (!mesh.converged());
+    const auto maps = mesh.stats().runs("scattering-maps"), buffers = mesh.stats().runs("light-buffer");
+    const auto lightVolumes = volume.stats().runs("light-volume");
+    const auto shadowMaps = scene.stats().runs("mesh-shadow-maps");
+    for (int i = 0; i < 3; ++i) {
+        camera.orbit(15.0f, 4.0f);
+        scene.render(camera, target);
+    }
+    CHECK(mesh.stats().runs("scattering-maps") == maps);
+    CHECK(mesh.stats().runs("light-buffer") == buffers);
+    CHECK(volume.stats().runs("light-volume") == lightVolumes);
+    CHECK(scene.stats().runs("mesh-shadow-maps") == shadowMaps);
+    CHECK(mesh.stats().runs("combine") >= 3);
+    // Moving the mesh redraws its shadow maps and its own passes; the light volume is the
+    // volume's own and stays.
+    scene.setMeshTransform(0, glm::translate(glm::mat4(1.0f), {0.1f, 0, 0}));
+    scene.render(camera, target);
+    CHECK(scene.stats().runs("mesh-shadow-maps") == shadowMaps + 1);
+    CHECK(mesh.stats().runs("light-buffer") == buffers + 1);
+    CHECK(volume.stats().runs("light-volume") == lightVolumes);
+    gl.requireNoErrors();
+}
