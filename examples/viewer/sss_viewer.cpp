@@ -651,8 +651,8 @@ private:
                      ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                          ImGuiWindowFlags_NoNav);
-        ImGui::Text("frame %.1f ms (%.1f fps), scene %.1f ms", m_frameMs, m_frameMs > 0 ? 1000.0 / m_frameMs : 0.0,
-                    m_renderMs);
+        ImGui::Text("frame %.1f ms (%.1f fps), scene %s %.1f ms", m_frameMs,
+                    m_frameMs > 0 ? 1000.0 / m_frameMs : 0.0, m_honestTimings ? "(GPU)" : "submit", m_renderMs);
         ImGui::Text("%dx%d, %s", m_target ? m_target->width() : 0, m_target ? m_target->height() : 0,
                     m_context->info().renderer.c_str());
         if (!m_mapsConverged)
