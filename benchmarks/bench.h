@@ -32,6 +32,9 @@ struct Options {
     std::vector<std::string> only;  // model names to run; empty = all
     std::string note;               // free text about the machine, copied into the reports
     std::filesystem::path imageDir; // if set, the verified image of each row is saved there
+    std::vector<std::string> tables;      // --table: "baseline", "5.3", "5.4", "5.5"; empty = baseline
+    std::optional<std::string> errorSweep;  // --error-sweep: "mesh" or "volume"
+    std::optional<std::filesystem::path> plotPath;  // default: the JSON path with .png
 };
 
 struct Stats {
@@ -138,6 +141,27 @@ sss::DirectionalLight keyLight(const sss::Camera& camera);
 /// Scattering-off baselines: Blinn-Phong meshes and emission-absorption / gradient volumes
 /// (the "Blinn-Phong" column of Table 5.3 and the EA columns of Table 5.4).
 void runBaselineTable(BenchmarkContext& bench);
+/// Thesis Table 5.3: mesh subsurface scattering, K = 4/8/16 with N = 12/24/48 per model:
+/// "change" (light buffer + maps + combine), "fixed" (combine only), Blinn-Phong.
+void runTable53(BenchmarkContext& bench);
+/// Thesis Table 5.4: volume scattering: change (light volume + ray cast), fixed, emission-
+/// absorption, EA + gradient, fixed + gradient.
+void runTable54(BenchmarkContext& bench);
+/// Thesis Table 5.5: hybrid scenes (volume + mesh in a Cornell box), whole frame and parts.
+void runTable55(BenchmarkContext& bench);
+/// Time against error: sweeps against the CPU references; returns the plot to draw.
+struct PlotSpec;
+PlotSpec runErrorSweep(BenchmarkContext& bench, const std::string& which);
+
+// ---- data sets shared by the tables -------------------------------------------------------------
+
+/// A thesis mesh by model name (bunny, dragon, buddha, dragon-vrip, sphere), uniformly scaled to
+/// the Stanford bunny's size (bounding radius 0.1 units, i.e. 10 cm at 1000 mm per unit) so one
+/// set of scattering parameters fits all, as in the thesis. nullopt (and a skip) if missing.
+std::optional<sss::Mesh> loadThesisMesh(BenchmarkContext& bench, const std::string& table, const std::string& model);
+/// A thesis volume by model name (bucky, bonsai, engine, cthead) and its TF preset name.
+std::optional<std::pair<sss::Volume, std::string>> loadThesisVolume(BenchmarkContext& bench, const std::string& table,
+                                                                    const std::string& model);
 
 // ---- reports ----------------------------------------------------------------------------------
 

@@ -1,4 +1,5 @@
-# Checks an sss-bench JSON report: cmake -DJSON=quick.json -P check_bench_json.cmake
+# Checks an sss-bench JSON report: cmake -DJSON=quick.json [-DEXTRA=a;b;c] -P check_bench_json.cmake
+# EXTRA names further fields every record must have (e.g. a table's change_ms, fixed_ms).
 # Fails unless "records" is a non-empty array whose every record has the fields the acceptance
 # checks read, with numeric timings that make sense (0 < min <= median <= max, runs >= 1).
 cmake_minimum_required(VERSION 3.25)
@@ -31,7 +32,7 @@ if(count EQUAL 0)
   message(FATAL_ERROR "${JSON}: \"records\" is empty")
 endif()
 
-set(required table model mode median_ms min_ms max_ms runs renderer)
+set(required table model mode median_ms min_ms max_ms runs renderer ${EXTRA})
 math(EXPR last "${count} - 1")
 foreach(i RANGE ${last})
   foreach(key IN LISTS required)

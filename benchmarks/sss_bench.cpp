@@ -2,6 +2,7 @@
 // Exit codes: 0 success, 1 a measurement failed (error, empty image), 2 bad command line.
 
 #include "bench.h"
+#include "plot.h"
 
 #include <charconv>
 #include <cstdlib>
@@ -26,6 +27,11 @@ options:
   --only A,B,...      only these models (e.g. bunny,bonsai)
   --note TEXT         free text about the machine, copied into the reports
   --images DIR        save each row's verified image as DIR/<table>-<model>-<mode>.png
+  --table T[,T...]    thesis tables to reproduce: baseline (default), 5.3 (mesh scattering),
+                      5.4 (volume scattering), 5.5 (hybrid scenes)
+  --error-sweep S     time against error for S = mesh or volume, against the CPU reference;
+                      records with sweep, the swept parameters, ms and rel_rmse, and a plot
+  --plot FILE         where the sweep's PNG plot goes (default: the JSON path with .png)
   --help              show this help
 )";
 
@@ -125,6 +131,19 @@ std::optional<Options> parseArgs(int argc, char** argv) {
             o.note = value();
         } else if (arg == "--images") {
             o.imageDir = value();
+        } else if (arg == "--table") {
+            for (const std::string& t : splitList(value())) {
+                if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5")
+                    throw UsageError{"--table: unknown table \"" + t + "\" (baseline, 5.3, 5.4, 5.5)"};
+                o.tables.push_back(t);
+            }
+        } else if (arg == "--error-sweep") {
+            const std::string which = value();
+            if (which != "mesh" && which != "volume")
+                throw UsageError{"--error-sweep: expected mesh or volume, got \"" + which + "\""};
+            o.errorSweep = which;
+        } else if (arg == "--plot") {
+            o.plotPath = value();
         } else {
             throw UsageError{"unknown option \"" + arg + "\" (see --help)"};
         }
@@ -133,8 +152,9 @@ std::optional<Options> parseArgs(int argc, char** argv) {
     // Quick mode only changes defaults; explicit options still win.
     o.runs = runs.value_or(o.quick ? 3 : 10);
     o.warmup = warmup.value_or(o.quick ? 1 : 3);
-    o.width = size ? size->first : (o.quick ? 320 : kThesisWidth);
-    o.height = size ? size->second : (o.quick ? 180 : kThesisHeight);
+    // Error sweeps compare with CPU references, whose cost grows with the pixel count.
+    o.width = size ? size->first : (o.errorSweep ? 128 : (o.quick ? 320 : kThesisWidth));
+    o.height = size ? size->second : (o.errorSweep ? 96 : (o.quick ? 180 : kThesisHeight));
     if (dataDir) {
         std::error_code ec;
         if (!std::filesystem::is_directory(*dataDir, ec))
@@ -176,8 +196,19 @@ int main(int argc, char** argv) {
                   << options->width << "x" << options->height << ", " << options->warmup << " warm-up + "
                   << options->runs << " runs\n";
 
-        runBaselineTable(bench);
-        // Further thesis tables (5.3 mesh scattering, 5.4 light volume, 5.5 hybrid) go here.
+        std::optional<PlotSpec> plot;
+        if (options->errorSweep) {
+            plot = runErrorSweep(bench, *options->errorSweep);
+        } else {
+            const std::vector<std::string> tables =
+                options->tables.empty() ? std::vector<std::string>{"baseline"} : options->tables;
+            for (const std::string& t : tables) {
+                if (t == "baseline") runBaselineTable(bench);
+                if (t == "5.3") runTable53(bench);
+                if (t == "5.4") runTable54(bench);
+                if (t == "5.5") runTable55(bench);
+            }
+        }
 
         if (bench.records().empty()) {
             std::cerr << "sss-bench: nothing was measured (all data sets skipped or filtered out by --only)\n";
@@ -187,6 +218,15 @@ int main(int argc, char** argv) {
         std::cout << markdown;
         if (options->jsonPath) writeFile(*options->jsonPath, toJson(bench).dump(2) + "\n");
         if (options->markdownPath) writeFile(*options->markdownPath, markdown);
+        if (plot) {
+            const std::filesystem::path plotPath =
+                options->plotPath ? *options->plotPath
+                                  : (options->jsonPath ? std::filesystem::path(*options->jsonPath).replace_extension(".png")
+                                                       : std::filesystem::path("error-sweep.png"));
+            if (plotPath.has_parent_path()) std::filesystem::create_directories(plotPath.parent_path());
+            savePlot(*plot, plotPath);
+            std::cerr << "sss-bench: wrote " << plotPath.string() << "\n";
+        }
     } catch (const BenchFailure& e) {
         std::cerr << "sss-bench: verification failed: " << e.what() << "\n";
         return 1;

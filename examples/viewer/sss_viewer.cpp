@@ -141,7 +141,7 @@ public:
         rebuildScene();
         reframe();
         m_camera.setYaw(m_args.yaw.value_or(m_hybrid.cornellBox ? 0.0f : 25.0f));
-        m_camera.setPitch(m_args.pitch.value_or(m_hybrid.cornellBox ? 8.0f : 15.0f));
+        m_camera.setPitch(m_args.pitch.value_or(15.0f));
     }
 
     int run() {
@@ -223,18 +223,18 @@ private:
     void reframe() {
         const sss::Bounds content = m_compositor->bounds();
         if (content.empty()) return;
-        // In a Cornell box, show the whole box (its sphere fits the view: 0.8 of it is plenty).
+        // In a Cornell box, show the box (about its bounding sphere; the editor at the bottom takes room).
         const sss::Bounds bounds = m_hybrid.cornellBox ? sss::makeCornellBox(content).bounds : content;
         m_camera.setTarget(glm::vec3(0.0f));
         m_camera.frame(bounds);
-        if (m_hybrid.cornellBox) m_camera.setDistance(m_camera.distance() * 0.8f);
+        if (m_hybrid.cornellBox) m_camera.setDistance(m_camera.distance() * (tfWindowShown() ? 1.15f : 0.9f));
         m_camera.setClipPlanes(m_camera.distance() * 0.01f, m_camera.distance() * 10.0f);
-        // Centre the content in the part of the window the panel leaves free (if there is room).
+        // Centre the content in the part of the window the UI leaves free (if there is room).
         if (m_showUi && m_target && static_cast<float>(m_target->width()) > 2.5f * kPanelWidth) {
-            const float pixels = 0.5f * kPanelWidth;
             const float perPixel = 2.0f * std::tan(glm::radians(m_camera.fovY()) * 0.5f) /
                                    static_cast<float>(m_target->height());
-            m_camera.pan(glm::vec2(-pixels * perPixel, 0.0f));
+            const float down = tfWindowShown() ? 0.5f * std::min(kTfWindowHeight, 0.5f * static_cast<float>(m_target->height())) : 0.0f;
+            m_camera.pan(glm::vec2(-0.5f * panelWidth(), -down) * perPixel);
         }
     }
 
@@ -387,25 +387,47 @@ private:
 
     // ---- UI ----------------------------------------------------------------------------------
     static constexpr float kPanelWidth = 390.0f;
+    // Narrow windows get a narrower panel, so some of the scene stays visible.
+    float panelWidth() const {
+        const float width = m_target ? static_cast<float>(m_target->width()) : 1280.0f;
+        return std::min(kPanelWidth, std::max(260.0f, 0.45f * width));
+    }
 
     void drawPanel() {
         const ImGuiViewport* vp = ImGui::GetMainViewport();
         ImGui::SetNextWindowPos(vp->WorkPos, ImGuiCond_Always);
-        ImGui::SetNextWindowSize(ImVec2(kPanelWidth, vp->WorkSize.y), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(panelWidth(), vp->WorkSize.y), ImGuiCond_Always);
         ImGui::SetNextWindowBgAlpha(0.88f);
         ImGui::Begin("libsss viewer", nullptr,
                      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-        ImGui::PushItemWidth(-150.0f);
+        ImGui::PushItemWidth(-0.38f * panelWidth());
         if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) sceneSection();
         if (ImGui::CollapsingHeader("Light and camera", ImGuiTreeNodeFlags_DefaultOpen)) lightSection();
         if (m_mesh && ImGui::CollapsingHeader("Mesh: subsurface scattering", ImGuiTreeNodeFlags_DefaultOpen))
             meshSection();
         if (m_volume && ImGui::CollapsingHeader("Volume: light-volume scattering", ImGuiTreeNodeFlags_DefaultOpen))
             volumeSection();
-        if (m_volume && ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen))
-            transferFunctionSection();
         if (ImGui::CollapsingHeader("Timings")) timingSection();
         ImGui::PopItemWidth();
+        ImGui::End();
+        if (m_volume) drawTransferFunctionWindow();
+    }
+
+    static constexpr float kTfWindowHeight = 250.0f;
+    bool tfWindowShown() const { return m_showUi && m_volume.has_value(); }
+
+    // The editor gets a wide window along the bottom, right of the panel.
+    void drawTransferFunctionWindow() {
+        const ImGuiViewport* vp = ImGui::GetMainViewport();
+        const float left = vp->WorkPos.x + panelWidth() + 8.0f;
+        const float width = std::max(200.0f, vp->WorkPos.x + vp->WorkSize.x - 8.0f - left);
+        const float height = std::min(kTfWindowHeight, 0.5f * vp->WorkSize.y);
+        ImGui::SetNextWindowPos(ImVec2(left, vp->WorkPos.y + vp->WorkSize.y - height - 8.0f), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(width, height), ImGuiCond_Always);
+        ImGui::SetNextWindowBgAlpha(0.85f);
+        ImGui::Begin("Transfer function", nullptr,
+                     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+        transferFunctionSection(height);
         ImGui::End();
     }
 
@@ -578,8 +600,9 @@ private:
         }
     }
 
-    void transferFunctionSection() {
+    void transferFunctionSection(float windowHeight) {
         const std::vector<std::string> presets = sss::TransferFunction::presetNames();
+        ImGui::SetNextItemWidth(130.0f);
         if (ImGui::BeginCombo("preset", m_tfPreset.empty() ? "(edited)" : m_tfPreset.c_str())) {
             for (const std::string& name : presets)
                 if (ImGui::Selectable(name.c_str(), name == m_tfPreset)) {
@@ -588,10 +611,10 @@ private:
                 }
             ImGui::EndCombo();
         }
-        const uint64_t before = m_tfEditor.transferFunction().revision();
-        viewer::transferFunctionEditorWidget(m_tfEditor, m_histogram);
-        if (m_tfEditor.transferFunction().revision() != before) m_tfPreset.clear();
-        ImGui::InputText("ParaView JSON", &m_tfPath);
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x - 290.0f));
+        ImGui::InputText("##json", &m_tfPath);
+        ImGui::SameLine();
         if (ImGui::Button("Save JSON")) {
             try {
                 m_tfEditor.transferFunction().saveParaViewJson(m_tfPath, "sss-viewer");
@@ -610,6 +633,13 @@ private:
                 showMessage(e.what(), true);
             }
         }
+        ImGui::SameLine();
+        ImGui::TextDisabled("(ParaView)");
+        const uint64_t before = m_tfEditor.transferFunction().revision();
+        // The canvas takes what is left above the point controls (two rows).
+        const float canvasHeight = std::max(60.0f, windowHeight - 4.0f * ImGui::GetFrameHeightWithSpacing() - 20.0f);
+        viewer::transferFunctionEditorWidget(m_tfEditor, m_histogram, canvasHeight);
+        if (m_tfEditor.transferFunction().revision() != before) m_tfPreset.clear();
     }
 
     void statsTable(const char* owner, const sss::RenderStats& stats) {

@@ -1,0 +1,50 @@
+// The thesis data sets as the tables use them.
+
+#include "bench.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <map>
+
+std::optional<sss::Mesh> loadThesisMesh(BenchmarkContext& bench, const std::string& table, const std::string& model) {
+    static const std::map<std::string, std::string> files = {
+        {"bunny", "meshes/stanford-bunny.obj"},
+        {"dragon", "meshes/dragon_50k.obj"},
+        {"buddha", "meshes/happy_buddha_50k.obj"},
+        // The largest mesh here (202k triangles); the thesis's Hebe (412k) is not available.
+        {"dragon-vrip", "meshes/dragon_vrip_res2.obj"},
+    };
+    std::optional<sss::Mesh> mesh;
+    if (model == "sphere") {
+        mesh = sss::makeUvSphere();  // the thesis sphere: 382 vertices, 800 triangles
+    } else {
+        const auto path = bench.findData(table, model, files.at(model));
+        if (!path) return std::nullopt;
+        mesh = sss::Mesh::load(*path);
+    }
+    // Same size for all (the bunny's), centred: one sampling radius then fits every model.
+    const sss::Bounds b = mesh->bounds();
+    const float scale = 0.1f / std::max(b.radius(), 1e-9f);
+    return mesh->transformed(glm::scale(glm::mat4(1.0f), glm::vec3(scale)) * glm::translate(glm::mat4(1.0f), -b.center()));
+}
+
+std::optional<std::pair<sss::Volume, std::string>> loadThesisVolume(BenchmarkContext& bench, const std::string& table,
+                                                                    const std::string& model) {
+    struct Entry {
+        std::string file, preset;
+        sss::RawLoadOptions options;
+    };
+    sss::RawLoadOptions ct;
+    ct.spacing = glm::vec3(0.957f, 0.957f, 1.5f);  // mm, from the data manifest
+    const std::map<std::string, Entry> entries = {
+        {"bucky", {"volumes/bucky_32x32x32_uint8.raw", "bucky", {}}},
+        {"bonsai", {"volumes/bonsai_256x256x256_uint8.raw", "bonsai", {}}},
+        {"engine", {"volumes/engine_256x256x256_uint8.raw", "engine", {}}},
+        {"cthead", {"volumes/invesalius_cthead_256x256x108_uint8.raw", "ct-skin", ct}},
+    };
+    if (model == "blobs") return std::pair{sss::makeBlobsVolume(48), std::string("bucky")};  // quick mode
+    const Entry& e = entries.at(model);
+    const auto path = bench.findData(table, model, e.file);
+    if (!path) return std::nullopt;
+    return std::pair{sss::Volume::loadRaw(*path, e.options), e.preset};
+}

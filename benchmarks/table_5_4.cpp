@@ -1,0 +1,105 @@
+// Thesis Table 5.4: volume scattering with the light volume at data resolution.
+// change = a light change (light-volume propagation + ray cast); fixed = ray cast with the
+// light volume; ea = emission-absorption; ea_gradient = gradient Phong; fixed_gradient =
+// scattering plus gradient highlights (ray cast only).
+
+#include "bench.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <map>
+
+namespace {
+
+constexpr const char* kTable = "5.4";
+
+struct ThesisRow {
+    double change, fixed, ea, eaGradient, fixedGradient;
+};
+
+const std::map<std::string, ThesisRow>& thesisRows() {
+    static const std::map<std::string, ThesisRow> rows = {
+        {"bucky", {6.04, 1.41, 1.31, 1.61, 1.73}},
+        {"bonsai", {34.99, 8.86, 3.05, 9.49, 16.47}},
+        {"engine", {34.79, 7.98, 2.81, 8.88, 14.55}},
+    };
+    return rows;
+}
+
+}  // namespace
+
+void runTable54(BenchmarkContext& bench) {
+    const bool quick = bench.options().quick;
+    const std::vector<std::string> models =
+        quick ? std::vector<std::string>{"blobs"} : std::vector<std::string>{"bucky", "bonsai", "engine", "cthead"};
+    const bool thesisViewport = bench.options().width == kThesisWidth && bench.options().height == kThesisHeight;
+    for (const std::string& model : models) {
+        if (!bench.wanted(model)) continue;
+        auto loaded = loadThesisVolume(bench, kTable, model);
+        if (!loaded) continue;
+        const sss::Volume& volume = loaded->first;
+        const sss::Camera camera = framedCamera(volume.worldBounds());
+        const sss::DirectionalLight key = keyLight(camera);
+        sss::DirectionalLight other = key;
+        other.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(3.0f), glm::vec3(0, 1, 0)) *
+                                    glm::vec4(key.direction, 0.0f));
+        sss::VolumeScatteringRenderer renderer;
+        renderer.setVolume(volume);
+        renderer.setTransferFunction(sss::TransferFunction::preset(loaded->second));
+        renderer.setLights({key});
+        const std::string id = std::string(kTable) + "-" + model;
+        auto withShading = [&](sss::VolumeShading shading) {
+            sss::VolumeRenderOptions o;  // library defaults: full-resolution light volume, step 1 voxel
+            o.shading = shading;
+            renderer.setOptions(o);
+        };
+        withShading(sss::VolumeShading::Scattering);
+        bool useOther = false;
+        const Measurement change = bench.measure(
+            [&](sss::RenderTarget& t) {
+                useOther = !useOther;
+                renderer.setLights({useOther ? other : key});
+                renderer.render(camera, t);
+            },
+            id + "-change");
+        const Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed");
+        withShading(sss::VolumeShading::ScatteringGradient);
+        const Measurement fixedGradient =
+            bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed-gradient");
+        withShading(sss::VolumeShading::EmissionAbsorption);
+        const Measurement ea = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-ea");
+        withShading(sss::VolumeShading::Gradient);
+        const Measurement eaGradient =
+            bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-ea-gradient");
+
+        const glm::ivec3 d = volume.dims();
+        Record r;
+        r.table = kTable;
+        r.model = model;
+        r.mode = "scattering";
+        r.dataSize = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+        r.params = "tf=" + loaded->second + " (median = fixed)";
+        r.width = bench.options().width;
+        r.height = bench.options().height;
+        r.measurement = fixed;
+        r.details = {{"change_ms", change.stats.medianMs},
+                     {"fixed_ms", fixed.stats.medianMs},
+                     {"ea_ms", ea.stats.medianMs},
+                     {"ea_gradient_ms", eaGradient.stats.medianMs},
+                     {"fixed_gradient_ms", fixedGradient.stats.medianMs},
+                     {"light_volume_ms", change.stats.medianMs - fixed.stats.medianMs},
+                     {"change_spread_ms", {change.stats.minMs, change.stats.maxMs}},
+                     {"fixed_spread_ms", {fixed.stats.minMs, fixed.stats.maxMs}},
+                     {"dims", {d.x, d.y, d.z}},
+                     {"transfer_function", loaded->second}};
+        if (const auto it = thesisRows().find(model); it != thesisRows().end() && thesisViewport && !quick) {
+            r.thesisMs = it->second.fixed;
+            r.details["thesis_gtx660"] = {{"change_ms", it->second.change},
+                                          {"fixed_ms", it->second.fixed},
+                                          {"ea_ms", it->second.ea},
+                                          {"ea_gradient_ms", it->second.eaGradient},
+                                          {"fixed_gradient_ms", it->second.fixedGradient}};
+        }
+        bench.addRecord(std::move(r));
+    }
+}
