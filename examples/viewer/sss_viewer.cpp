@@ -140,8 +140,8 @@ public:
         else m_tfPreset = tfName;
         rebuildScene();
         reframe();
-        m_camera.setYaw(m_args.yaw.value_or(m_hybrid.cornellBox ? 0.0f : 25.0f));
-        m_camera.setPitch(m_args.pitch.value_or(15.0f));
+        m_camera.setYaw(m_args.yaw.value_or(m_hybrid.cornellBox ? 14.0f : 25.0f));
+        m_camera.setPitch(m_args.pitch.value_or(m_hybrid.cornellBox ? 12.0f : 15.0f));
     }
 
     int run() {

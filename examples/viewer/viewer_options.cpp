@@ -43,7 +43,7 @@ scene:
   --accumulation F          map frames accumulated while the scene is static (default: 8)
   --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
   --tf NAME|FILE.json       transfer-function preset or ParaView JSON (default: from the volume's name)
-  --yaw DEG --pitch DEG     initial camera orbit angles (default: 25, 15; 0, 15 with --cornell-box)
+  --yaw DEG --pitch DEG     initial camera orbit angles (default: 25, 15; 14, 12 with --cornell-box)
   --light-angles AZ,EL      light azimuth and elevation in degrees (default: 35,40)
 window:
   --size WxH                window size (default: 1280x720)

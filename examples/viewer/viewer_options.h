@@ -33,7 +33,7 @@ struct ViewerOptions {
     int cameras = 8, samples = 24, mapResolution = 512, accumulation = 8;
     float lightVolumeScale = 1.0f;         ///< --light-volume-scale
     bool cornellBox = false;               ///< --cornell-box
-    std::optional<float> yaw, pitch;       ///< --yaw/--pitch (degrees; default 25, 15; 0, 15 in a Cornell box)
+    std::optional<float> yaw, pitch;       ///< --yaw/--pitch (degrees; default 25, 15; 14, 12 in a Cornell box)
     float lightAzimuth = 35.0f, lightElevation = 40.0f;  ///< --light-angles AZ,EL (degrees)
     int width = 1280, height = 720;        ///< --size WxH (window)
     std::string screenshot;                ///< --screenshot FILE.png

@@ -23,6 +23,7 @@
 #include "sss/stats.h"
 #include "sss/timing.h"
 #include "sss/transfer_function.h"
+#include "sss/transfer_function_editor.h"
 #include "sss/volume.h"
 #include "sss/volume_reference.h"
 #include "sss/volume_scattering_renderer.h"
