@@ -135,6 +135,9 @@ private:
 /// to the side, and one directional light coming from over the viewer's left shoulder.
 sss::Camera framedCamera(const sss::Bounds& bounds);
 sss::DirectionalLight keyLight(const sss::Camera& camera);
+/// `light` turned 3 degrees about +y: alternating the two forces a "change" frame (every
+/// view-independent pass reruns) at almost the same image.
+sss::DirectionalLight nudged(const sss::DirectionalLight& light);
 
 // ---- tables -----------------------------------------------------------------------------------
 

@@ -1,5 +1,7 @@
 #include "bench.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -131,4 +133,11 @@ sss::DirectionalLight keyLight(const sss::Camera& camera) {
     // Travels away from the viewer, rightwards and downwards: lit from the upper left.
     light.direction = glm::normalize(camera.forward() + 0.5f * camera.right() - 0.6f * camera.up());
     return light;
+}
+
+sss::DirectionalLight nudged(const sss::DirectionalLight& light) {
+    sss::DirectionalLight other = light;
+    other.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(3.0f), glm::vec3(0, 1, 0)) *
+                                glm::vec4(light.direction, 0.0f));
+    return other;
 }

@@ -57,8 +57,7 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
     camera.setYaw(20.0f);
     camera.setPitch(10.0f);
     const sss::DirectionalLight key{.direction = {-0.6f, -0.5f, -1.0f}};
-    sss::DirectionalLight other = key;
-    other.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(3.0f), glm::vec3(0, 1, 0)) * glm::vec4(key.direction, 0.0f));
+    const sss::DirectionalLight other = nudged(key);
 
     auto start = std::chrono::steady_clock::now();
     sss::MeshReferenceOptions ro;
@@ -141,8 +140,7 @@ PlotSpec volumeSweep(BenchmarkContext& bench) {
                                     {1.0f, {0.4f, 0.7f, 1.0f}, 0.6f}});
     const sss::Camera camera = framedCamera(volume.worldBounds());
     const sss::DirectionalLight key = keyLight(camera);
-    sss::DirectionalLight other = key;
-    other.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(3.0f), glm::vec3(0, 1, 0)) * glm::vec4(key.direction, 0.0f));
+    const sss::DirectionalLight other = nudged(key);
     const glm::vec4 background{0.1f, 0.1f, 0.12f, 1.0f};  // BenchmarkContext's clear colour
 
     auto start = std::chrono::steady_clock::now();

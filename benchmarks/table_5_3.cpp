@@ -49,10 +49,7 @@ void runTable53(BenchmarkContext& bench) {
         if (!mesh) continue;
         const sss::Camera camera = framedCamera(mesh->bounds());
         const sss::DirectionalLight key = keyLight(camera);
-        // The "change" frames alternate between two nearby light directions.
-        sss::DirectionalLight other = key;
-        other.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(3.0f), glm::vec3(0, 1, 0)) *
-                                    glm::vec4(key.direction, 0.0f));
+        const sss::DirectionalLight other = nudged(key);
 
         sss::MeshScatteringRenderer blinnPhong;
         blinnPhong.setMesh(*mesh);

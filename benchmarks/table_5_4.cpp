@@ -40,9 +40,7 @@ void runTable54(BenchmarkContext& bench) {
         const sss::Volume& volume = loaded->first;
         const sss::Camera camera = framedCamera(volume.worldBounds());
         const sss::DirectionalLight key = keyLight(camera);
-        sss::DirectionalLight other = key;
-        other.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(3.0f), glm::vec3(0, 1, 0)) *
-                                    glm::vec4(key.direction, 0.0f));
+        const sss::DirectionalLight other = nudged(key);
         sss::VolumeScatteringRenderer renderer;
         renderer.setVolume(volume);
         renderer.setTransferFunction(sss::TransferFunction::preset(loaded->second));

@@ -1,5 +1,7 @@
 // sss-render: renders a mesh and/or a volume headless to a PNG and prints the timing.
 // Run `sss-render --help` for the options. Exit codes: 0 ok, 1 runtime failure, 2 bad usage.
+#include "common/scene_inputs.h"
+
 #include <sss/sss.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -18,6 +20,8 @@
 namespace fs = std::filesystem;
 
 namespace {
+
+using namespace examples;
 
 constexpr const char* kUsage = R"(usage: sss-render [--mesh PATH] [--volume PATH] [options] --out FILE.png
 
@@ -81,10 +85,6 @@ camera and light:
   --help                    this text
 )";
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
 struct Args {
     std::string mesh, volume, out = "sss-render.png", mode, tf = "ramp", dataDir, material = "potato";
     int cameras = 8, samples = 24, mapResolution = 512, frames = 8;
@@ -104,40 +104,6 @@ struct Args {
     std::optional<glm::vec3> pointLight;
     std::optional<std::pair<double, double>> tfRange;
 };
-
-float parseFloat(const std::string& option, const std::string& text) {
-    try {
-        size_t used = 0;
-        const float v = std::stof(text, &used);
-        if (used == text.size()) return v;
-    } catch (const std::exception&) {
-    }
-    throw UsageError(option + ": expected a number, got \"" + text + "\"");
-}
-
-int parseInt(const std::string& option, const std::string& text) {
-    try {
-        size_t used = 0;
-        const int v = std::stoi(text, &used);
-        if (used == text.size()) return v;
-    } catch (const std::exception&) {
-    }
-    throw UsageError(option + ": expected an integer, got \"" + text + "\"");
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-    std::vector<std::string> parts;
-    std::stringstream ss(text);
-    std::string part;
-    while (std::getline(ss, part, separator)) parts.push_back(part);
-    return parts;
-}
-
-glm::vec3 parseVec3(const std::string& option, const std::string& text) {
-    const auto parts = split(text, ',');
-    if (parts.size() != 3) throw UsageError(option + ": expected X,Y,Z, got \"" + text + "\"");
-    return {parseFloat(option, parts[0]), parseFloat(option, parts[1]), parseFloat(option, parts[2])};
-}
 
 std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
     if (mode == "emission-absorption") return sss::VolumeShading::EmissionAbsorption;
@@ -179,17 +145,9 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--scale") a.scale = parseFloat(opt, value());
         else if (opt == "--no-specular") a.specular = false;
         else if (opt == "--data-dir") a.dataDir = value();
-        else if (opt == "--dims") {
-            const std::string v = value();
-            const auto parts = split(v, 'x');
-            if (parts.size() != 3) throw UsageError("--dims: expected XxYxZ, got \"" + v + "\"");
-            a.dims = glm::ivec3(parseInt(opt, parts[0]), parseInt(opt, parts[1]), parseInt(opt, parts[2]));
-        } else if (opt == "--type") {
-            const std::string v = value();
-            if (v == "uint8") a.type = sss::VoxelType::UInt8;
-            else if (v == "uint16") a.type = sss::VoxelType::UInt16;
-            else throw UsageError("--type: expected uint8 or uint16, got \"" + v + "\"");
-        } else if (opt == "--spacing") a.spacing = parseVec3(opt, value());
+        else if (opt == "--dims") a.dims = parseDims(opt, value());
+        else if (opt == "--type") a.type = parseVoxelType(opt, value());
+        else if (opt == "--spacing") a.spacing = parseVec3(opt, value());
         else if (opt == "--size") {
             const std::string v = value();
             const auto parts = split(v, 'x');
@@ -243,50 +201,12 @@ Args parseArgs(int argc, char** argv) {
     return a;
 }
 
-fs::path dataDirectory(const Args& a) {
-    if (!a.dataDir.empty()) return a.dataDir;
-    if (const char* env = std::getenv("SSS_DATA_DIR"); env && *env) return env;
-    if (fs::is_directory("../shared/data")) return "../shared/data";
-    return {};
-}
-
-// A path as given if it exists, else the first match in the data directory.
-fs::path resolveInput(const std::string& path, const fs::path& dataDir, const char* subfolder) {
-    const fs::path given(path);
-    if (fs::exists(given) || given.is_absolute() || dataDir.empty()) return given;
-    for (const fs::path& candidate : {dataDir / given, dataDir / subfolder / given})
-        if (fs::exists(candidate)) return candidate;
-    return given;  // the loader reports the missing file by the name the user gave
-}
-
-std::optional<std::string> proceduralName(const std::string& path) {
-    const std::string prefix = "procedural:";
-    if (path.rfind(prefix, 0) == 0) return path.substr(prefix.size());
-    return std::nullopt;
-}
-
-sss::Mesh loadMesh(const Args& a, const fs::path& dataDir) {
-    if (auto name = proceduralName(a.mesh)) {
-        if (*name == "sphere") return sss::makeUvSphere();
-        if (*name == "torus") return sss::makeTorus();
-        if (*name == "slab") return sss::makeSlab();
-        throw UsageError("--mesh: unknown procedural mesh \"" + *name + "\" (sphere, torus, slab)");
-    }
-    return sss::Mesh::load(resolveInput(a.mesh, dataDir, "meshes"));
-}
-
-sss::Volume loadVolume(const Args& a, const fs::path& dataDir) {
-    if (auto name = proceduralName(a.volume)) {
-        if (*name == "blobs") return sss::makeBlobsVolume();
-        if (*name == "shell") return sss::makeShellVolume();
-        if (*name == "bucky") return sss::makeBuckyLikeVolume();
-        throw UsageError("--volume: unknown procedural volume \"" + *name + "\" (blobs, shell, bucky)");
-    }
+sss::RawLoadOptions rawOptions(const Args& a) {
     sss::RawLoadOptions options;
     options.dims = a.dims;
     options.type = a.type;
     options.spacing = a.spacing;
-    return sss::Volume::loadRaw(resolveInput(a.volume, dataDir, "volumes"), options);
+    return options;
 }
 
 int run(const Args& a) {
@@ -295,17 +215,17 @@ int run(const Args& a) {
             std::cout << name << "\n";
         return 0;
     }
-    const fs::path dataDir = dataDirectory(a);
+    const fs::path dataDir = dataDirectory(a.dataDir);
     // Load and validate everything before touching GL, so bad input fails fast and clearly.
     std::optional<sss::Mesh> mesh;
     std::optional<sss::Volume> volume;
     std::optional<sss::TransferFunction> tf;
     // (GL objects below are created only after every input is valid.)
-    if (!a.mesh.empty()) mesh = loadMesh(a, dataDir);
+    if (!a.mesh.empty()) mesh = loadSceneMesh(a.mesh, dataDir);
     const bool scattering = (a.mode == "sss" || a.mode == "hybrid") && !a.mesh.empty();
     const sss::ScatteringMaterial material = sss::materialPreset(a.material);
     if (!a.volume.empty()) {
-        volume = loadVolume(a, dataDir);
+        volume = loadSceneVolume(a.volume, dataDir, rawOptions(a));
         const bool file = a.tf.size() > 5 && a.tf.substr(a.tf.size() - 5) == ".json";
         tf = file ? sss::TransferFunction::loadParaViewJson(a.tf, a.tfRange) : sss::TransferFunction::preset(a.tf);
     }

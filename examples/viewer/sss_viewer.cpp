@@ -470,7 +470,7 @@ private:
 
     void openMesh() {
         try {
-            m_mesh = normalised(viewer::loadMesh(m_meshPath, m_dataDir));
+            m_mesh = normalised(viewer::loadSceneMesh(m_meshPath, m_dataDir));
             m_sceneDirty = true;
             showMessage("opened " + m_meshPath, false);
         } catch (const std::exception& e) {  // sss::Error or UsageError: shown, never fatal
@@ -483,7 +483,7 @@ private:
             sss::RawLoadOptions overrides;
             if (m_volumeDims.x > 0 && m_volumeDims.y > 0 && m_volumeDims.z > 0) overrides.dims = m_volumeDims;
             if (m_volume16) overrides.type = sss::VoxelType::UInt16;
-            setVolume(viewer::loadVolume(m_volumePath, m_dataDir, overrides), m_volumePath);
+            setVolume(viewer::loadSceneVolume(m_volumePath, m_dataDir, overrides), m_volumePath);
             m_sceneDirty = true;
             showMessage("opened " + m_volumePath, false);
         } catch (const std::exception& e) {
@@ -747,9 +747,9 @@ int run(const ViewerOptions& args) {
     const fs::path dataDir = viewer::dataDirectory(args.dataDir);
     std::optional<sss::Mesh> mesh;
     std::optional<sss::Volume> volume;
-    if (!args.mesh.empty()) mesh = viewer::loadMesh(args.mesh, dataDir);
+    if (!args.mesh.empty()) mesh = viewer::loadSceneMesh(args.mesh, dataDir);
     if (!args.volume.empty())
-        volume = viewer::loadVolume(args.volume, dataDir, {args.dims, args.type, args.spacing});
+        volume = viewer::loadSceneVolume(args.volume, dataDir, {args.dims, args.type, args.spacing});
     const std::string tfName = args.tf.empty() ? viewer::guessPreset(args.volume) : args.tf;
     sss::TransferFunction tf =
         isJson(tfName) ? sss::TransferFunction::loadParaViewJson(tfName) : sss::TransferFunction::preset(tfName);

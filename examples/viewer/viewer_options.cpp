@@ -14,6 +14,10 @@ namespace fs = std::filesystem;
 namespace viewer {
 namespace {
 
+using examples::parseFloat;
+using examples::parseInt;
+using examples::split;
+
 constexpr const char* kUsage = R"(usage: sss-viewer [--mesh PATH] [--volume PATH] [options]
 
 Interactive viewer for light scattering in meshes (subsurface scattering) and volumes (light
@@ -61,52 +65,10 @@ F12 saves a screenshot, F1 toggles the UI; in the transfer-function editor click
 point, drag to move it, right-click or Delete removes it, Ctrl+Z / Ctrl+Y undo and redo.
 )";
 
-float parseFloat(const std::string& option, const std::string& text) {
-    try {
-        size_t used = 0;
-        const float v = std::stof(text, &used);
-        if (used == text.size()) return v;
-    } catch (const std::exception&) {
-    }
-    throw UsageError(option + ": expected a number, got \"" + text + "\"");
-}
-
-int parseInt(const std::string& option, const std::string& text) {
-    try {
-        size_t used = 0;
-        const int v = std::stoi(text, &used);
-        if (used == text.size()) return v;
-    } catch (const std::exception&) {
-    }
-    throw UsageError(option + ": expected an integer, got \"" + text + "\"");
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-    std::vector<std::string> parts;
-    std::stringstream ss(text);
-    std::string part;
-    while (std::getline(ss, part, separator)) parts.push_back(part);
-    return parts;
-}
-
 void requireRange(const std::string& option, int value, int lo, int hi) {
     if (value < lo || value > hi)
         throw UsageError(option + ": must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " +
                          std::to_string(value));
-}
-
-fs::path resolveInput(const std::string& path, const fs::path& dataDir, const char* subfolder) {
-    const fs::path given(path);
-    if (fs::exists(given) || given.is_absolute() || dataDir.empty()) return given;
-    for (const fs::path& candidate : {dataDir / given, dataDir / subfolder / given})
-        if (fs::exists(candidate)) return candidate;
-    return given;  // the loader reports the missing file by the name the user gave
-}
-
-std::optional<std::string> proceduralName(const std::string& path) {
-    const std::string prefix = "procedural:";
-    if (path.rfind(prefix, 0) == 0) return path.substr(prefix.size());
-    return std::nullopt;
 }
 
 }  // namespace
@@ -126,20 +88,11 @@ ViewerOptions parseArgs(int argc, char** argv) {
         } else if (opt == "--mesh") o.mesh = value();
         else if (opt == "--volume") o.volume = value();
         else if (opt == "--dims") {
-            const std::string v = value();
-            const auto parts = split(v, 'x');
-            if (parts.size() != 3) throw UsageError("--dims: expected XxYxZ, got \"" + v + "\"");
-            o.dims = glm::ivec3(parseInt(opt, parts[0]), parseInt(opt, parts[1]), parseInt(opt, parts[2]));
+            o.dims = examples::parseDims(opt, value());
         } else if (opt == "--type") {
-            const std::string v = value();
-            if (v == "uint8") o.type = sss::VoxelType::UInt8;
-            else if (v == "uint16") o.type = sss::VoxelType::UInt16;
-            else throw UsageError("--type: expected uint8 or uint16, got \"" + v + "\"");
+            o.type = examples::parseVoxelType(opt, value());
         } else if (opt == "--spacing") {
-            const std::string v = value();
-            const auto parts = split(v, ',');
-            if (parts.size() != 3) throw UsageError("--spacing: expected X,Y,Z, got \"" + v + "\"");
-            o.spacing = glm::vec3(parseFloat(opt, parts[0]), parseFloat(opt, parts[1]), parseFloat(opt, parts[2]));
+            o.spacing = examples::parseVec3(opt, value());
         } else if (opt == "--data-dir") o.dataDir = value();
         else if (opt == "--tf") o.tf = value();
         else if (opt == "--material") o.material = value();
@@ -208,35 +161,6 @@ ViewerOptions parseArgs(int argc, char** argv) {
     if (!o.screenshot.empty() && o.mesh.empty() && o.volume.empty())
         throw UsageError("--screenshot: nothing to render: give --mesh PATH and/or --volume PATH");
     return o;
-}
-
-fs::path dataDirectory(const std::string& dataDirOption) {
-    if (!dataDirOption.empty()) return dataDirOption;
-    if (const char* env = std::getenv("SSS_DATA_DIR"); env && *env) return env;
-    if (fs::is_directory("../shared/data")) return "../shared/data";
-    return {};
-}
-
-sss::Mesh loadMesh(const std::string& path, const fs::path& dataDir) {
-    if (auto name = proceduralName(path)) {
-        if (*name == "sphere") return sss::makeUvSphere(64, 32);
-        if (*name == "torus") return sss::makeTorus();
-        if (*name == "slab") return sss::makeSlab();
-        throw UsageError("--mesh: unknown procedural mesh \"" + *name + "\" (sphere, torus, slab)");
-    }
-    if (path.empty()) throw UsageError("--mesh: empty path");
-    return sss::Mesh::load(resolveInput(path, dataDir, "meshes"));
-}
-
-sss::Volume loadVolume(const std::string& path, const fs::path& dataDir, const sss::RawLoadOptions& overrides) {
-    if (auto name = proceduralName(path)) {
-        if (*name == "blobs") return sss::makeBlobsVolume();
-        if (*name == "shell") return sss::makeShellVolume();
-        if (*name == "bucky") return sss::makeBuckyLikeVolume();
-        throw UsageError("--volume: unknown procedural volume \"" + *name + "\" (blobs, shell, bucky)");
-    }
-    if (path.empty()) throw UsageError("--volume: empty path");
-    return sss::Volume::loadRaw(resolveInput(path, dataDir, "volumes"), overrides);
 }
 
 std::string guessPreset(const std::string& volumePath) {

@@ -1,6 +1,8 @@
 #pragma once
 // Command line of sss-viewer, and loading what it names (shared with the UI's path fields).
 
+#include "common/scene_inputs.h"
+
 #include <sss/mesh.h>
 #include <sss/volume.h>
 
@@ -13,10 +15,10 @@
 
 namespace viewer {
 
-/// Bad command-line usage: reported on stderr, exit code 2.
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using examples::UsageError;  // bad command-line usage: stderr, exit code 2
+using examples::dataDirectory;  // --data-dir, else $SSS_DATA_DIR, else ../shared/data
+using examples::loadSceneMesh;  // a path or procedural:NAME (scene_inputs.h)
+using examples::loadSceneVolume;
 
 struct ViewerOptions {
     std::string mesh;                      ///< --mesh PATH or procedural:NAME
@@ -46,19 +48,6 @@ struct ViewerOptions {
 /// Parses argv. Prints the usage and exits 0 for --help.
 /// @throws UsageError naming the option and the problem.
 ViewerOptions parseArgs(int argc, char** argv);
-
-/// --data-dir, else $SSS_DATA_DIR, else ../shared/data if it exists, else empty.
-std::filesystem::path dataDirectory(const std::string& dataDirOption);
-
-/// A mesh from a path (looked up in dataDir and dataDir/meshes when not found as given) or
-/// procedural:sphere|torus|slab. @throws UsageError for an unknown procedural name, sss::Error
-/// for a file that cannot be loaded.
-sss::Mesh loadMesh(const std::string& path, const std::filesystem::path& dataDir);
-
-/// A volume from a .raw path (looked up in dataDir and dataDir/volumes) or
-/// procedural:blobs|shell|bucky; the optional overrides as in sss::RawLoadOptions.
-sss::Volume loadVolume(const std::string& path, const std::filesystem::path& dataDir,
-                       const sss::RawLoadOptions& overrides = {});
 
 /// A transfer-function preset that suits a volume name ("bonsai_256x..." -> bonsai), or "ramp".
 std::string guessPreset(const std::string& volumePath);

@@ -27,15 +27,7 @@ void BlinnPhongPass::run(const GpuMesh& mesh, const glm::mat4& model, const Blin
     setLightUniforms(m_program, lights);
     setVolumeShadowUniforms(m_program, volumeShadows, lights.size());
 
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);  // open meshes show their inside
-    m_program.use();
-    mesh.draw();
-    glBindVertexArray(0);
-    glUseProgram(0);
+    mesh.drawOpaque(m_program);
 }
 
 }  // namespace sss::detail

@@ -40,15 +40,7 @@ void CombinePass::run(const GpuMesh& mesh, const glm::mat4& model, const Scatter
     maps.maps().bind(0);
     maps.depth().bind(1);
 
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    m_program.use();
-    mesh.draw();
-    glBindVertexArray(0);
-    glUseProgram(0);
+    mesh.drawOpaque(m_program);
 }
 
 }  // namespace sss::detail

@@ -29,4 +29,16 @@ void GpuMesh::draw() const {
     glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
 }
 
+void GpuMesh::drawOpaque(const gl::Program& program) const {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    program.use();
+    draw();
+    glBindVertexArray(0);
+    glUseProgram(0);
+}
+
 }  // namespace sss::detail

@@ -2,6 +2,7 @@
 // A Mesh uploaded to the GPU: interleaved position+normal vertex buffer, index buffer, VAO
 // (attribute 0 = position, 1 = normal). Shared by every mesh pass.
 #include "gl/buffer.h"
+#include "gl/program.h"
 #include "gl/vertex_array.h"
 #include "sss/bounds.h"
 #include "sss/mesh.h"
@@ -17,6 +18,9 @@ struct GpuMesh {
 
     static GpuMesh upload(const Mesh& mesh);
     void draw() const;
+    /// Draws with `program` as an opaque surface: depth test (less) and depth writes on, no
+    /// blending, no culling (open meshes show their inside; both sides are shaded).
+    void drawOpaque(const gl::Program& program) const;
 };
 
 }  // namespace sss::detail

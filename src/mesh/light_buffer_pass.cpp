@@ -90,15 +90,7 @@ void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std
     glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &one);
     m_framebuffer.bind();
     glViewport(0, 0, resolution, resolution);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    m_program.use();
-    mesh.draw();
-    glBindVertexArray(0);
-    glUseProgram(0);
+    mesh.drawOpaque(m_program);
 }
 
 }  // namespace sss::detail

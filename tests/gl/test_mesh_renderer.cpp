@@ -1,4 +1,5 @@
 #include "support/gl_test.h"
+#include "support/scenes.h"
 #include "support/golden.h"
 
 #include <catch2/catch.hpp>
@@ -11,20 +12,12 @@
 #include <cmath>
 
 using namespace sss;
+using sss::test::orbitCamera;
 
 namespace {
 
 constexpr int kWidth = 256, kHeight = 144;  // small enough for llvmpipe on CI
 const glm::vec4 kBackground{0.1f, 0.1f, 0.12f, 1.0f};
-
-Camera orbitCamera(const Bounds& bounds, float yaw, float pitch) {
-    Camera camera;
-    camera.frame(bounds);
-    camera.setYaw(yaw);
-    camera.setPitch(pitch);
-    camera.setDistance(camera.distance() * 0.7f);  // fill more of the small test image
-    return camera;
-}
 
 }  // namespace
 

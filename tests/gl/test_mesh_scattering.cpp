@@ -1,6 +1,7 @@
 // Mesh subsurface scattering (Dal Corso et al. 2017 with the directional dipole): golden images,
 // translucency, caching of the view-independent passes, and parameter validation.
 #include "support/gl_test.h"
+#include "support/scenes.h"
 #include "support/golden.h"
 
 #include <catch2/catch.hpp>
@@ -14,6 +15,7 @@
 #include <cmath>
 
 using namespace sss;
+using sss::test::orbitCamera;
 
 namespace {
 
@@ -32,15 +34,6 @@ MeshRenderOptions testOptions(int cameras = 8) {
     o.accumulationFrames = 4;
     o.millimetresPerUnit = 20.0;
     return o;
-}
-
-Camera orbitCamera(const Bounds& bounds, float yaw, float pitch) {
-    Camera camera;
-    camera.frame(bounds);
-    camera.setYaw(yaw);
-    camera.setPitch(pitch);
-    camera.setDistance(camera.distance() * 0.7f);
-    return camera;
 }
 
 // Renders until the maps have converged and returns the last frame.

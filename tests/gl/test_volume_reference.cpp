@@ -1,6 +1,7 @@
 // The GPU ray caster against the CPU reference (sss/volume_reference.h): same scene, same
 // optical model, compared with computeErrorMetrics. Bounds are measured values with a margin.
 #include "support/gl_test.h"
+#include "support/scenes.h"
 
 #include <catch2/catch.hpp>
 #include <sss/image_compare.h>
@@ -13,21 +14,13 @@
 #include <vector>
 
 using namespace sss;
+using sss::test::orbitCamera;
 
 namespace {
 
 constexpr int kWidth = 64, kHeight = 36;
 const glm::vec4 kBackground{0.1f, 0.1f, 0.12f, 1.0f};
 const std::vector<Light> kLights{DirectionalLight{.direction = {-1.0f, -1.0f, -0.6f}}};
-
-Camera orbitCamera(const Bounds& bounds, float yaw, float pitch) {
-    Camera camera;
-    camera.frame(bounds);
-    camera.setYaw(yaw);
-    camera.setPitch(pitch);
-    camera.setDistance(camera.distance() * 0.7f);
-    return camera;
-}
 
 const TransferFunction& blobsTf() {
     static const TransferFunction tf({{0.0f, {0, 0, 0}, 0.0f},

@@ -1,4 +1,5 @@
 #include "support/gl_test.h"
+#include "support/scenes.h"
 #include "support/golden.h"
 
 #include <catch2/catch.hpp>
@@ -12,20 +13,12 @@
 #include <cmath>
 
 using namespace sss;
+using sss::test::orbitCamera;
 
 namespace {
 
 constexpr int kWidth = 256, kHeight = 144;  // with 64^3 volumes and 1-voxel steps: 64-110 steps
 const glm::vec4 kBackground{0.1f, 0.1f, 0.12f, 1.0f};
-
-Camera orbitCamera(const Bounds& bounds, float yaw, float pitch) {
-    Camera camera;
-    camera.frame(bounds);
-    camera.setYaw(yaw);
-    camera.setPitch(pitch);
-    camera.setDistance(camera.distance() * 0.7f);  // fill more of the small test image
-    return camera;
-}
 
 Volume uniformVolume(int n, uint8_t value) {
     return Volume::fromData({n, n, n}, VoxelType::UInt8, std::vector<uint8_t>(static_cast<size_t>(n * n * n), value));

@@ -1,6 +1,7 @@
 // Light-volume scattering (Ropinski et al. 2010): propagation, shadows, continuity, point lights,
 // caching, and golden images.
 #include "support/gl_test.h"
+#include "support/scenes.h"
 #include "support/golden.h"
 
 #include "volume/gpu_volume.h"
@@ -18,6 +19,7 @@
 #include <vector>
 
 using namespace sss;
+using sss::test::orbitCamera;
 
 namespace {
 
@@ -70,15 +72,6 @@ Image renderScattering(const Volume& volume, const TransferFunction& tf, const s
     target.clear(kBackground);
     renderer.render(camera, target);
     return target.readColor();
-}
-
-Camera orbitCamera(const Bounds& bounds, float yaw, float pitch) {
-    Camera camera;
-    camera.frame(bounds);
-    camera.setYaw(yaw);
-    camera.setPitch(pitch);
-    camera.setDistance(camera.distance() * 0.7f);
-    return camera;
 }
 
 }  // namespace

@@ -1,0 +1,105 @@
+#include "common/scene_inputs.h"
+
+#include <sss/procedural.h>
+
+#include <cstdlib>
+#include <optional>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace examples {
+namespace {
+
+fs::path resolveInput(const std::string& path, const fs::path& dataDir, const char* subfolder) {
+    const fs::path given(path);
+    if (fs::exists(given) || given.is_absolute() || dataDir.empty()) return given;
+    for (const fs::path& candidate : {dataDir / given, dataDir / subfolder / given})
+        if (fs::exists(candidate)) return candidate;
+    return given;  // the loader reports the missing file by the name the user gave
+}
+
+std::optional<std::string> proceduralName(const std::string& path) {
+    const std::string prefix = "procedural:";
+    if (path.rfind(prefix, 0) == 0) return path.substr(prefix.size());
+    return std::nullopt;
+}
+
+}  // namespace
+
+float parseFloat(const std::string& option, const std::string& text) {
+    try {
+        size_t used = 0;
+        const float v = std::stof(text, &used);
+        if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(option + ": expected a number, got \"" + text + "\"");
+}
+
+int parseInt(const std::string& option, const std::string& text) {
+    try {
+        size_t used = 0;
+        const int v = std::stoi(text, &used);
+        if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    throw UsageError(option + ": expected an integer, got \"" + text + "\"");
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+    std::vector<std::string> parts;
+    std::stringstream ss(text);
+    std::string part;
+    while (std::getline(ss, part, separator)) parts.push_back(part);
+    return parts;
+}
+
+glm::vec3 parseVec3(const std::string& option, const std::string& text) {
+    const auto parts = split(text, ',');
+    if (parts.size() != 3) throw UsageError(option + ": expected X,Y,Z, got \"" + text + "\"");
+    return {parseFloat(option, parts[0]), parseFloat(option, parts[1]), parseFloat(option, parts[2])};
+}
+
+glm::ivec3 parseDims(const std::string& option, const std::string& text) {
+    const auto parts = split(text, 'x');
+    if (parts.size() != 3) throw UsageError(option + ": expected XxYxZ, got \"" + text + "\"");
+    return {parseInt(option, parts[0]), parseInt(option, parts[1]), parseInt(option, parts[2])};
+}
+
+sss::VoxelType parseVoxelType(const std::string& option, const std::string& text) {
+    if (text == "uint8") return sss::VoxelType::UInt8;
+    if (text == "uint16") return sss::VoxelType::UInt16;
+    throw UsageError(option + ": expected uint8 or uint16, got \"" + text + "\"");
+}
+
+fs::path dataDirectory(const std::string& dataDirOption) {
+    if (!dataDirOption.empty()) return dataDirOption;
+    if (const char* env = std::getenv("SSS_DATA_DIR"); env && *env) return env;
+    if (fs::is_directory("../shared/data")) return "../shared/data";
+    return {};
+}
+
+sss::Mesh loadSceneMesh(const std::string& path, const fs::path& dataDir) {
+    if (auto name = proceduralName(path)) {
+        if (*name == "sphere") return sss::makeUvSphere();  // the thesis sphere, 382 v / 800 tri
+        if (*name == "torus") return sss::makeTorus();
+        if (*name == "slab") return sss::makeSlab();
+        throw UsageError("--mesh: unknown procedural mesh \"" + *name + "\" (sphere, torus, slab)");
+    }
+    if (path.empty()) throw UsageError("--mesh: empty path");
+    return sss::Mesh::load(resolveInput(path, dataDir, "meshes"));
+}
+
+sss::Volume loadSceneVolume(const std::string& path, const fs::path& dataDir, const sss::RawLoadOptions& options) {
+    if (auto name = proceduralName(path)) {
+        if (*name == "blobs") return sss::makeBlobsVolume();
+        if (*name == "shell") return sss::makeShellVolume();
+        if (*name == "bucky") return sss::makeBuckyLikeVolume();
+        throw UsageError("--volume: unknown procedural volume \"" + *name + "\" (blobs, shell, bucky)");
+    }
+    if (path.empty()) throw UsageError("--volume: empty path");
+    return sss::Volume::loadRaw(resolveInput(path, dataDir, "volumes"), options);
+}
+
+}  // namespace examples

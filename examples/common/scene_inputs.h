@@ -1,0 +1,39 @@
+#pragma once
+// Command-line parsing and scene loading shared by sss-render and sss-viewer: numbers and
+// vectors from option values, the data directory, and meshes/volumes named by a path or by
+// "procedural:NAME".
+#include <sss/mesh.h>
+#include <sss/volume.h>
+
+#include <glm/vec3.hpp>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace examples {
+
+/// Bad command-line usage: reported on stderr with exit code 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+float parseFloat(const std::string& option, const std::string& text);
+int parseInt(const std::string& option, const std::string& text);
+std::vector<std::string> split(const std::string& text, char separator);
+glm::vec3 parseVec3(const std::string& option, const std::string& text);  ///< "X,Y,Z"
+glm::ivec3 parseDims(const std::string& option, const std::string& text);  ///< "XxYxZ"
+sss::VoxelType parseVoxelType(const std::string& option, const std::string& text);  ///< uint8|uint16
+
+/// --data-dir if given, else $SSS_DATA_DIR, else ../shared/data if it exists, else empty.
+std::filesystem::path dataDirectory(const std::string& dataDirOption);
+
+/// procedural:sphere|torus|slab, or an .obj file (relative paths not found as given are looked up
+/// in dataDir and dataDir/meshes). Throws UsageError for an unknown procedural name.
+sss::Mesh loadSceneMesh(const std::string& path, const std::filesystem::path& dataDir);
+/// procedural:blobs|shell|bucky, or a .raw file (looked up like meshes, in dataDir/volumes).
+sss::Volume loadSceneVolume(const std::string& path, const std::filesystem::path& dataDir,
+                            const sss::RawLoadOptions& options = {});
+
+}  // namespace examples
