@@ -3,6 +3,9 @@
 //   SHADING_GRADIENT 0|1   : Blinn-Phong from the gradient (central differences)
 //   SHADING_SCATTERING 0|1 : light from the light volumes (chromaticity c, intensity l)
 //   EMPTY_SPACE_SKIPPING 0|1 : jump over bricks the transfer function makes fully transparent
+//   LIGHT_COUNT n          : the number of lights, fixed at compile time so the loop over the
+//                            light volumes indexes its sampler array with constants (dynamic
+//                            indices make software rasterisers fetch from every array element)
 // Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
 #include "common/camera.glsl"
 #include "common/lights.glsl"
@@ -91,7 +94,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     SurfaceNormal surface = gradientNormal(tc, v);
 #endif
     vec3 lit = ambientStrength * color;
-    for (int i = 0; i < lightCount; ++i) {
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
         vec3 radiance;
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
 #if SHADING_SCATTERING

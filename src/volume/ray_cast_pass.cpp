@@ -22,14 +22,16 @@ bool usesLightVolume(VolumeShading s) {
     return s == VolumeShading::Scattering || s == VolumeShading::ScatteringGradient;
 }
 
-RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping)
+RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount)
     : m_shading(shading),
       m_emptySpaceSkipping(emptySpaceSkipping),
+      m_lightCount(lightCount),
       m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
                                   {{"SHADING_GRADIENT", usesGradient(shading) ? "1" : "0"},
                                    {"SHADING_SCATTERING", usesLightVolume(shading) ? "1" : "0"},
-                                   {"EMPTY_SPACE_SKIPPING", emptySpaceSkipping ? "1" : "0"}})),
+                                   {"EMPTY_SPACE_SKIPPING", emptySpaceSkipping ? "1" : "0"},
+                                   {"LIGHT_COUNT", std::to_string(lightCount)}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,

@@ -20,10 +20,10 @@ bool usesLightVolume(VolumeShading shading);
 
 class RayCastPass {
 public:
-    RayCastPass(VolumeShading shading, bool emptySpaceSkipping);
-    /// Whether this pass was built for these options (programs are per variant).
-    bool matches(const VolumeRenderOptions& o) const {
-        return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping;
+    RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount);
+    /// Whether this pass was built for these options and lights (programs are per variant).
+    bool matches(const VolumeRenderOptions& o, std::size_t lightCount) const {
+        return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping && lightCount == m_lightCount;
     }
     /// `sceneDepth` is a copy of the target's depth (rays stop there); `lightVolumes` has one
     /// texture per light in the scattering modes. The target is bound.
@@ -37,6 +37,7 @@ private:
     static constexpr int kMeshShadowUnit = 12;       // after the light volumes (4..11)
     VolumeShading m_shading;
     bool m_emptySpaceSkipping;
+    std::size_t m_lightCount;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
 };

@@ -162,8 +162,8 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (!m_impl->volume)
         throw Error(ErrorKind::InvalidArgument, "VolumeScatteringRenderer::render: no volume set (call setVolume first)");
     // Programs are compiled lazily, once per shading mode in use.
-    if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options))
-        m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping);
+    if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size()))
+        m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping, m_impl->lights.size());
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     const auto start = std::chrono::steady_clock::now();
     m_impl->copyDepth(target);

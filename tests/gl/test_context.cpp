@@ -117,13 +117,33 @@ TEST_CASE("shader compile errors name the file and line, through includes", "[gl
 }
 
 TEST_CASE("every embedded shader program compiles and links", "[gl][shaders]") {
+    // The passes build these lazily; compiling them all here catches a broken variant early.
     test::GlTestScope gl;
     CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/blinn_phong.vert"},
                                      {GL_FRAGMENT_SHADER, "mesh/blinn_phong.frag"}}));
+    CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/light_buffer.vert"},
+                                     {GL_GEOMETRY_SHADER, "mesh/light_buffer.geom"},
+                                     {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}},
+                                    {{"MAX_LIGHTS", "8"}}));
+    for (const char* fragment : {"mesh/scattering_map.frag", "mesh/depth_only.frag"})
+        CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/scattering_map.vert"},
+                                         {GL_GEOMETRY_SHADER, "mesh/scattering_map.geom"},
+                                         {GL_FRAGMENT_SHADER, fragment}},
+                                        {{"CAMERA_COUNT", "16"}, {"MAX_LIGHTS", "8"}}));
+    CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
+                                    {{"MAX_CAMERAS", "32"}}));
+    CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/shadow_depth.vert"},
+                                     {GL_FRAGMENT_SHADER, "mesh/depth_only.frag"}}));
+    CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}}));
     for (const char* gradient : {"0", "1"})
-        CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                         {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
-                                        {{"SHADING_GRADIENT", gradient}}));
+        for (const char* scattering : {"0", "1"})
+            for (const char* skipping : {"0", "1"})
+                CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                 {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
+                                                {{"SHADING_GRADIENT", gradient},
+                                                 {"SHADING_SCATTERING", scattering},
+                                                 {"EMPTY_SPACE_SKIPPING", skipping},
+                                                 {"LIGHT_COUNT", "2"}}));
     gl.requireNoErrors();
 }
 
