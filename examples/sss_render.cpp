@@ -71,6 +71,7 @@ shading:
   --no-skipping             no empty-space skipping (same image, slower)
   --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
   --anisotropy G            Henyey-Greenstein g for the scattering cone, (-1,1) (default: 0.5)
+  --eye-pass                add the second, view-dependent pass towards the viewer
 camera and light:
   --yaw DEG --pitch DEG     orbit angles around the scene centre (default: 30, 20)
   --zoom F                  distance factor after framing the scene (default: 1)
@@ -97,6 +98,7 @@ struct Args {
     glm::vec3 background{0.1f, 0.1f, 0.12f};
     glm::vec3 color{0.8f, 0.75f, 0.7f};
     float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
+    bool eyePass = false;
     bool jitter = true, skipping = true, ortho = false, listTf = false, cornellBox = false, lightGiven = false;
     float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
@@ -166,6 +168,7 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--early-termination") a.earlyTermination = parseFloat(opt, value());
         else if (opt == "--no-jitter") a.jitter = false;
         else if (opt == "--no-skipping") a.skipping = false;
+        else if (opt == "--eye-pass") a.eyePass = true;
         else if (opt == "--light-volume-scale") a.lightVolumeScale = parseFloat(opt, value());
         else if (opt == "--anisotropy") a.anisotropy = parseFloat(opt, value());
         else if (opt == "--yaw") a.yaw = parseFloat(opt, value());
@@ -255,7 +258,8 @@ int run(const Args& a) {
             .jitter = a.jitter,
             .emptySpaceSkipping = a.skipping,
             .lightVolumeScale = a.lightVolumeScale,
-            .anisotropy = a.anisotropy};
+            .anisotropy = a.anisotropy,
+            .eyePass = a.eyePass};
         scene.addVolume(*volume, glm::mat4(1.0f), options).setTransferFunction(*tf);
     }
     const sss::Bounds sceneBounds = a.cornellBox ? sss::makeCornellBox(scene.bounds()).bounds : scene.bounds();

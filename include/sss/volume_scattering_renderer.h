@@ -68,6 +68,13 @@ struct VolumeRenderOptions {
     /// holds half of the phase function's energy; g <= 0 gives the widest cone, 60 degrees
     /// (default: 0.5, about 47 degrees).
     float anisotropy = 0.5f;
+    /// The optional second pass towards the viewer: the light each voxel scatters is propagated
+    /// from the far side towards the eye with the same cone blur, and each sample gains
+    /// diffuse * eyePassStrength * TF colour * that blurred light from behind it (forward
+    /// scattering towards the viewer, a second-order term). View-dependent: rerun whenever the
+    /// view direction changes (default: off).
+    bool eyePass = false;
+    float eyePassStrength = 1.0f;  ///< >= 0 (default: 1)
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).
     bool finishEachPass = false;
 };

@@ -10,6 +10,11 @@
 //   - the light leaving the voxel, c' = (1-a) c + a rgb and l' = (1-a) l, goes to the next slice,
 //     with the TF opacity a corrected for the oblique path through the slice.
 // Outside the volume the light is unattenuated white: (1, 1, 1, 1).
+//
+// EYE_PASS 1 (the optional second pass, towards the viewer): the same sweep carries the light the
+// voxels scatter (litColour, from lit_colour.comp) instead of the TF colour, starting from no
+// light (border (0, 0, 0, 1)), so rgb becomes the cone-blurred light scattered towards the eye
+// from behind each voxel.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "volume/transfer_function.glsl"
@@ -33,6 +38,9 @@ uniform vec2 coneWeights;       // (centre tap, each of the 8 ring taps); centre
 uniform float sweepWeight;      // the blended sweep's share of the final light volume
 uniform int accumulate;         // 1: mix into the light volume (second, blended sweep)
 uniform int pyramidMask;        // 1: write only voxels whose dominant light axis is +w
+#if EYE_PASS
+uniform sampler3D litColour;
+#endif
 
 void main() {
     ivec3 sliceDims = ivec3(lightVolumeDims[sweepAxes.x], lightVolumeDims[sweepAxes.y], lightVolumeDims[sweepAxes.z]);
@@ -79,11 +87,16 @@ void main() {
         }
         chromaticity = coneWeights.x * centre.rgb + coneWeights.y * ring;
     }
-    imageStore(currentSlice, uv, vec4((1.0 - alpha) * chromaticity + alpha * sampleTf.rgb, (1.0 - alpha) * centre.a));
+#if EYE_PASS
+    vec3 source = texture(litColour, (vec3(voxel) + 0.5) / vec3(lightVolumeDims)).rgb;
+#else
+    vec3 source = sampleTf.rgb;
+#endif
+    imageStore(currentSlice, uv, vec4((1.0 - alpha) * chromaticity + alpha * source, (1.0 - alpha) * centre.a));
     // The light volume holds the light at the voxel centre: it has crossed half of this voxel's
     // path (the two halves compose to the full step above).
     float halfAlpha = correctOpacity(sampleTf.a, 0.5 * pathLength, referenceLength);
-    vec4 arriving = vec4((1.0 - halfAlpha) * chromaticity + halfAlpha * sampleTf.rgb, (1.0 - halfAlpha) * centre.a);
+    vec4 arriving = vec4((1.0 - halfAlpha) * chromaticity + halfAlpha * source, (1.0 - halfAlpha) * centre.a);
 
     if (pyramidMask != 0) {
         // Light inside the volume: six sweeps, each owning the voxels whose light arrives

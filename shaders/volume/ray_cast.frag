@@ -3,6 +3,7 @@
 //   SHADING_GRADIENT 0|1   : Blinn-Phong from the gradient (central differences)
 //   SHADING_SCATTERING 0|1 : light from the light volumes (chromaticity c, intensity l)
 //   EMPTY_SPACE_SKIPPING 0|1 : jump over bricks the transfer function makes fully transparent
+//   EYE_PASS 0|1           : add the eye pass's blurred light from behind (scattering only)
 //   LIGHT_COUNT n          : the number of lights, fixed at compile time so the loop over the
 //                            light volumes indexes its sampler array with constants (dynamic
 //                            indices make software rasterisers fetch from every array element)
@@ -48,6 +49,11 @@ uniform int meshShadows;
 uniform sampler2DArray meshShadowDepth;
 uniform mat4 worldToShadowClip[MAX_LIGHTS];
 uniform float meshShadowBias;
+
+#if EYE_PASS
+uniform sampler3D eyeVolume;    // rgb: scattered light arriving from behind, towards the viewer
+uniform float eyePassStrength;
+#endif
 
 float meshVisibility(int light, vec3 worldPosition) {
     if (meshShadows == 0) return 1.0;
@@ -114,6 +120,9 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
 #endif
     }
 #if SHADING_SCATTERING
+#if EYE_PASS
+    lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;
+#endif
     return lit;
 #else
     // Homogeneous regions have no meaningful normal: fade to the unshaded colour there.

@@ -79,11 +79,28 @@ std::vector<LightSweep> planLightSweeps(const Light& light, const GpuVolume& vol
     return sweeps;
 }
 
-LightVolumePass::LightVolumePass()
-    : m_program(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}})) {}
+LightVolumePass::LightVolumePass(bool eyePass)
+    : m_program(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
+                                  {{"EYE_PASS", eyePass ? "1" : "0"}})) {}
 
-void LightVolumePass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& worldLight,
+void LightVolumePass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light,
                           const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output) {
+    sweep(volume, transferFunction, light, model, settings, output, glm::vec4(1.0f));
+}
+
+void LightVolumePass::runEyePass(const GpuVolume& volume, const gl::Texture& transferFunction,
+                                 const gl::Texture& litColour, glm::vec3 viewDirection, const glm::mat4& model,
+                                 const LightVolumeSettings& settings, gl::Texture& output) {
+    m_program.set("litColour", 4);
+    litColour.bind(4);
+    // Light travelling towards the viewer; nothing enters from behind the volume.
+    sweep(volume, transferFunction, DirectionalLight{.direction = -viewDirection}, model, settings, output,
+          glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+}
+
+void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& worldLight,
+                            const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output,
+                            glm::vec4 outside) {
     const glm::ivec3 dims = glm::max(glm::ivec3(1), glm::ivec3(glm::round(glm::vec3(volume.dims) * settings.resolutionScale)));
     if (!output || output.size() != dims) {
         output = gl::Texture::create3D(GL_RGBA16F, dims);
@@ -130,7 +147,7 @@ void LightVolumePass::run(const GpuVolume& volume, const gl::Texture& transferFu
     transferFunction.bind(1);
     output.bindImage(0, GL_READ_WRITE);
     m_program.use();
-    const float unlit[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};
     for (size_t s = 0; s < sweeps.size(); ++s) {
         const LightSweep& sweep = sweeps[s];
         const int u = (sweep.axis + 1) % 3, v = (sweep.axis + 2) % 3;
@@ -138,10 +155,10 @@ void LightVolumePass::run(const GpuVolume& volume, const gl::Texture& transferFu
         for (gl::Texture& slice : m_slices) {
             if (!slice || glm::ivec2(slice.size()) != sliceSize) {
                 slice = gl::Texture::create2D(GL_RGBA16F, sliceSize.x, sliceSize.y);
-                slice.setWrap(GL_CLAMP_TO_BORDER);  // outside the volume: unattenuated white light
-                slice.setBorderColor(glm::vec4(1.0f));
+                slice.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume
                 slice.setLabel("light volume slice");
             }
+            slice.setBorderColor(outside);
         }
         p.set("sweepAxes", glm::ivec3(u, v, sweep.axis));
         p.set("sweepFlip", glm::ivec3(0, 0, sweep.reversed ? 1 : 0));

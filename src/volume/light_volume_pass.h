@@ -44,13 +44,21 @@ float chromaticityConeAngle(float g);
 
 class LightVolumePass {
 public:
-    LightVolumePass();
+    /// `eyePass`: the variant that carries the voxels' scattered light towards the viewer.
+    explicit LightVolumePass(bool eyePass = false);
     /// Propagates `light` (world space) through `volume` placed by `model` into `output`
     /// (re)allocated at the scaled resolution.
     void run(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light,
              const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output);
+    /// Eye pass: propagates `litColour` (same size as `output`) towards the viewer, i.e. along
+    /// `viewDirection` reversed (world space; perspective rays are taken as parallel).
+    void runEyePass(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& litColour,
+                    glm::vec3 viewDirection, const glm::mat4& model, const LightVolumeSettings& settings,
+                    gl::Texture& output);
 
 private:
+    void sweep(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light, const glm::mat4& model,
+               const LightVolumeSettings& settings, gl::Texture& output, glm::vec4 outside);
     gl::Program m_program;
     gl::Texture m_slices[2];  // ping-pong: light leaving the previous / current slice
 };

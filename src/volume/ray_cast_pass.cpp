@@ -22,21 +22,23 @@ bool usesLightVolume(VolumeShading s) {
     return s == VolumeShading::Scattering || s == VolumeShading::ScatteringGradient;
 }
 
-RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount)
+RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass)
     : m_shading(shading),
       m_emptySpaceSkipping(emptySpaceSkipping),
       m_lightCount(lightCount),
+      m_eyePass(eyePass),
       m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
                                   {{"SHADING_GRADIENT", usesGradient(shading) ? "1" : "0"},
                                    {"SHADING_SCATTERING", usesLightVolume(shading) ? "1" : "0"},
                                    {"EMPTY_SPACE_SKIPPING", emptySpaceSkipping ? "1" : "0"},
-                                   {"LIGHT_COUNT", std::to_string(lightCount)}})),
+                                   {"LIGHT_COUNT", std::to_string(lightCount)},
+                                   {"EYE_PASS", eyePass ? "1" : "0"}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
                       const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes,
-                      const MeshShadowMaps* meshShadows, const glm::mat4& model,
+                      const MeshShadowMaps* meshShadows, const gl::Texture* eyeVolume, const glm::mat4& model,
                       const std::vector<Light>& lights, const VolumeRenderOptions& options, const Camera& camera,
                       float aspect) const {
     const glm::mat4 viewProjection = camera.projection(aspect) * camera.view();
@@ -88,6 +90,11 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
             // About two shadow-map texels' worth of depth (the maps span the scene's diameter).
             p.set("meshShadowBias", 2.0f / static_cast<float>(meshShadows->depth.size().x));
             meshShadows->depth.bind(kMeshShadowUnit);
+        }
+        if (m_eyePass && eyeVolume) {
+            p.set("eyeVolume", kEyeVolumeUnit);
+            p.set("eyePassStrength", options.eyePassStrength);
+            eyeVolume->bind(kEyeVolumeUnit);
         }
         for (size_t i = 0; i < lightVolumes.size(); ++i) {
             const int unit = kFirstLightVolumeUnit + static_cast<int>(i);

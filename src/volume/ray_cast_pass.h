@@ -20,16 +20,18 @@ bool usesLightVolume(VolumeShading shading);
 
 class RayCastPass {
 public:
-    RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount);
+    RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass);
     /// Whether this pass was built for these options and lights (programs are per variant).
     bool matches(const VolumeRenderOptions& o, std::size_t lightCount) const {
-        return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping && lightCount == m_lightCount;
+        const bool eyePass = o.eyePass && usesLightVolume(o.shading);
+        return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping && lightCount == m_lightCount &&
+               eyePass == m_eyePass;
     }
     /// `sceneDepth` is a copy of the target's depth (rays stop there); `lightVolumes` has one
     /// texture per light in the scattering modes. The target is bound.
     void run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
              const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes,
-             const MeshShadowMaps* meshShadows, const glm::mat4& model, const std::vector<Light>& lights,
+             const MeshShadowMaps* meshShadows, const gl::Texture* eyeVolume, const glm::mat4& model, const std::vector<Light>& lights,
              const VolumeRenderOptions& options, const Camera& camera, float aspect) const;
 
 private:
@@ -38,6 +40,8 @@ private:
     VolumeShading m_shading;
     bool m_emptySpaceSkipping;
     std::size_t m_lightCount;
+    bool m_eyePass;
+    static constexpr int kEyeVolumeUnit = 13;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
 };

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <tuple>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -41,6 +42,8 @@ void validate(const VolumeRenderOptions& o) {
     if (!(o.lightVolumeScale > 0.0f && o.lightVolumeScale <= 1.0f))
         fail("lightVolumeScale", "in (0, 1]", o.lightVolumeScale);
     if (!(o.anisotropy > -1.0f && o.anisotropy < 1.0f)) fail("anisotropy", "in (-1, 1)", o.anisotropy);
+    if (!(o.eyePassStrength >= 0.0f) || !std::isfinite(o.eyePassStrength))
+        fail("eyePassStrength", "finite and >= 0", o.eyePassStrength);
     const glm::vec3 s = o.specular;
     if (!(s.x >= 0 && s.y >= 0 && s.z >= 0) || !std::isfinite(s.x + s.y + s.z))
         throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions::specular must be finite and >= 0");
@@ -73,6 +76,12 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<detail::LightVolumePass> lightVolumePass;  // built on first use
     std::vector<gl::Texture> lightVolumes;                  // one per light
     std::optional<LightVolumeInputs> lightVolumeInputs;     // what lightVolumes were built from
+    // Eye pass (optional): the voxels' scattered light, carried towards the viewer.
+    std::optional<detail::LightVolumePass> eyePass;
+    std::optional<gl::Program> litColourProgram;
+    std::size_t litColourLights = 0;                        // LIGHT_COUNT litColourProgram was built for
+    gl::Texture litColour, eyeVolume;
+    std::optional<std::tuple<LightVolumeInputs, glm::vec3, float, float>> eyeInputs;
     const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
     gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
 
@@ -103,6 +112,54 @@ struct VolumeScatteringRenderer::Impl {
         stats.record("light-volume",
                      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         lightVolumeInputs = inputs;
+    }
+
+    void updateEyePass(const Camera& camera) {
+        const auto inputs = std::make_tuple(*lightVolumeInputs, camera.forward(), options.ambient + options.emission,
+                                            options.diffuse);
+        if (eyeInputs == inputs) return;
+        const auto start = std::chrono::steady_clock::now();
+        const glm::ivec3 dims = lightVolumes.front().size();
+        if (!litColourProgram || litColourLights != lights.size()) {
+            litColourProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}},
+                                                 {{"LIGHT_COUNT", std::to_string(lights.size())}});
+            litColourLights = lights.size();
+        }
+        if (!litColour || litColour.size() != dims) {
+            litColour = gl::Texture::create3D(GL_RGBA16F, dims);
+            litColour.setLabel("eye pass: scattered light");
+        }
+        const gl::Program& p = *litColourProgram;
+        p.set("volumeTexture", 0);
+        p.set("transferFunction", 1);
+        p.set("transferFunctionEntries", static_cast<float>(transferFunctionTable.size().x));
+        p.set("valueScaleOffset", volume->valueScaleOffset);
+        p.set("litColour", 0);  // image unit
+        p.set("dims", dims);
+        p.set("boxMin", volume->box.min);
+        p.set("voxelSize", volume->box.size() / glm::vec3(dims));
+        p.set("modelToWorld", model);
+        p.set("ambientStrength", options.ambient + options.emission);
+        p.set("diffuseStrength", options.diffuse);
+        detail::setLightUniforms(p, lights);
+        for (size_t i = 0; i < lights.size(); ++i) {
+            p.set("lightVolumes[" + std::to_string(i) + "]", 4 + static_cast<int>(i));
+            lightVolumes[i].bind(4 + static_cast<GLuint>(i));
+        }
+        volume->texture.bind(0);
+        transferFunctionTable.bind(1);
+        litColour.bindImage(0, GL_WRITE_ONLY);
+        p.use();
+        glDispatchCompute(static_cast<GLuint>((dims.x + 3) / 4), static_cast<GLuint>((dims.y + 3) / 4),
+                          static_cast<GLuint>((dims.z + 3) / 4));
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        glUseProgram(0);
+        if (!eyePass) eyePass.emplace(true);
+        eyePass->runEyePass(*volume, transferFunctionTable, litColour, camera.forward(), model,
+                            {options.lightVolumeScale, options.anisotropy}, eyeVolume);
+        if (options.finishEachPass) finishGpuWork();
+        stats.record("eye-pass", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        eyeInputs = inputs;
     }
     RenderStats stats;
 
@@ -162,14 +219,18 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (!m_impl->volume)
         throw Error(ErrorKind::InvalidArgument, "VolumeScatteringRenderer::render: no volume set (call setVolume first)");
     // Programs are compiled lazily, once per shading mode in use.
+    const bool eyePass = m_impl->options.eyePass && detail::usesLightVolume(m_impl->options.shading);
     if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size()))
-        m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping, m_impl->lights.size());
+        m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping, m_impl->lights.size(),
+                                eyePass);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
+    if (eyePass) m_impl->updateEyePass(camera);
     const auto start = std::chrono::steady_clock::now();
     m_impl->copyDepth(target);
     target.bindForDrawing();
     m_impl->rayCast->run(*m_impl->volume, m_impl->transferFunctionTable, m_impl->sceneDepth,
                          m_impl->occupancy->texture(), m_impl->lightVolumes, m_impl->meshShadows,
+                         eyePass ? &m_impl->eyeVolume : nullptr,
                          m_impl->model, m_impl->lights, m_impl->options, camera, target.aspect());
     if (m_impl->options.finishEachPass) finishGpuWork();
     m_impl->stats.record("ray-cast",

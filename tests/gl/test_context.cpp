@@ -134,7 +134,9 @@ TEST_CASE("every embedded shader program compiles and links", "[gl][shaders]") {
                                     {{"MAX_CAMERAS", "32"}}));
     CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/shadow_depth.vert"},
                                      {GL_FRAGMENT_SHADER, "mesh/depth_only.frag"}}));
-    CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}}));
+    for (const char* eye : {"0", "1"})
+        CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}}, {{"EYE_PASS", eye}}));
+    CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}}, {{"LIGHT_COUNT", "2"}}));
     for (const char* gradient : {"0", "1"})
         for (const char* scattering : {"0", "1"})
             for (const char* skipping : {"0", "1"})
@@ -143,7 +145,8 @@ TEST_CASE("every embedded shader program compiles and links", "[gl][shaders]") {
                                                 {{"SHADING_GRADIENT", gradient},
                                                  {"SHADING_SCATTERING", scattering},
                                                  {"EMPTY_SPACE_SKIPPING", skipping},
-                                                 {"LIGHT_COUNT", "2"}}));
+                                                 {"LIGHT_COUNT", "2"},
+                                                 {"EYE_PASS", scattering}}));
     gl.requireNoErrors();
 }
 

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <vector>
 
 using namespace sss;
@@ -284,5 +285,46 @@ TEST_CASE("scattering options are validated", "[gl][volume][scattering][errors]"
     CHECK_THROWS_WITH(VolumeScatteringRenderer({.lightVolumeScale = 0.0f}), Catch::Contains("lightVolumeScale"));
     CHECK_THROWS_WITH(VolumeScatteringRenderer({.lightVolumeScale = 1.5f}), Catch::Contains("lightVolumeScale"));
     CHECK_THROWS_WITH(VolumeScatteringRenderer({.anisotropy = 1.0f}), Catch::Contains("anisotropy"));
+    gl.requireNoErrors();
+}
+
+TEST_CASE("the optional eye pass: view-dependent, off by default, adds light from behind", "[gl][volume][scattering]") {
+    test::GlTestScope gl;
+    const Volume volume = makeBlobsVolume(32);
+    const TransferFunction tf = TransferFunction::preset("bucky");
+    Camera camera = orbitCamera(volume.worldBounds(), 20, 15);
+    auto render = [&](VolumeScatteringRenderer& r) {
+        RenderTarget target(64, 36);
+        target.clear(kBackground);
+        r.render(camera, target);
+        return target.readColor();
+    };
+    auto make = [&](VolumeRenderOptions o) {
+        o.shading = VolumeShading::Scattering;
+        auto r = std::make_unique<VolumeScatteringRenderer>(o);
+        r->setVolume(volume);
+        r->setTransferFunction(tf);
+        r->setLights({DirectionalLight{.direction = {-1.0f, -0.5f, -0.5f}}});
+        return r;
+    };
+    auto plain = make({}), withEye = make({.eyePass = true}), zeroStrength = make({.eyePass = true, .eyePassStrength = 0.0f});
+    const Image a = render(*plain), b = render(*withEye), c = render(*zeroStrength);
+    double added = 0.0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            REQUIRE(c.at(x, y) == a.at(x, y));          // strength 0: exactly the plain image
+            REQUIRE(b.at(x, y).r >= a.at(x, y).r - 1e-6f);  // the pass only adds light
+            added += b.at(x, y).r - a.at(x, y).r;
+        }
+    CHECK(added > 0.5);
+    CHECK(plain->stats().runs("eye-pass") == 0);
+    CHECK(withEye->stats().runs("eye-pass") == 1);
+    // View-dependent: a camera move reruns the eye pass, never the light volume.
+    camera.orbit(20.0f, 0.0f);
+    render(*withEye);
+    render(*plain);
+    CHECK(withEye->stats().runs("eye-pass") == 2);
+    CHECK(withEye->stats().runs("light-volume") == 1);
+    CHECK(plain->stats().runs("light-volume") == 1);
     gl.requireNoErrors();
 }
