@@ -139,6 +139,26 @@ sss::DirectionalLight keyLight(const sss::Camera& camera);
 /// view-independent pass reruns) at almost the same image.
 sss::DirectionalLight nudged(const sss::DirectionalLight& light);
 
+/// Times `renderer` (a mesh or volume renderer) in two ways: "change" frames alternate `key` and
+/// its nudged twin, so every view-independent pass reruns; "fixed" frames change nothing.
+template <typename Renderer>
+std::pair<Measurement, Measurement> measureChangeAndFixed(BenchmarkContext& bench, Renderer& renderer,
+                                                          const sss::Camera& camera, const sss::DirectionalLight& key,
+                                                          const std::string& id) {
+    const sss::DirectionalLight other = nudged(key);
+    bool useOther = false;
+    Measurement change = bench.measure(
+        [&](sss::RenderTarget& t) {
+            useOther = !useOther;
+            renderer.setLights({useOther ? other : key});
+            renderer.render(camera, t);
+        },
+        id + "-change");
+    renderer.setLights({key});
+    Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed");
+    return {std::move(change), std::move(fixed)};
+}
+
 // ---- tables -----------------------------------------------------------------------------------
 
 /// Scattering-off baselines: Blinn-Phong meshes and emission-absorption / gradient volumes

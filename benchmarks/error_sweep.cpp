@@ -21,23 +21,6 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Frame time of a light change and of a fixed frame.
-std::pair<Measurement, Measurement> changeAndFixed(BenchmarkContext& bench, const std::string& id,
-                                                   const std::function<void(bool)>& setLight,
-                                                   const std::function<void(sss::RenderTarget&)>& render) {
-    bool other = false;
-    const Measurement change = bench.measure(
-        [&](sss::RenderTarget& t) {
-            other = !other;
-            setLight(other);
-            render(t);
-        },
-        id + "-change");
-    setLight(false);
-    const Measurement fixed = bench.measure(render, id + "-fixed");
-    return {change, fixed};
-}
-
 sss::Image renderOnce(BenchmarkContext& bench, const std::function<void(sss::RenderTarget&)>& render) {
     sss::RenderTarget target(bench.options().width, bench.options().height);
     target.clear({0, 0, 0, 0});
@@ -57,7 +40,6 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
     camera.setYaw(20.0f);
     camera.setPitch(10.0f);
     const sss::DirectionalLight key{.direction = {-0.6f, -0.5f, -1.0f}};
-    const sss::DirectionalLight other = nudged(key);
 
     auto start = std::chrono::steady_clock::now();
     sss::MeshReferenceOptions ro;
@@ -96,9 +78,7 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
                 // Error first, on a fresh renderer's first (single-frame) result.
                 const sss::Image image = renderOnce(bench, [&](sss::RenderTarget& t) { renderer.render(camera, t); });
                 const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference.image);
-                const auto [change, fixed] = changeAndFixed(
-                    bench, id, [&](bool o2) { renderer.setLights({o2 ? other : key}); },
-                    [&](sss::RenderTarget& t) { renderer.render(camera, t); });
+                const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, id);
 
                 Record r;
                 r.table = "error-sweep";
@@ -140,7 +120,6 @@ PlotSpec volumeSweep(BenchmarkContext& bench) {
                                     {1.0f, {0.4f, 0.7f, 1.0f}, 0.6f}});
     const sss::Camera camera = framedCamera(volume.worldBounds());
     const sss::DirectionalLight key = keyLight(camera);
-    const sss::DirectionalLight other = nudged(key);
     const glm::vec4 background{0.1f, 0.1f, 0.12f, 1.0f};  // BenchmarkContext's clear colour
 
     auto start = std::chrono::steady_clock::now();
@@ -178,9 +157,7 @@ PlotSpec volumeSweep(BenchmarkContext& bench) {
                 target.clear(background);
                 renderer.render(camera, target);
                 const sss::ErrorMetrics error = sss::computeErrorMetrics(target.readColor(), reference.image);
-                const auto [change, fixed] = changeAndFixed(
-                    bench, idBuffer, [&](bool o2) { renderer.setLights({o2 ? other : key}); },
-                    [&](sss::RenderTarget& t) { renderer.render(camera, t); });
+                const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, idBuffer);
 
                 Record r;
                 r.table = "error-sweep";

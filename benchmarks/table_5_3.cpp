@@ -49,7 +49,6 @@ void runTable53(BenchmarkContext& bench) {
         if (!mesh) continue;
         const sss::Camera camera = framedCamera(mesh->bounds());
         const sss::DirectionalLight key = keyLight(camera);
-        const sss::DirectionalLight other = nudged(key);
 
         sss::MeshScatteringRenderer blinnPhong;
         blinnPhong.setMesh(*mesh);
@@ -71,15 +70,7 @@ void runTable53(BenchmarkContext& bench) {
             renderer.setScatteringMaterial(sss::materialPreset("cream"));
             renderer.setLights({key});
             const std::string id = std::string(kTable) + "-" + model + "-k" + std::to_string(configs[c].cameras);
-            bool useOther = false;
-            const Measurement change = bench.measure(
-                [&](sss::RenderTarget& t) {
-                    useOther = !useOther;
-                    renderer.setLights({useOther ? other : key});
-                    renderer.render(camera, t);
-                },
-                id + "-change");
-            const Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed");
+            const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, id);
 
             Record r;
             r.table = kTable;

@@ -40,7 +40,6 @@ void runTable54(BenchmarkContext& bench) {
         const sss::Volume& volume = loaded->first;
         const sss::Camera camera = framedCamera(volume.worldBounds());
         const sss::DirectionalLight key = keyLight(camera);
-        const sss::DirectionalLight other = nudged(key);
         sss::VolumeScatteringRenderer renderer;
         renderer.setVolume(volume);
         renderer.setTransferFunction(sss::TransferFunction::preset(loaded->second));
@@ -52,15 +51,7 @@ void runTable54(BenchmarkContext& bench) {
             renderer.setOptions(o);
         };
         withShading(sss::VolumeShading::Scattering);
-        bool useOther = false;
-        const Measurement change = bench.measure(
-            [&](sss::RenderTarget& t) {
-                useOther = !useOther;
-                renderer.setLights({useOther ? other : key});
-                renderer.render(camera, t);
-            },
-            id + "-change");
-        const Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed");
+        const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, id);
         withShading(sss::VolumeShading::ScatteringGradient);
         const Measurement fixedGradient =
             bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed-gradient");
