@@ -81,6 +81,8 @@ camera and light:
   --light-color R,G,B       light colour (default: 1,1,1)
   --light-intensity I       light intensity (default: 1)
   --point-light X,Y,Z       use a point light at this position instead
+  --mesh-offset X,Y,Z       move the mesh (scene units; default: 0,0,0)
+  --volume-offset X,Y,Z     move the volume (its box is 1 unit on its longest side)
   --cornell-box             put the scene in a Cornell box (default light: a point light
                             under its ceiling)
   --help                    this text
@@ -105,6 +107,7 @@ struct Args {
     float lightIntensity = 1.0f;
     std::optional<glm::vec3> pointLight;
     std::optional<std::pair<double, double>> tfRange;
+    glm::vec3 meshOffset{0.0f}, volumeOffset{0.0f};
 };
 
 std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
@@ -179,6 +182,8 @@ Args parseArgs(int argc, char** argv) {
         } else if (opt == "--fov") a.fov = parseFloat(opt, value());
         else if (opt == "--ortho") a.ortho = true;
         else if (opt == "--cornell-box") a.cornellBox = true;
+        else if (opt == "--mesh-offset") a.meshOffset = parseVec3(opt, value());
+        else if (opt == "--volume-offset") a.volumeOffset = parseVec3(opt, value());
         else if (opt == "--light-dir") a.lightDir = parseVec3(opt, value()), a.lightGiven = true;
         else if (opt == "--light-color") a.lightColor = parseVec3(opt, value());
         else if (opt == "--light-intensity") a.lightIntensity = parseFloat(opt, value());
@@ -246,7 +251,7 @@ int run(const Args& a) {
         options.accumulationFrames = a.frames;
         options.millimetresPerUnit = a.scale;
         options.specular = a.specular ? 1.0f : 0.0f;
-        meshRenderer = &scene.addMesh(*mesh, glm::mat4(1.0f), options);
+        meshRenderer = &scene.addMesh(*mesh, glm::translate(glm::mat4(1.0f), a.meshOffset), options);
         meshRenderer->setScatteringMaterial(material);
         meshRenderer->setMaterial({.diffuse = a.color, .shininess = a.shininess});
     }
@@ -260,7 +265,7 @@ int run(const Args& a) {
             .lightVolumeScale = a.lightVolumeScale,
             .anisotropy = a.anisotropy,
             .eyePass = a.eyePass};
-        scene.addVolume(*volume, glm::mat4(1.0f), options).setTransferFunction(*tf);
+        scene.addVolume(*volume, glm::translate(glm::mat4(1.0f), a.volumeOffset), options).setTransferFunction(*tf);
     }
     const sss::Bounds sceneBounds = a.cornellBox ? sss::makeCornellBox(scene.bounds()).bounds : scene.bounds();
     // In a Cornell box the default light hangs under the ceiling, as in the classic scene.
