@@ -1,5 +1,6 @@
 // HybridCompositor: depth-correct compositing of meshes and volumes, shared light, caching.
 #include "support/gl_test.h"
+#include "support/scenes.h"
 #include "support/golden.h"
 
 #include <catch2/catch.hpp>
@@ -28,13 +29,6 @@ MeshRenderOptions smallScattering() {
     return o;
 }
 
-TransferFunction blobsTf(float opacityScale = 1.0f) {
-    return TransferFunction({{0.0f, {0, 0, 0}, 0.0f},
-                             {0.2f, {0.9f, 0.4f, 0.1f}, 0.0f},
-                             {0.5f, {1.0f, 0.8f, 0.3f}, 0.15f * opacityScale},
-                             {1.0f, {0.4f, 0.7f, 1.0f}, 0.6f * opacityScale}});
-}
-
 Image renderScene(HybridCompositor& scene, const Camera& camera, int frames = 3) {
     RenderTarget target(kWidth, kHeight);
     for (int i = 0; i < frames; ++i) scene.render(camera, target);
@@ -58,7 +52,7 @@ TEST_CASE("an opaque mesh in front of a volume: its pixels do not change without
         scene->setLights({DirectionalLight{.direction = {-0.5f, -0.5f, -1.0f}}});
         scene->addMesh(makeUvSphere(), inFront, smallScattering()).setScatteringMaterial(materialPreset("marble"));
     }
-    with.addVolume(makeBlobsVolume(32), glm::mat4(1.0f), {.shading = VolumeShading::Scattering}).setTransferFunction(blobsTf());
+    with.addVolume(makeBlobsVolume(32), glm::mat4(1.0f), {.shading = VolumeShading::Scattering}).setTransferFunction(test::blobsTransferFunction());
     // Volume shadows on the mesh would change it legitimately; this case is about occlusion.
     with.setOptions({.volumeShadowsOnMeshes = false});
     const Camera camera = frontCamera();
@@ -114,7 +108,7 @@ TEST_CASE("a mesh inside a volume cuts the rays at its surface (golden)", "[gl][
     scene.addMesh(makeUvSphere(), glm::scale(glm::mat4(1.0f), glm::vec3(0.28f)), smallScattering())
         .setScatteringMaterial(materialPreset("ketchup"));
     scene.addVolume(makeBlobsVolume(48), glm::mat4(1.0f), {.shading = VolumeShading::Scattering})
-        .setTransferFunction(blobsTf(0.5f));
+        .setTransferFunction(test::blobsTransferFunction(0.5f));
     Camera camera = frontCamera(2.2f);
     camera.orbit(25.0f, 15.0f);
     test::requireMatchesGolden(renderScene(scene, camera).toRgba8(), "hybrid_mesh_inside_volume");
@@ -128,7 +122,7 @@ TEST_CASE("Cornell box with a translucent mesh and a scattering volume (golden)"
         .setScatteringMaterial(materialPreset("skin1"));
     scene.addVolume(makeBlobsVolume(32), glm::translate(glm::mat4(1.0f), {0.5f, 0.4f, 0.0f}),
                     {.shading = VolumeShading::Scattering})
-        .setTransferFunction(blobsTf());
+        .setTransferFunction(test::blobsTransferFunction());
     const Bounds box = makeCornellBox(scene.bounds()).bounds;
     scene.setLights({PointLight{.position = box.center() + glm::vec3(0, 0.4f * box.size().y, 0), .intensity = 4.0f}});
     Camera camera;
@@ -189,7 +183,7 @@ TEST_CASE("a camera-only change in a hybrid scene reruns neither scattering maps
     MeshScatteringRenderer& mesh = scene.addMesh(makeTorus(), glm::mat4(1.0f), smallScattering());
     VolumeScatteringRenderer& volume =
         scene.addVolume(makeBlobsVolume(24), glm::translate(glm::mat4(1.0f), {0, 0.6f, 0}), {.shading = VolumeShading::Scattering});
-    volume.setTransferFunction(blobsTf());
+    volume.setTransferFunction(test::blobsTransferFunction());
     scene.setLights({PointLight{.position = {0, 1.5f, 0.5f}, .intensity = 3.0f}});
     Camera camera = frontCamera(4.0f);
     RenderTarget target(64, 48);

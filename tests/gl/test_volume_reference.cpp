@@ -18,17 +18,11 @@ using sss::test::orbitCamera;
 
 namespace {
 
+const TransferFunction blobsTf = test::blobsTransferFunction();
+
 constexpr int kWidth = 64, kHeight = 36;
 const glm::vec4 kBackground{0.1f, 0.1f, 0.12f, 1.0f};
 const std::vector<Light> kLights{DirectionalLight{.direction = {-1.0f, -1.0f, -0.6f}}};
-
-const TransferFunction& blobsTf() {
-    static const TransferFunction tf({{0.0f, {0, 0, 0}, 0.0f},
-                                      {0.2f, {0.9f, 0.4f, 0.1f}, 0.0f},
-                                      {0.5f, {1.0f, 0.8f, 0.3f}, 0.15f},
-                                      {1.0f, {0.4f, 0.7f, 1.0f}, 0.6f}});
-    return tf;
-}
 
 const TransferFunction& shellTf() {
     static const TransferFunction tf({{0.0f, {0, 0, 0}, 0.0f}, {0.3f, {0.9f, 0.85f, 0.7f}, 0.0f},
@@ -47,7 +41,7 @@ struct Scene {
 Scene blobsScene(VolumeShading gpu, ReferenceShading ref) {
     Volume volume = makeBlobsVolume(32);
     const Camera camera = orbitCamera(volume.worldBounds(), 30.0f, 20.0f);
-    return {std::move(volume), &blobsTf(), camera, gpu, ref};
+    return {std::move(volume), &blobsTf, camera, gpu, ref};
 }
 
 Scene shellScene() {

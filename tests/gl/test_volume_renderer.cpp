@@ -40,20 +40,12 @@ Image renderVolume(const Volume& volume, const TransferFunction& tf, const Volum
     return target.readColor();
 }
 
-const TransferFunction& blobsTf() {
-    static const TransferFunction tf({{0.0f, {0, 0, 0}, 0.0f},
-                                      {0.2f, {0.9f, 0.4f, 0.1f}, 0.0f},
-                                      {0.5f, {1.0f, 0.8f, 0.3f}, 0.15f},
-                                      {1.0f, {0.4f, 0.7f, 1.0f}, 0.6f}});
-    return tf;
-}
-
 }  // namespace
 
 TEST_CASE("emission-absorption blobs match the golden image", "[gl][volume][golden]") {
     test::GlTestScope gl;
     const Volume volume = makeBlobsVolume(64);
-    const Image image = renderVolume(volume, blobsTf(), {}, orbitCamera(volume.worldBounds(), 30.0f, 20.0f));
+    const Image image = renderVolume(volume, test::blobsTransferFunction(), {}, orbitCamera(volume.worldBounds(), 30.0f, 20.0f));
     test::requireMatchesGolden(image.toRgba8(), "volume_emission_absorption_blobs");
     gl.requireNoErrors();
 }
@@ -220,8 +212,8 @@ TEST_CASE("empty-space skipping changes no pixel in any mode", "[gl][volume]") {
     const Camera camera = orbitCamera(volume.worldBounds(), 35.0f, 15.0f);
     for (VolumeShading shading : {VolumeShading::EmissionAbsorption, VolumeShading::Gradient,
                                   VolumeShading::Scattering, VolumeShading::ScatteringGradient}) {
-        const Image skipped = renderVolume(volume, blobsTf(), {.shading = shading, .emptySpaceSkipping = true}, camera, 96, 54);
-        const Image full = renderVolume(volume, blobsTf(), {.shading = shading, .emptySpaceSkipping = false}, camera, 96, 54);
+        const Image skipped = renderVolume(volume, test::blobsTransferFunction(), {.shading = shading, .emptySpaceSkipping = true}, camera, 96, 54);
+        const Image full = renderVolume(volume, test::blobsTransferFunction(), {.shading = shading, .emptySpaceSkipping = false}, camera, 96, 54);
         int different = 0;
         for (int y = 0; y < full.height(); ++y)
             for (int x = 0; x < full.width(); ++x) different += skipped.at(x, y) != full.at(x, y) ? 1 : 0;
