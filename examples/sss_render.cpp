@@ -329,16 +329,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(parseArgs(argc, argv));
-    } catch (const UsageError& e) {
-        std::fprintf(stderr, "sss-render: %s\n", e.what());
-        return 2;
-    } catch (const sss::Error& e) {
-        std::fprintf(stderr, "sss-render: %s\n", e.what());
-        return e.kind() == sss::ErrorKind::InvalidArgument ? 2 : 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sss-render: %s\n", e.what());
-        return 1;
-    }
+    return runReportingErrors("sss-render", [&] { return run(parseArgs(argc, argv)); });
 }

@@ -1,7 +1,9 @@
 #include "common/scene_inputs.h"
 
+#include <sss/error.h>
 #include <sss/procedural.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <sstream>
@@ -100,6 +102,21 @@ sss::Volume loadSceneVolume(const std::string& path, const fs::path& dataDir, co
     }
     if (path.empty()) throw UsageError("--volume: empty path");
     return sss::Volume::loadRaw(resolveInput(path, dataDir, "volumes"), options);
+}
+
+int runReportingErrors(const char* program, const std::function<int()>& body) {
+    try {
+        return body();
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return 2;
+    } catch (const sss::Error& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return e.kind() == sss::ErrorKind::InvalidArgument ? 2 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return 1;
+    }
 }
 
 }  // namespace examples

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,5 +36,9 @@ sss::Mesh loadSceneMesh(const std::string& path, const std::filesystem::path& da
 /// procedural:blobs|shell|bucky, or a .raw file (looked up like meshes, in dataDir/volumes).
 sss::Volume loadSceneVolume(const std::string& path, const std::filesystem::path& dataDir,
                             const sss::RawLoadOptions& options = {});
+
+/// Runs `body` and maps what it throws to a message on stderr ("<program>: ...") and an exit
+/// code: 2 for bad usage (UsageError, sss::Error InvalidArgument), 1 for other failures.
+int runReportingErrors(const char* program, const std::function<int()>& body);
 
 }  // namespace examples

@@ -768,16 +768,5 @@ int run(const ViewerOptions& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(viewer::parseArgs(argc, argv));
-    } catch (const UsageError& e) {
-        std::fprintf(stderr, "sss-viewer: %s\n", e.what());
-        return 2;
-    } catch (const sss::Error& e) {
-        std::fprintf(stderr, "sss-viewer: %s\n", e.what());
-        return e.kind() == sss::ErrorKind::InvalidArgument ? 2 : 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sss-viewer: %s\n", e.what());
-        return 1;
-    }
+    return examples::runReportingErrors("sss-viewer", [&] { return run(viewer::parseArgs(argc, argv)); });
 }

@@ -357,15 +357,7 @@ private:
             if (!(best > 0.0)) continue;
             int unshadowed = 0;
             for (const glm::dvec3& p : probes) {
-                detail::BvhRay ray;
-                ray.origin = p + (s * m_offset) * tri.ng;
-                if (l.point) {
-                    ray.direction = l.vector - ray.origin;
-                    ray.tMax = 1.0;
-                } else {
-                    ray.direction = wi;
-                }
-                if (!m_bvh->anyHit(ray)) ++unshadowed;
+                if (reachesLight(p + (s * m_offset) * tri.ng, l, wi)) ++unshadowed;
             }
             f += (l.radiance.x + l.radiance.y + l.radiance.z) / 3.0 * falloff * std::min(best, 1.0) *
                  (0.01 + 0.99 * unshadowed / 4.0);
@@ -549,19 +541,24 @@ private:
             const glm::dvec3 sd = evaluateSd(m_constants, xi, ni, wi, xo, no);
             if (sd.x <= 0.0 && sd.y <= 0.0 && sd.z <= 0.0) continue;
             // Shadow ray from just off the side of the triangle that faces the light.
-            detail::BvhRay shadow;
             const double side = glm::dot(tri.ng, wi) < 0.0 ? -1.0 : 1.0;
-            shadow.origin = xi + (side * m_offset) * tri.ng;
-            if (l.point) {
-                shadow.direction = l.vector - shadow.origin;
-                shadow.tMax = 1.0;
-            } else {
-                shadow.direction = wi;
-            }
-            if (m_bvh->anyHit(shadow)) continue;
+            if (!reachesLight(xi + (side * m_offset) * tri.ng, l, wi)) continue;
             f += sd * irradiance * (entryT * cosI);
         }
         return f / pdf;
+    }
+
+    // Shadow ray: is light `l` (unit direction towards it `wi`) unoccluded from `origin`?
+    bool reachesLight(const glm::dvec3& origin, const LightInfo& l, const glm::dvec3& wi) const {
+        detail::BvhRay ray;
+        ray.origin = origin;
+        if (l.point) {
+            ray.direction = l.vector - origin;  // tMax 1 stops at the light
+            ray.tMax = 1.0;
+        } else {
+            ray.direction = wi;
+        }
+        return !m_bvh->anyHit(ray);
     }
 
     MeshReferenceOptions m_options;
