@@ -1,5 +1,7 @@
 #include "sss/camera.h"
 
+#include "format.h"
+
 #include "sss/error.h"
 
 #include <glm/ext/matrix_clip_space.hpp>
@@ -20,12 +22,10 @@ constexpr float kMinDistance = 1e-6f;
 
 template <typename T>
 std::string str(const T& v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
+    return detail::formatNumber(v);
 }
 
-std::string str(glm::vec3 v) { return "(" + str(v.x) + ", " + str(v.y) + ", " + str(v.z) + ")"; }
+std::string str(glm::vec3 v) { return detail::formatVec(v); }
 
 void requireFinite(float v, const char* what) {
     if (!std::isfinite(v))

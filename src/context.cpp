@@ -1,5 +1,6 @@
 #include "sss/context.h"
 
+#include "gl/allocation.h"
 #include "gl/gl.h"
 #include "sss/error.h"
 #include "sss/log.h"
@@ -48,6 +49,11 @@ void GLAD_API_PTR onDebugMessage(GLenum source, GLenum type, GLuint id, GLenum s
     std::string text = std::string("GL ") + debugTypeName(type) + " (" + debugSourceName(source) +
                        ", id " + std::to_string(id) + "): " + message;
     LogLevel level = LogLevel::Debug;
+    // Inside a checked allocation, out-of-memory is an answer libsss handles (gl/allocation.h).
+    if (type == GL_DEBUG_TYPE_ERROR && source == GL_DEBUG_SOURCE_API && gl::deferAllocationError(text)) {
+        ++state->other;
+        return;
+    }
     // Compile and link failures also arrive here; they are reported, with file:line locations,
     // by the Error the shader code throws, so they are not counted as GL errors.
     if (type == GL_DEBUG_TYPE_ERROR && source != GL_DEBUG_SOURCE_SHADER_COMPILER) {

@@ -1,5 +1,7 @@
 #include "sss/light.h"
 
+#include "format.h"
+
 #include "sss/error.h"
 
 #include <glm/geometric.hpp>
@@ -11,11 +13,7 @@
 namespace sss {
 namespace {
 
-std::string str(glm::vec3 v) {
-    std::ostringstream s;
-    s << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-    return s.str();
-}
+std::string str(glm::vec3 v) { return detail::formatVec(v); }
 
 bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 

@@ -1,5 +1,7 @@
 #include "sss/mesh.h"
 
+#include "format.h"
+
 #include "sss/error.h"
 
 #include <tiny_obj_loader.h>
@@ -19,11 +21,7 @@
 namespace sss {
 namespace {
 
-std::string str(glm::vec3 v) {
-    std::ostringstream s;
-    s << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-    return s.str();
-}
+std::string str(glm::vec3 v) { return detail::formatVec(v); }
 
 bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -259,7 +257,7 @@ Mesh Mesh::transformed(const glm::mat4& m) const {
     if (!std::isfinite(det) || det == 0.0f)
         throw Error(ErrorKind::InvalidArgument,
                     m_name + ": Mesh::transformed: the matrix is singular or non-finite (det " +
-                        std::to_string(det) + ")");
+                        detail::formatNumber(det) + ")");
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
 
     Mesh out;

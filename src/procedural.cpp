@@ -1,5 +1,7 @@
 #include "sss/procedural.h"
 
+#include "format.h"
+
 #include "sss/error.h"
 
 #include <glm/geometric.hpp>
@@ -18,9 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 template <typename T>
 std::string str(const T& v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
+    return detail::formatNumber(v);
 }
 
 void checkRange(const char* what, int v, int lo, int hi) {

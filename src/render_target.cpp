@@ -21,12 +21,10 @@ RenderTarget::RenderTarget(int width, int height) : m_impl(std::make_unique<Impl
                                                     std::to_string(width) + "x" + std::to_string(height));
     m_impl->width = width;
     m_impl->height = height;
-    m_impl->color = gl::Texture::create2D(GL_RGBA32F, width, height);
+    m_impl->color = gl::Texture::create2D(GL_RGBA32F, width, height, "RenderTarget colour");
     m_impl->color.setFilter(GL_NEAREST, GL_NEAREST);
-    m_impl->color.setLabel("RenderTarget colour");
-    m_impl->depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
+    m_impl->depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height, "RenderTarget depth");
     m_impl->depth.setFilter(GL_NEAREST, GL_NEAREST);
-    m_impl->depth.setLabel("RenderTarget depth");
     m_impl->framebuffer = gl::Framebuffer::create();
     m_impl->framebuffer.attach(GL_COLOR_ATTACHMENT0, m_impl->color);
     m_impl->framebuffer.attach(GL_DEPTH_ATTACHMENT, m_impl->depth);

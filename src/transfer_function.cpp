@@ -1,5 +1,7 @@
 #include "sss/transfer_function.h"
 
+#include "format.h"
+
 #include "sss/error.h"
 
 #include <nlohmann/json.hpp>
@@ -26,12 +28,10 @@ bool inUnit(float v) { return std::isfinite(v) && v >= 0.0f && v <= 1.0f; }
 
 template <typename T>
 std::string str(const T& v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
+    return detail::formatNumber(v);
 }
 
-std::string str(glm::vec3 v) { return "(" + str(v.x) + ", " + str(v.y) + ", " + str(v.z) + ")"; }
+std::string str(glm::vec3 v) { return detail::formatVec(v); }
 
 void checkColorOpacity(const std::string& prefix, glm::vec3 color, float opacity) {
     if (!inUnit(color.x) || !inUnit(color.y) || !inUnit(color.z))

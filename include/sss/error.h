@@ -10,6 +10,10 @@
 ///    names the file and the problem ("bunny.obj: face 12 references vertex 900 of 870").
 ///  - ErrorKind::Gl: the environment cannot do what is asked (no OpenGL 4.5 context, a shader that
 ///    does not compile, an incomplete framebuffer). The message says which and why.
+///  - ErrorKind::GpuLimit: the scene does not fit the GPU: a texture larger than the
+///    implementation allows (GL_MAX_3D_TEXTURE_SIZE, ...), more memory than the driver has free or
+///    than the budget set with setGpuMemoryBudget() (include/sss/gpu_memory.h), or
+///    GL_OUT_OF_MEMORY. The message names the object, the size asked and the limit.
 /// Nothing in libsss terminates the process or returns a silently wrong result on bad input.
 /// Internal invariants (bugs in libsss itself) are assert()s.
 
@@ -18,7 +22,7 @@
 
 namespace sss {
 
-enum class ErrorKind { InvalidArgument, Io, Parse, Gl };
+enum class ErrorKind { InvalidArgument, Io, Parse, Gl, GpuLimit };
 
 /// The one exception type libsss throws; what() is a complete, human-readable message.
 class Error : public std::runtime_error {

@@ -6,6 +6,7 @@
 #include "sss/camera.h"
 #include "sss/context.h"
 #include "sss/error.h"
+#include "sss/gpu_memory.h"
 #ifdef SSS_WITH_GLFW
 #include "sss/glfw_context.h"
 #endif

@@ -36,6 +36,16 @@ struct VolumeRendererAccess;  // hybrid-scene hooks (src/hybrid/shared_lighting.
 
 enum class VolumeShading { EmissionAbsorption, Gradient, Scattering, ScatteringGradient };
 
+/// What the renderer does when a light volume does not fit the GPU at the requested
+/// resolution (a side over GL_MAX_3D_TEXTURE_SIZE, the memory budget, or GL_OUT_OF_MEMORY).
+enum class LightVolumeFallback {
+    /// Halve the light-volume resolution until it fits, logging a warning that names the size
+    /// asked, the limit and the resolution used (VolumeScatteringRenderer::lightVolumeScaleInUse).
+    Reduce,
+    /// Throw the Error(ErrorKind::GpuLimit).
+    Fail,
+};
+
 struct VolumeRenderOptions {
     VolumeShading shading = VolumeShading::EmissionAbsorption;
     /// Distance between samples along a ray, in voxels of the smallest spacing, > 0 (default: 1).
@@ -64,6 +74,8 @@ struct VolumeRenderOptions {
     // Light volume (Scattering, ScatteringGradient):
     /// Light-volume resolution relative to the data, in (0, 1] (default: 1, as the thesis).
     float lightVolumeScale = 1.0f;
+    /// When the light volume does not fit the GPU (default: Reduce, with a warning).
+    LightVolumeFallback lightVolumeFallback = LightVolumeFallback::Reduce;
     /// Henyey-Greenstein g in (-1, 1): the forward cone over which the light's colour is blurred
     /// holds half of the phase function's energy; g <= 0 gives the widest cone, 60 degrees
     /// (default: 0.5, about 47 degrees).
@@ -98,8 +110,14 @@ public:
     void setOptions(const VolumeRenderOptions& options);
     const VolumeRenderOptions& options() const;
 
-    /// Throws Error(InvalidArgument) if no volume is set.
+    /// Throws Error(InvalidArgument) if no volume is set, Error(GpuLimit) if the scene does not
+    /// fit the GPU (see LightVolumeFallback for the light volumes).
     void render(const Camera& camera, RenderTarget& target);
+
+    /// The light-volume resolution relative to the data that the last light-volume build used:
+    /// options().lightVolumeScale unless LightVolumeFallback::Reduce had to lower it (0 before
+    /// the first build).
+    float lightVolumeScaleInUse() const;
 
     const RenderStats& stats() const;
 

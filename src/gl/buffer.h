@@ -1,8 +1,10 @@
 #pragma once
+#include "gl/allocation.h"
 #include "gl/object.h"
 
 #include <cstddef>
-#include <span>
+#include <string_view>
+#include <utility>
 
 namespace sss::gl {
 
@@ -16,17 +18,16 @@ class Buffer : public Object<BufferTraits> {
 public:
     Buffer() = default;
     /// @param flags glNamedBufferStorage flags; GL_DYNAMIC_STORAGE_BIT allows upload().
-    static Buffer create(std::size_t bytes, const void* data, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
-    template <typename T>
-    static Buffer fromSpan(std::span<const T> items, GLbitfield flags = 0) {
-        return create(items.size_bytes(), items.data(), flags);
-    }
+    /// @param label names the buffer in KHR_debug messages and in Error(GpuLimit) (gl/allocation.h).
+    static Buffer create(std::size_t bytes, const void* data, GLbitfield flags, std::string_view label);
     void upload(std::size_t offset, std::size_t bytes, const void* data) const;
     std::size_t size() const { return m_size; }
 
 private:
-    explicit Buffer(GLuint id, std::size_t size) : Object(id), m_size(size) {}
+    Buffer(GLuint id, std::size_t size, MemoryReservation memory)
+        : Object(id), m_size(size), m_memory(std::move(memory)) {}
     std::size_t m_size = 0;
+    MemoryReservation m_memory;
 };
 
 }  // namespace sss::gl

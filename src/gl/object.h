@@ -35,6 +35,9 @@ public:
         if (m_id) glObjectLabel(Traits::labelNamespace, m_id, static_cast<GLsizei>(label.size()), label.data());
     }
 
+    /// Gives up ownership without deleting the name.
+    [[nodiscard]] GLuint release() noexcept { return std::exchange(m_id, 0); }
+
     void reset() noexcept {
         if (m_id) Traits::destroy(m_id);
         m_id = 0;

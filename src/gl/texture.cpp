@@ -1,35 +1,100 @@
 #include "gl/texture.h"
 
+#include "sss/error.h"
+#include "sss/gpu_memory.h"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
 namespace sss::gl {
 
-Texture Texture::create2D(GLenum internalFormat, int width, int height, int levels) {
+std::uint64_t bytesPerTexel(GLenum internalFormat) {
+    switch (internalFormat) {
+        case GL_R8: return 1;
+        case GL_R16: case GL_R16F: return 2;
+        case GL_RGBA8: case GL_R32F: case GL_RG16F: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
+        case GL_RGBA16F: case GL_RG32F: return 8;
+        case GL_RGBA32F: return 16;
+        default: throw Error(ErrorKind::InvalidArgument, "gl::Texture: internal format " + std::to_string(internalFormat) +
+                                                             " has no known size (add it to bytesPerTexel)");
+    }
+}
+
+const char* formatName(GLenum internalFormat) {
+    switch (internalFormat) {
+        case GL_R8: return "R8";
+        case GL_R16: return "R16";
+        case GL_R16F: return "R16F";
+        case GL_RGBA8: return "RGBA8";
+        case GL_R32F: return "R32F";
+        case GL_RG16F: return "RG16F";
+        case GL_DEPTH_COMPONENT32F: return "DEPTH32F";
+        case GL_DEPTH24_STENCIL8: return "DEPTH24_STENCIL8";
+        case GL_RGBA16F: return "RGBA16F";
+        case GL_RG32F: return "RG32F";
+        case GL_RGBA32F: return "RGBA32F";
+        default: return "texture";
+    }
+}
+
+Texture Texture::create(GLenum target, GLenum internalFormat, glm::ivec3 size, int levels, std::string_view label) {
+    const char* kind = target == GL_TEXTURE_3D ? "3D" : target == GL_TEXTURE_2D_ARRAY ? "2D array" : "2D";
+    std::string description = std::to_string(size.x) + "x" + std::to_string(size.y);
+    if (target != GL_TEXTURE_2D) description += "x" + std::to_string(size.z);
+    description += std::string(" ") + formatName(internalFormat) + " " + kind + " texture";
+    const std::string subject = std::string(label) + ": " + description;
+    if (size.x < 1 || size.y < 1 || size.z < 1 || levels < 1)
+        throw Error(ErrorKind::InvalidArgument, subject + ": every side and the level count must be >= 1");
+
+    const GpuLimits limits = queryGpuLimits();
+    auto requireAtMost = [&](int value, int limit, const char* name, const char* what) {
+        if (value > limit)
+            throw Error(ErrorKind::GpuLimit, subject + ": " + what + " " + std::to_string(value) + " exceeds " + name +
+                                                 " (" + std::to_string(limit) + " on this GPU)");
+    };
+    if (target == GL_TEXTURE_3D) {
+        const int side = std::max({size.x, size.y, size.z});
+        requireAtMost(side, limits.max3DTextureSize, "GL_MAX_3D_TEXTURE_SIZE", "side");
+    } else {
+        requireAtMost(std::max(size.x, size.y), limits.maxTextureSize, "GL_MAX_TEXTURE_SIZE", "side");
+        if (target == GL_TEXTURE_2D_ARRAY)
+            requireAtMost(size.z, limits.maxArrayTextureLayers, "GL_MAX_ARRAY_TEXTURE_LAYERS", "layer count");
+    }
+
+    std::uint64_t bytes = 0;
+    for (int level = 0; level < levels; ++level) {
+        const auto side = [&](int s) { return static_cast<std::uint64_t>(std::max(1, s >> level)); };
+        const std::uint64_t depth = target == GL_TEXTURE_3D ? side(size.z) : static_cast<std::uint64_t>(size.z);
+        bytes += side(size.x) * side(size.y) * depth * bytesPerTexel(internalFormat);
+    }
+
     GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &id);
-    glTextureStorage2D(id, levels, internalFormat, width, height);
-    Texture t(id, GL_TEXTURE_2D, internalFormat, {width, height, 1});
+    glCreateTextures(target, 1, &id);
+    Object<TextureTraits> owner(id);  // deletes the name if the allocation throws
+    MemoryReservation memory = allocateChecked(label, description, bytes, [&] {
+        if (target == GL_TEXTURE_2D)
+            glTextureStorage2D(id, levels, internalFormat, size.x, size.y);
+        else
+            glTextureStorage3D(id, levels, internalFormat, size.x, size.y, size.z);
+    });
+    Texture t(owner.release(), target, internalFormat, size, std::move(memory));
     t.setFilter(GL_LINEAR, GL_LINEAR);
     t.setWrap(GL_CLAMP_TO_EDGE);
+    t.setLabel(label);
     return t;
 }
 
-Texture Texture::create2DArray(GLenum internalFormat, int width, int height, int layers) {
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-    glTextureStorage3D(id, 1, internalFormat, width, height, layers);
-    Texture t(id, GL_TEXTURE_2D_ARRAY, internalFormat, {width, height, layers});
-    t.setFilter(GL_LINEAR, GL_LINEAR);
-    t.setWrap(GL_CLAMP_TO_EDGE);
-    return t;
+Texture Texture::create2D(GLenum internalFormat, int width, int height, std::string_view label, int levels) {
+    return create(GL_TEXTURE_2D, internalFormat, {width, height, 1}, levels, label);
 }
 
-Texture Texture::create3D(GLenum internalFormat, glm::ivec3 size) {
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_3D, 1, &id);
-    glTextureStorage3D(id, 1, internalFormat, size.x, size.y, size.z);
-    Texture t(id, GL_TEXTURE_3D, internalFormat, size);
-    t.setFilter(GL_LINEAR, GL_LINEAR);
-    t.setWrap(GL_CLAMP_TO_EDGE);
-    return t;
+Texture Texture::create2DArray(GLenum internalFormat, int width, int height, int layers, std::string_view label) {
+    return create(GL_TEXTURE_2D_ARRAY, internalFormat, {width, height, layers}, 1, label);
+}
+
+Texture Texture::create3D(GLenum internalFormat, glm::ivec3 size, std::string_view label) {
+    return create(GL_TEXTURE_3D, internalFormat, size, 1, label);
 }
 
 void Texture::upload(GLenum format, GLenum type, const void* pixels) const {

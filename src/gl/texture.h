@@ -1,8 +1,11 @@
 #pragma once
+#include "gl/allocation.h"
 #include "gl/object.h"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+
+#include <string_view>
 
 namespace sss::gl {
 
@@ -12,13 +15,15 @@ struct TextureTraits {
 };
 
 /// Immutable-storage texture: 2D, 2D array or 3D (glTextureStorage*). Sampling state defaults to
-/// linear filtering and clamp-to-edge.
+/// linear filtering and clamp-to-edge. `label` names the texture in KHR_debug messages and in
+/// the Error(GpuLimit) thrown when it does not fit: a side over the implementation's limit, more
+/// memory than the budget or the driver has, or GL_OUT_OF_MEMORY (gl/allocation.h).
 class Texture : public Object<TextureTraits> {
 public:
     Texture() = default;
-    static Texture create2D(GLenum internalFormat, int width, int height, int levels = 1);
-    static Texture create2DArray(GLenum internalFormat, int width, int height, int layers);
-    static Texture create3D(GLenum internalFormat, glm::ivec3 size);
+    static Texture create2D(GLenum internalFormat, int width, int height, std::string_view label, int levels = 1);
+    static Texture create2DArray(GLenum internalFormat, int width, int height, int layers, std::string_view label);
+    static Texture create3D(GLenum internalFormat, glm::ivec3 size, std::string_view label);
 
     /// Uploads a whole 2D image, 3D volume, or (for arrays) all layers.
     void upload(GLenum format, GLenum type, const void* pixels) const;
@@ -35,13 +40,20 @@ public:
     GLenum target() const { return m_target; }
     GLenum internalFormat() const { return m_format; }
     glm::ivec3 size() const { return m_size; }  ///< width, height, depth or layers (1 for 2D)
+    std::uint64_t bytes() const { return m_memory.bytes(); }
 
 private:
-    Texture(GLuint id, GLenum target, GLenum format, glm::ivec3 size)
-        : Object(id), m_target(target), m_format(format), m_size(size) {}
+    static Texture create(GLenum target, GLenum internalFormat, glm::ivec3 size, int levels, std::string_view label);
+    Texture(GLuint id, GLenum target, GLenum format, glm::ivec3 size, MemoryReservation memory)
+        : Object(id), m_target(target), m_format(format), m_size(size), m_memory(std::move(memory)) {}
     GLenum m_target = 0;
     GLenum m_format = 0;
     glm::ivec3 m_size{0};
+    MemoryReservation m_memory;
 };
+
+/// Bytes per texel of the internal formats libsss uses; "RGBA16F" etc. for messages.
+std::uint64_t bytesPerTexel(GLenum internalFormat);
+const char* formatName(GLenum internalFormat);
 
 }  // namespace sss::gl

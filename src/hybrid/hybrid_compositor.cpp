@@ -80,10 +80,9 @@ struct HybridCompositor::Impl {
         const int size = options.shadowMapResolution;
         const int layers = std::max<int>(1, static_cast<int>(lights.size()));
         if (!meshShadows.depth || meshShadows.depth.size() != glm::ivec3(size, size, layers)) {
-            meshShadows.depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, layers);
+            meshShadows.depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, layers, "hybrid mesh shadow maps");
             meshShadows.depth.setFilter(GL_NEAREST, GL_NEAREST);
             meshShadows.depth.setWrap(GL_CLAMP_TO_EDGE);
-            meshShadows.depth.setLabel("hybrid mesh shadow maps");
         }
         if (!shadowProgram)
             shadowProgram = gl::Program::link({{GL_VERTEX_SHADER, "mesh/shadow_depth.vert"},

@@ -13,8 +13,8 @@ GpuMesh GpuMesh::upload(const Mesh& mesh) {
         interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
     }
     GpuMesh gpu;
-    gpu.vertices = gl::Buffer::create(interleaved.size() * sizeof(float), interleaved.data(), 0);
-    gpu.indices = gl::Buffer::create(mesh.indices().size() * sizeof(uint32_t), mesh.indices().data(), 0);
+    gpu.vertices = gl::Buffer::create(interleaved.size() * sizeof(float), interleaved.data(), 0, "mesh vertices");
+    gpu.indices = gl::Buffer::create(mesh.indices().size() * sizeof(uint32_t), mesh.indices().data(), 0, "mesh indices");
     gpu.vertexArray = gl::VertexArray::create();
     gpu.vertexArray.setAttribute(0, gpu.vertices, 3, 0, 6 * sizeof(float));
     gpu.vertexArray.setAttribute(1, gpu.vertices, 3, 3 * sizeof(float), 6 * sizeof(float));

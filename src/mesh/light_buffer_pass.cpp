@@ -59,13 +59,11 @@ void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std
                           int resolution) {
     const int layers = std::max<int>(1, static_cast<int>(lights.size()));
     if (!m_positions || m_positions.size() != glm::ivec3(resolution, resolution, layers)) {
-        m_positions = gl::Texture::create2DArray(GL_RGBA32F, resolution, resolution, layers);
+        m_positions = gl::Texture::create2DArray(GL_RGBA32F, resolution, resolution, layers, "light buffer positions");
         // Bilinear, so samples land on the surface between texel centres rather than snapping to
         // them; where the four texels are not all covered (w < 1) the sampler skips the sample.
-        m_positions.setLabel("light buffer positions");
-        m_normals = gl::Texture::create2DArray(GL_RGBA16F, resolution, resolution, layers);
-        m_normals.setLabel("light buffer normals");
-        m_depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, resolution, resolution, layers);
+        m_normals = gl::Texture::create2DArray(GL_RGBA16F, resolution, resolution, layers, "light buffer normals");
+        m_depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, resolution, resolution, layers, "light buffer depth");
         m_framebuffer = gl::Framebuffer::create();
         m_framebuffer.attach(GL_COLOR_ATTACHMENT0, m_positions);
         m_framebuffer.attach(GL_COLOR_ATTACHMENT1, m_normals);

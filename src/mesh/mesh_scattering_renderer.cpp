@@ -1,5 +1,7 @@
 #include "sss/mesh_scattering_renderer.h"
 
+#include "format.h"
+
 #include "light_uniforms.h"
 #include "mesh/blinn_phong_pass.h"
 #include "mesh/combine_pass.h"
@@ -21,9 +23,9 @@ namespace sss {
 namespace {
 
 void validate(const MeshRenderOptions& o) {
-    auto fail = [](const std::string& field, const std::string& rule, double value) {
+    auto fail = [](const std::string& field, const std::string& rule, auto value) {
         throw Error(ErrorKind::InvalidArgument,
-                    "MeshRenderOptions::" + field + " must be " + rule + ", got " + std::to_string(value));
+                    "MeshRenderOptions::" + field + " must be " + rule + ", got " + detail::formatNumber(value));
     };
     auto finite = [](double v) { return std::isfinite(v); };
     if (!(o.gamma > 0.0f) || !finite(o.gamma)) fail("gamma", "a finite value > 0", o.gamma);
@@ -71,7 +73,7 @@ void validate(const BlinnPhongMaterial& m) {
         throw Error(ErrorKind::InvalidArgument, "BlinnPhongMaterial: colours must be finite and >= 0");
     if (!(m.shininess > 0.0f) || !std::isfinite(m.shininess))
         throw Error(ErrorKind::InvalidArgument,
-                    "BlinnPhongMaterial::shininess must be finite and > 0, got " + std::to_string(m.shininess));
+                    "BlinnPhongMaterial::shininess must be finite and > 0, got " + detail::formatNumber(m.shininess));
 }
 
 }  // namespace

@@ -57,11 +57,9 @@ ScatteringMapPass::ScatteringMapPass(int cameras)
 
 void ScatteringMapPass::reset(int resolution) {
     if (!m_maps || m_maps.size() != glm::ivec3(resolution, resolution, m_cameras)) {
-        m_maps = gl::Texture::create2DArray(GL_RGBA32F, resolution, resolution, m_cameras);
-        m_maps.setLabel("scattering maps");
-        m_depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, resolution, resolution, m_cameras);
+        m_maps = gl::Texture::create2DArray(GL_RGBA32F, resolution, resolution, m_cameras, "scattering maps");
+        m_depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, resolution, resolution, m_cameras, "scattering map depth");
         m_depth.setFilter(GL_NEAREST, GL_NEAREST);
-        m_depth.setLabel("scattering map depth");
         m_framebuffer = gl::Framebuffer::create();
         m_framebuffer.attach(GL_COLOR_ATTACHMENT0, m_maps);
         m_framebuffer.attach(GL_DEPTH_ATTACHMENT, m_depth);

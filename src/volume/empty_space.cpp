@@ -29,9 +29,8 @@ OccupancyGrid::OccupancyGrid(const Volume& volume) {
                             m_max[i] = std::max(m_max[i], value);
                         }
             }
-    m_texture = gl::Texture::create3D(GL_R8, m_bricks);
+    m_texture = gl::Texture::create3D(GL_R8, m_bricks, "empty-space occupancy");
     m_texture.setFilter(GL_NEAREST, GL_NEAREST);
-    m_texture.setLabel("empty-space occupancy");
 }
 
 void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueScaleOffset) {

@@ -9,9 +9,8 @@ GpuVolume GpuVolume::upload(const Volume& volume) {
     gpu.dims = volume.dims();
     gpu.box = volume.worldBounds();
     const bool wide = volume.type() == VoxelType::UInt16;
-    gpu.texture = gl::Texture::create3D(wide ? GL_R16 : GL_R8, gpu.dims);
+    gpu.texture = gl::Texture::create3D(wide ? GL_R16 : GL_R8, gpu.dims, "volume");
     gpu.texture.upload(GL_RED, wide ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, volume.bytes().data());
-    gpu.texture.setLabel("volume");
     // 8-bit data maps 0..255 onto the TF domain as is (the thesis's convention); 16-bit data
     // usually fills only part of its range (12-bit CT), so its actual min..max is used.
     if (wide) {

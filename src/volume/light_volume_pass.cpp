@@ -63,7 +63,7 @@ std::vector<LightSweep> planLightSweeps(const Light& light, const GpuVolume& vol
             // Each sweep starts at the first slice beyond the light, so nothing it passes through
             // lies behind the light.
             const int forward = std::clamp(static_cast<int>(std::ceil(slice)), 0, dims[axis] - 1);
-            const int backward = std::clamp(static_cast<int>(std::ceil(dims[axis] - 1 - slice)), 0, dims[axis] - 1);
+            const int backward = std::clamp(static_cast<int>(std::ceil(static_cast<float>(dims[axis] - 1) - slice)), 0, dims[axis] - 1);
             sweeps.push_back({axis, false, 1.0f, forward, true});
             sweeps.push_back({axis, true, 1.0f, backward, true});
         }
@@ -79,9 +79,14 @@ std::vector<LightSweep> planLightSweeps(const Light& light, const GpuVolume& vol
     return sweeps;
 }
 
+glm::ivec3 lightVolumeDims(glm::ivec3 volumeDims, float scale) {
+    return glm::max(glm::ivec3(1), glm::ivec3(glm::round(glm::vec3(volumeDims) * scale)));
+}
+
 LightVolumePass::LightVolumePass(bool eyePass)
     : m_program(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
-                                  {{"EYE_PASS", eyePass ? "1" : "0"}})) {}
+                                  {{"EYE_PASS", eyePass ? "1" : "0"}})),
+      m_eyePass(eyePass) {}
 
 void LightVolumePass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light,
                           const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output) {
@@ -101,10 +106,9 @@ void LightVolumePass::runEyePass(const GpuVolume& volume, const gl::Texture& tra
 void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& worldLight,
                             const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output,
                             glm::vec4 outside) {
-    const glm::ivec3 dims = glm::max(glm::ivec3(1), glm::ivec3(glm::round(glm::vec3(volume.dims) * settings.resolutionScale)));
+    const glm::ivec3 dims = lightVolumeDims(volume.dims, settings.resolutionScale);
     if (!output || output.size() != dims) {
-        output = gl::Texture::create3D(GL_RGBA16F, dims);
-        output.setLabel("light volume");
+        output = gl::Texture::create3D(GL_RGBA16F, dims, m_eyePass ? "eye-pass volume" : "light volume");
     }
     // The light in the volume's model space, where the propagation works.
     const glm::mat4 toModel = glm::inverse(model);
@@ -154,9 +158,8 @@ void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transfer
         const glm::ivec2 sliceSize(dims[u], dims[v]);
         for (gl::Texture& slice : m_slices) {
             if (!slice || glm::ivec2(slice.size()) != sliceSize) {
-                slice = gl::Texture::create2D(GL_RGBA16F, sliceSize.x, sliceSize.y);
+                slice = gl::Texture::create2D(GL_RGBA16F, sliceSize.x, sliceSize.y, "light volume slice");
                 slice.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume
-                slice.setLabel("light volume slice");
             }
             slice.setBorderColor(outside);
         }

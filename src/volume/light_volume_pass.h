@@ -39,6 +39,9 @@ struct LightSweep {
 /// The sweeps for `light` (already in the volume's model space) over `volume`.
 std::vector<LightSweep> planLightSweeps(const Light& modelSpaceLight, const GpuVolume& volume, glm::ivec3 dims);
 
+/// The light volume's size for a volume of `volumeDims` at `scale` (each side at least 1).
+glm::ivec3 lightVolumeDims(glm::ivec3 volumeDims, float scale);
+
 /// Cone half-angle (radians) holding half the scattered energy of HG(g), clamped to 60 degrees.
 float chromaticityConeAngle(float g);
 
@@ -60,6 +63,7 @@ private:
     void sweep(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light, const glm::mat4& model,
                const LightVolumeSettings& settings, gl::Texture& output, glm::vec4 outside);
     gl::Program m_program;
+    bool m_eyePass = false;
     gl::Texture m_slices[2];  // ping-pong: light leaving the previous / current slice
 };
 

@@ -1,5 +1,7 @@
 #include "sss/volume_reference.h"
 
+#include "format.h"
+
 #include "sss/error.h"
 #include "sss/image_compare.h"
 
@@ -34,22 +36,11 @@ constexpr double kMinStepVoxels = 1.0 / 1024.0;
 
 template <typename T>
 std::string str(const T& v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
+    return detail::formatNumber(v);
 }
 
-std::string str(glm::dvec3 v) {
-    std::ostringstream s;
-    s << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-    return s.str();
-}
-
-std::string str(glm::dvec4 v) {
-    std::ostringstream s;
-    s << '(' << v.x << ", " << v.y << ", " << v.z << ", " << v.w << ')';
-    return s.str();
-}
+std::string str(glm::dvec3 v) { return detail::formatVec(v); }
+std::string str(glm::dvec4 v) { return detail::formatVec(v); }
 
 bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 

@@ -1,8 +1,11 @@
 #include "sss/volume_scattering_renderer.h"
 
+#include "format.h"
+
 #include "gl/texture.h"
 #include "light_uniforms.h"
 #include "sss/error.h"
+#include "sss/log.h"
 #include "sss/timing.h"
 #include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
@@ -16,6 +19,7 @@
 #include <cstdint>
 #include <tuple>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
 
@@ -23,16 +27,16 @@ namespace sss {
 namespace {
 
 void validate(const VolumeRenderOptions& o) {
-    auto fail = [](const std::string& field, const std::string& rule, float value) {
+    auto fail = [](const std::string& field, const std::string& rule, auto value) {
         throw Error(ErrorKind::InvalidArgument,
-                    "VolumeRenderOptions::" + field + " must be " + rule + ", got " + std::to_string(value));
+                    "VolumeRenderOptions::" + field + " must be " + rule + ", got " + detail::formatNumber(value));
     };
     if (!(o.stepSize > 0.0f) || !std::isfinite(o.stepSize)) fail("stepSize", "finite and > 0 (voxels)", o.stepSize);
     if (o.stepSize < 0.01f) fail("stepSize", "at least 0.01 voxels (smaller steps cannot finish)", o.stepSize);
     if (!(o.earlyTermination > 0.0f && o.earlyTermination <= 1.0f))
         fail("earlyTermination", "in (0, 1]", o.earlyTermination);
     if (o.transferFunctionEntries < 2 || o.transferFunctionEntries > 65536)
-        fail("transferFunctionEntries", "in 2..65536", static_cast<float>(o.transferFunctionEntries));
+        fail("transferFunctionEntries", "in 2..65536", o.transferFunctionEntries);
     if (!(o.ambient >= 0.0f) || !std::isfinite(o.ambient)) fail("ambient", "finite and >= 0", o.ambient);
     if (!(o.diffuse >= 0.0f) || !std::isfinite(o.diffuse)) fail("diffuse", "finite and >= 0", o.diffuse);
     if (!(o.emission >= 0.0f) || !std::isfinite(o.emission)) fail("emission", "finite and >= 0", o.emission);
@@ -47,6 +51,13 @@ void validate(const VolumeRenderOptions& o) {
     const glm::vec3 s = o.specular;
     if (!(s.x >= 0 && s.y >= 0 && s.z >= 0) || !std::isfinite(s.x + s.y + s.z))
         throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions::specular must be finite and >= 0");
+}
+
+// "0.5", "0.125": the shortest text that reads back as the value.
+std::string formatScale(float value) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", static_cast<double>(value));
+    return buf;
 }
 
 // Everything the light volumes depend on; they are rebuilt only when this changes.
@@ -76,6 +87,7 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<detail::LightVolumePass> lightVolumePass;  // built on first use
     std::vector<gl::Texture> lightVolumes;                  // one per light
     std::optional<LightVolumeInputs> lightVolumeInputs;     // what lightVolumes were built from
+    float lightVolumeScaleInUse = 0.0f;                     // lower than asked after a fallback
     // Eye pass (optional): the voxels' scattered light, carried towards the viewer.
     std::optional<detail::LightVolumePass> eyePass;
     std::optional<gl::Program> litColourProgram;
@@ -90,9 +102,8 @@ struct VolumeScatteringRenderer::Impl {
     void copyDepth(const RenderTarget& target) {
         const glm::ivec3 size(target.width(), target.height(), 1);
         if (!sceneDepth || sceneDepth.size() != size) {
-            sceneDepth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size.x, size.y);
+            sceneDepth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size.x, size.y, "volume scene depth");
             sceneDepth.setFilter(GL_NEAREST, GL_NEAREST);
-            sceneDepth.setLabel("volume scene depth");
         }
         glCopyImageSubData(target.depthTextureId(), GL_TEXTURE_2D, 0, 0, 0, 0, sceneDepth.id(), GL_TEXTURE_2D, 0,
                            0, 0, 0, size.x, size.y, 1);
@@ -104,10 +115,32 @@ struct VolumeScatteringRenderer::Impl {
         if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
         if (!lightVolumePass) lightVolumePass.emplace();
         const auto start = std::chrono::steady_clock::now();
-        lightVolumes.resize(lights.size());
-        for (size_t i = 0; i < lights.size(); ++i)
-            lightVolumePass->run(*volume, transferFunctionTable, lights[i], model,
-                                 {options.lightVolumeScale, options.anisotropy}, lightVolumes[i]);
+        float scale = options.lightVolumeScale;
+        for (;;) {
+            try {
+                lightVolumes.resize(lights.size());
+                for (size_t i = 0; i < lights.size(); ++i)
+                    lightVolumePass->run(*volume, transferFunctionTable, lights[i], model, {scale, options.anisotropy},
+                                         lightVolumes[i]);
+                break;
+            } catch (const Error& e) {
+                const glm::ivec3 dims = detail::lightVolumeDims(volume->dims, scale);
+                if (e.kind() != ErrorKind::GpuLimit || options.lightVolumeFallback == LightVolumeFallback::Fail ||
+                    std::max({dims.x, dims.y, dims.z}) <= 1)
+                    throw;
+                // Free what was allocated before trying the smaller size.
+                lightVolumes.clear();
+                litColour = {};
+                eyeVolume = {};
+                scale *= 0.5f;
+                const glm::ivec3 reduced = detail::lightVolumeDims(volume->dims, scale);
+                log(LogLevel::Warning, std::string(e.what()) + "; the light volume falls back to " +
+                                           std::to_string(reduced.x) + "x" + std::to_string(reduced.y) + "x" +
+                                           std::to_string(reduced.z) + " (lightVolumeScale " + formatScale(scale) +
+                                           "; LightVolumeFallback::Fail makes this an error)");
+            }
+        }
+        lightVolumeScaleInUse = scale;
         if (options.finishEachPass) finishGpuWork();
         stats.record("light-volume",
                      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
@@ -126,8 +159,7 @@ struct VolumeScatteringRenderer::Impl {
             litColourLights = lights.size();
         }
         if (!litColour || litColour.size() != dims) {
-            litColour = gl::Texture::create3D(GL_RGBA16F, dims);
-            litColour.setLabel("eye pass: scattered light");
+            litColour = gl::Texture::create3D(GL_RGBA16F, dims, "eye pass: scattered light");
         }
         const gl::Program& p = *litColourProgram;
         p.set("volumeTexture", 0);
@@ -156,7 +188,7 @@ struct VolumeScatteringRenderer::Impl {
         glUseProgram(0);
         if (!eyePass) eyePass.emplace(true);
         eyePass->runEyePass(*volume, transferFunctionTable, litColour, camera.forward(), model,
-                            {options.lightVolumeScale, options.anisotropy}, eyeVolume);
+                            {lightVolumeScaleInUse, options.anisotropy}, eyeVolume);
         if (options.finishEachPass) finishGpuWork();
         stats.record("eye-pass", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         eyeInputs = inputs;
@@ -166,8 +198,7 @@ struct VolumeScatteringRenderer::Impl {
     void uploadTransferFunction() {
         const std::vector<glm::vec4> table = transferFunction.table(options.transferFunctionEntries);
         if (!transferFunctionTable || transferFunctionTable.size().x != static_cast<int>(table.size())) {
-            transferFunctionTable = gl::Texture::create2D(GL_RGBA32F, static_cast<int>(table.size()), 1);
-            transferFunctionTable.setLabel("transfer function");
+            transferFunctionTable = gl::Texture::create2D(GL_RGBA32F, static_cast<int>(table.size()), 1, "transfer function");
         }
         transferFunctionTable.upload(GL_RGBA, GL_FLOAT, table.data());
         if (occupancy) occupancy->update(table, volume->valueScaleOffset);
@@ -214,6 +245,7 @@ void VolumeScatteringRenderer::setOptions(const VolumeRenderOptions& options) {
 
 const VolumeRenderOptions& VolumeScatteringRenderer::options() const { return m_impl->options; }
 const RenderStats& VolumeScatteringRenderer::stats() const { return m_impl->stats; }
+float VolumeScatteringRenderer::lightVolumeScaleInUse() const { return m_impl->lightVolumeScaleInUse; }
 
 void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target) {
     if (!m_impl->volume)

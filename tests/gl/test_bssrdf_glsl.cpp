@@ -209,10 +209,10 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
     GLint linked = GL_FALSE;
     glGetProgramiv(program, GL_LINK_STATUS, &linked);
     REQUIRE(linked == GL_TRUE);
-    const gl::Buffer pairBuffer = gl::Buffer::create(pairs.size() * sizeof(GpuPair), pairs.data(), 0);
+    const gl::Buffer pairBuffer = gl::Buffer::create(pairs.size() * sizeof(GpuPair), pairs.data(), 0, "test pairs");
     const gl::Buffer materialBuffer =
-        gl::Buffer::create(materialData.size() * sizeof(glm::vec4), materialData.data(), 0);
-    const gl::Buffer resultBuffer = gl::Buffer::create(2 * pairs.size() * sizeof(glm::vec4), nullptr, 0);
+        gl::Buffer::create(materialData.size() * sizeof(glm::vec4), materialData.data(), 0, "test materials");
+    const gl::Buffer resultBuffer = gl::Buffer::create(2 * pairs.size() * sizeof(glm::vec4), nullptr, 0, "test results");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pairBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materialBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, resultBuffer.id());

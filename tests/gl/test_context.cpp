@@ -60,13 +60,13 @@ TEST_CASE("RAII GL objects release their names and move without double deletes",
     test::GlTestScope gl;
     GLuint textureName = 0, bufferName = 0;
     {
-        gl::Texture t = gl::Texture::create2D(GL_RGBA8, 4, 4);
+        gl::Texture t = gl::Texture::create2D(GL_RGBA8, 4, 4, "test texture");
         textureName = t.id();
         REQUIRE(glIsTexture(textureName));
         gl::Texture moved = std::move(t);
         CHECK(t.id() == 0);  // NOLINT(bugprone-use-after-move): checking the moved-from state
         CHECK(moved.id() == textureName);
-        gl::Buffer b = gl::Buffer::create(64, nullptr);
+        gl::Buffer b = gl::Buffer::create(64, nullptr, GL_DYNAMIC_STORAGE_BIT, "test buffer");
         bufferName = b.id();
         gl::Buffer other;
         other = std::move(b);
@@ -79,13 +79,13 @@ TEST_CASE("RAII GL objects release their names and move without double deletes",
 
 TEST_CASE("layered framebuffer over a 2D array and 3D texture are complete", "[gl][objects]") {
     test::GlTestScope gl;
-    gl::Texture array = gl::Texture::create2DArray(GL_RGBA32F, 8, 8, 4);
-    gl::Texture depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, 8, 8, 4);
+    gl::Texture array = gl::Texture::create2DArray(GL_RGBA32F, 8, 8, 4, "test array");
+    gl::Texture depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, 8, 8, 4, "test depth");
     gl::Framebuffer fb = gl::Framebuffer::create();
     fb.attach(GL_COLOR_ATTACHMENT0, array);
     fb.attach(GL_DEPTH_ATTACHMENT, depth);
     CHECK_NOTHROW(fb.checkComplete("layered test framebuffer"));
-    gl::Texture volume = gl::Texture::create3D(GL_RGBA16F, {4, 4, 4});
+    gl::Texture volume = gl::Texture::create3D(GL_RGBA16F, {4, 4, 4}, "test volume");
     gl::Framebuffer slice = gl::Framebuffer::create();
     slice.attachLayer(GL_COLOR_ATTACHMENT0, volume, 2);
     CHECK_NOTHROW(slice.checkComplete("3D slice framebuffer"));

@@ -51,7 +51,7 @@ LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, 
                               detail::LightVolumeSettings settings = {}) {
     const detail::GpuVolume gpu = detail::GpuVolume::upload(volume);
     const std::vector<glm::vec4> table = tf.table(256);
-    gl::Texture tfTexture = gl::Texture::create2D(GL_RGBA32F, 256, 1);
+    gl::Texture tfTexture = gl::Texture::create2D(GL_RGBA32F, 256, 1, "test transfer function");
     tfTexture.upload(GL_RGBA, GL_FLOAT, table.data());
     detail::LightVolumePass pass;
     gl::Texture output;

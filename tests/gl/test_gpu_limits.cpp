@@ -1,0 +1,152 @@
+// What does not fit the GPU becomes an Error(GpuLimit) naming the object, the size and the
+// limit (never a GL error and a blank picture), and light volumes fall back to a lower
+// resolution when asked to. The memory budget makes "does not fit" reproducible on any device.
+#include "cpu/test_helpers.h"
+#include "support/gl_test.h"
+#include "support/scenes.h"
+
+#include <catch2/catch.hpp>
+#include <sss/error.h>
+#include <sss/gpu_memory.h>
+#include <sss/log.h>
+#include <sss/procedural.h>
+#include <sss/render_target.h>
+#include <sss/volume_scattering_renderer.h>
+
+#include "gl/texture.h"
+
+#include <string>
+#include <vector>
+
+using namespace sss;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// Restores the process-wide budget and log handler however the test ends.
+struct BudgetScope {
+    explicit BudgetScope(std::uint64_t bytes) { setGpuMemoryBudget(bytes); }
+    ~BudgetScope() { setGpuMemoryBudget(0); }
+};
+
+struct LogCapture {
+    std::vector<std::string> warnings;
+    LogCapture() {
+        setLogHandler([this](LogLevel level, std::string_view m) {
+            if (level == LogLevel::Warning) warnings.emplace_back(m);
+        });
+    }
+    ~LogCapture() { setLogHandler({}); }
+};
+
+}  // namespace
+
+TEST_CASE("the implementation's limits are queried", "[gl][limits]") {
+    test::GlTestScope gl;
+    const GpuLimits limits = queryGpuLimits();
+    CHECK(limits.maxTextureSize >= 1024);    // GL 4.5 minimums (Table 23.64)
+    CHECK(limits.max3DTextureSize >= 256);
+    CHECK(limits.maxArrayTextureLayers >= 256);
+    CHECK(limits.availableMemoryBytes <= limits.totalMemoryBytes + (limits.totalMemoryBytes == 0 ? limits.availableMemoryBytes : 0));
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a texture over the size limit is an error naming it, its size and the limit", "[gl][limits]") {
+    test::GlTestScope gl;
+    const GpuLimits limits = queryGpuLimits();
+    const std::uint64_t before = gpuMemoryInUse();
+    const std::string side = std::to_string(limits.max3DTextureSize + 1);
+    REQUIRE_SSS_ERROR(gl::Texture::create3D(GL_R8, {limits.max3DTextureSize + 1, 2, 2}, "test volume"),
+                      ErrorKind::GpuLimit,
+                      Contains("test volume") && Contains(side + "x2x2 R8") && Contains("GL_MAX_3D_TEXTURE_SIZE") &&
+                          Contains(std::to_string(limits.max3DTextureSize)));
+    REQUIRE_SSS_ERROR(gl::Texture::create2DArray(GL_RGBA8, 4, 4, limits.maxArrayTextureLayers + 1, "test layers"),
+                      ErrorKind::GpuLimit, Contains("test layers") && Contains("GL_MAX_ARRAY_TEXTURE_LAYERS"));
+    REQUIRE_SSS_ERROR(gl::Texture::create2D(GL_RGBA8, limits.maxTextureSize + 1, 1, "test image"),
+                      ErrorKind::GpuLimit, Contains("test image") && Contains("GL_MAX_TEXTURE_SIZE"));
+    CHECK(gpuMemoryInUse() == before);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("an allocation the driver cannot satisfy is an error, not a GL error", "[gl][limits]") {
+    test::GlTestScope gl;
+    const GpuLimits limits = queryGpuLimits();
+    // Within every size limit, but terabytes: llvmpipe answers GL_OUT_OF_MEMORY, drivers that
+    // tell their free memory are refused before the call.
+    const int side = std::min(limits.maxTextureSize, 16384);
+    const int layers = std::min(limits.maxArrayTextureLayers, 2048);
+    const std::uint64_t before = gpuMemoryInUse();
+    REQUIRE_SSS_ERROR(gl::Texture::create2DArray(GL_RGBA32F, side, side, layers, "huge test array"),
+                      ErrorKind::GpuLimit, Contains("huge test array") && Contains("RGBA32F 2D array texture"));
+    CHECK(gpuMemoryInUse() == before);
+    // The out-of-memory answer was handled, so it is no GL error; the context still works.
+    gl.requireNoErrors();
+    RenderTarget target(8, 8);
+    target.clear({1.0f, 0.5f, 0.25f, 1.0f});
+    CHECK(target.readColor().at(3, 3).g == 0.5f);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("the memory budget refuses what would pass it and counts what libsss holds", "[gl][limits]") {
+    test::GlTestScope gl;
+    const std::uint64_t before = gpuMemoryInUse();
+    {
+        RenderTarget target(64, 32);  // RGBA32F colour + 32-bit depth
+        CHECK(gpuMemoryInUse() - before == 64u * 32u * (16u + 4u));
+    }
+    CHECK(gpuMemoryInUse() == before);
+    {
+        BudgetScope budget(before + 64u * 1024u);
+        REQUIRE_SSS_ERROR(RenderTarget(256, 256), ErrorKind::GpuLimit,
+                          Contains("RenderTarget colour") && Contains("256x256 RGBA32F") && Contains("1 MiB") &&
+                              Contains("budget"));
+        CHECK(gpuMemoryInUse() == before);
+        RenderTarget small(32, 32);  // 20 kiB fits
+        CHECK(gpuMemoryInUse() > before);
+    }
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a light volume that does not fit falls back to a lower resolution, or fails if asked",
+          "[gl][limits][volume]") {
+    test::GlTestScope gl;
+    const Volume volume = makeBlobsVolume(64);
+    const Camera camera = test::orbitCamera(volume.worldBounds(), 30.0f, 20.0f);
+    auto render = [&](VolumeScatteringRenderer& renderer) {
+        RenderTarget target(96, 64);
+        target.clear({0, 0, 0, 1});
+        renderer.render(camera, target);
+        return target.readColor();
+    };
+    const VolumeRenderOptions options{.shading = VolumeShading::Scattering, .jitter = false};
+    VolumeScatteringRenderer halfScale({.shading = VolumeShading::Scattering, .jitter = false, .lightVolumeScale = 0.5f});
+    halfScale.setVolume(volume);
+    halfScale.setTransferFunction(test::blobsTransferFunction());
+    const Image expected = render(halfScale);
+
+    VolumeScatteringRenderer renderer(options);
+    renderer.setVolume(volume);
+    renderer.setTransferFunction(test::blobsTransferFunction());
+    // Room for everything but a full-resolution light volume (64^3 RGBA16F = 2 MiB); the
+    // half-resolution one (256 kiB) and the frame's own textures fit.
+    BudgetScope budget(gpuMemoryInUse() + 1024u * 1024u);
+    LogCapture log;
+    const Image image = render(renderer);
+    CHECK(renderer.lightVolumeScaleInUse() == 0.5f);
+    REQUIRE(log.warnings.size() == 1);
+    CHECK_THAT(log.warnings[0], Contains("light volume") && Contains("64x64x64 RGBA16F") && Contains("budget") &&
+                                    Contains("falls back to 32x32x32"));
+    // The fallback renders exactly what lightVolumeScale 0.5 renders.
+    REQUIRE(image.width() == expected.width());
+    CHECK(image.data() == expected.data());
+
+    VolumeScatteringRenderer strict({.shading = VolumeShading::Scattering, .jitter = false,
+                                     .lightVolumeFallback = LightVolumeFallback::Fail});
+    setGpuMemoryBudget(0);
+    strict.setVolume(volume);
+    strict.setTransferFunction(test::blobsTransferFunction());
+    setGpuMemoryBudget(gpuMemoryInUse() + 1024u * 1024u);
+    REQUIRE_SSS_ERROR(render(strict), ErrorKind::GpuLimit,
+                      Contains("light volume") && Contains("64x64x64 RGBA16F") && Contains("budget"));
+    gl.requireNoErrors();
+}
