@@ -70,6 +70,9 @@ shading:
   --no-jitter               no per-pixel ray offset
   --no-skipping             no empty-space skipping (same image, slower)
   --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
+  --light-volume-fallback reduce|fail
+                            when the light volume does not fit the GPU: halve its resolution
+                            until it fits, with a warning, or fail (default: reduce)
   --anisotropy G            Henyey-Greenstein g for the scattering cone, (-1,1) (default: 0.5)
   --eye-pass                add the second, view-dependent pass towards the viewer
 camera and light:
@@ -101,6 +104,7 @@ struct Args {
     glm::vec3 color{0.8f, 0.75f, 0.7f};
     float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
     bool eyePass = false;
+    sss::LightVolumeFallback lightVolumeFallback = sss::LightVolumeFallback::Reduce;
     bool jitter = true, skipping = true, ortho = false, listTf = false, cornellBox = false, lightGiven = false;
     float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
@@ -173,6 +177,12 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--no-skipping") a.skipping = false;
         else if (opt == "--eye-pass") a.eyePass = true;
         else if (opt == "--light-volume-scale") a.lightVolumeScale = parseFloat(opt, value());
+        else if (opt == "--light-volume-fallback") {
+            const std::string v = value();
+            if (v == "reduce") a.lightVolumeFallback = sss::LightVolumeFallback::Reduce;
+            else if (v == "fail") a.lightVolumeFallback = sss::LightVolumeFallback::Fail;
+            else throw UsageError("--light-volume-fallback: expected reduce or fail, got \"" + v + "\"");
+        }
         else if (opt == "--anisotropy") a.anisotropy = parseFloat(opt, value());
         else if (opt == "--yaw") a.yaw = parseFloat(opt, value());
         else if (opt == "--pitch") a.pitch = parseFloat(opt, value());
@@ -191,6 +201,9 @@ Args parseArgs(int argc, char** argv) {
         else throw UsageError("unknown option \"" + opt + "\" (see --help)");
     }
     if (a.listTf || a.listMaterials) return a;
+    for (const auto& [name, offset] : {std::pair{"--mesh-offset", a.meshOffset}, std::pair{"--volume-offset", a.volumeOffset}})
+        if (!(glm::all(glm::lessThanEqual(glm::abs(offset), glm::vec3(sss::Mesh::kMaxCoordinate)))))
+            throw UsageError(std::string(name) + ": components must be within +-1e18 (scene units)");
     if (a.mesh.empty() && a.volume.empty()) throw UsageError("nothing to render: give --mesh PATH and/or --volume PATH");
     if (a.mode.empty()) a.mode = a.volume.empty() ? "blinn-phong" : "emission-absorption";
     if (a.mode == "hybrid") {
@@ -217,6 +230,16 @@ sss::RawLoadOptions rawOptions(const Args& a) {
     return options;
 }
 
+// True if every pixel is the clear colour: nothing was drawn, or nothing visible.
+bool showsOnlyBackground(const sss::Image& image, glm::vec3 background) {
+    const std::vector<float>& data = image.data();
+    for (std::size_t i = 0; i < data.size(); i += 4)
+        if (std::abs(data[i] - background.r) > 1e-4f || std::abs(data[i + 1] - background.g) > 1e-4f ||
+            std::abs(data[i + 2] - background.b) > 1e-4f)
+            return false;
+    return true;
+}
+
 int run(const Args& a) {
     if (a.listTf || a.listMaterials) {
         for (const std::string& name : a.listTf ? sss::TransferFunction::presetNames() : sss::materialPresetNames())
@@ -237,35 +260,50 @@ int run(const Args& a) {
         const bool file = a.tf.size() > 5 && a.tf.substr(a.tf.size() - 5) == ".json";
         tf = file ? sss::TransferFunction::loadParaViewJson(a.tf, a.tfRange) : sss::TransferFunction::preset(a.tf);
     }
-    // Load and check everything before touching GL: bad input fails fast and clearly.
+    // Options are checked before touching GL as well: a context costs memory and a second.
+    sss::MeshRenderOptions meshOptions;
+    meshOptions.shading = scattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
+    meshOptions.cameras = a.cameras;
+    meshOptions.samples = a.samples;
+    meshOptions.mapResolution = meshOptions.lightMapResolution = a.mapResolution;
+    meshOptions.accumulationFrames = a.frames;
+    meshOptions.millimetresPerUnit = a.scale;
+    meshOptions.specular = a.specular ? 1.0f : 0.0f;
+    const sss::BlinnPhongMaterial meshMaterial{.diffuse = a.color, .shininess = a.shininess};
+    const sss::VolumeRenderOptions volumeOptions{
+        .shading = a.mode == "hybrid" ? sss::VolumeShading::Scattering
+                                      : volumeShading(a.mode).value_or(sss::VolumeShading::EmissionAbsorption),
+        .stepSize = a.step,
+        .earlyTermination = a.earlyTermination,
+        .jitter = a.jitter,
+        .emptySpaceSkipping = a.skipping,
+        .lightVolumeScale = a.lightVolumeScale,
+        .lightVolumeFallback = a.lightVolumeFallback,
+        .anisotropy = a.anisotropy,
+        .eyePass = a.eyePass};
+    const sss::HybridOptions sceneOptions{.background = glm::vec4(a.background, 1.0f), .cornellBox = a.cornellBox};
+    if (mesh) sss::validate(meshOptions), sss::validate(meshMaterial);
+    if (volume) sss::validate(volumeOptions);
+    sss::validate(sceneOptions);
+    if (!(a.fov > 0.0f && a.fov < 180.0f)) throw UsageError("--fov: must be in (0, 180) degrees");
+
     auto context = sss::EglContext::create();
     sss::RenderTarget target(a.width, a.height);
-    sss::HybridCompositor scene({.background = glm::vec4(a.background, 1.0f), .cornellBox = a.cornellBox});
+    sss::HybridCompositor scene(sceneOptions);
     sss::MeshScatteringRenderer* meshRenderer = nullptr;
     if (mesh) {
-        sss::MeshRenderOptions options;
-        options.shading = scattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
-        options.cameras = a.cameras;
-        options.samples = a.samples;
-        options.mapResolution = options.lightMapResolution = a.mapResolution;
-        options.accumulationFrames = a.frames;
-        options.millimetresPerUnit = a.scale;
-        options.specular = a.specular ? 1.0f : 0.0f;
-        meshRenderer = &scene.addMesh(*mesh, glm::translate(glm::mat4(1.0f), a.meshOffset), options);
+        meshRenderer = &scene.addMesh(*mesh, glm::translate(glm::mat4(1.0f), a.meshOffset), meshOptions);
         meshRenderer->setScatteringMaterial(material);
-        meshRenderer->setMaterial({.diffuse = a.color, .shininess = a.shininess});
+        meshRenderer->setMaterial(meshMaterial);
     }
     if (volume) {
-        sss::VolumeRenderOptions options{
-            .shading = a.mode == "hybrid" ? sss::VolumeShading::Scattering : *volumeShading(a.mode),
-            .stepSize = a.step,
-            .earlyTermination = a.earlyTermination,
-            .jitter = a.jitter,
-            .emptySpaceSkipping = a.skipping,
-            .lightVolumeScale = a.lightVolumeScale,
-            .anisotropy = a.anisotropy,
-            .eyePass = a.eyePass};
-        scene.addVolume(*volume, glm::translate(glm::mat4(1.0f), a.volumeOffset), options).setTransferFunction(*tf);
+        try {
+            scene.addVolume(*volume, glm::translate(glm::mat4(1.0f), a.volumeOffset), volumeOptions)
+                .setTransferFunction(*tf);
+        } catch (const sss::Error& e) {
+            // The library names the GPU object; the user knows the file.
+            throw sss::Error(e.kind(), a.volume + ": " + e.what());
+        }
     }
     const sss::Bounds sceneBounds = a.cornellBox ? sss::makeCornellBox(scene.bounds()).bounds : scene.bounds();
     // In a Cornell box the default light hangs under the ceiling, as in the classic scene.
@@ -307,6 +345,9 @@ int run(const Args& a) {
     }
     const sss::Image image = target.readColor();
     image.toRgba8().savePng(a.out);
+    if (showsOnlyBackground(image, a.background))
+        std::fprintf(stderr, "sss-render: warning: the image shows only the background: nothing of the scene is in "
+                             "view (check --mesh-offset, --volume-offset, --zoom, --step and the scene's size)\n");
 
     std::sort(times.begin(), times.end());
     std::printf("renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().backend.c_str());

@@ -13,5 +13,7 @@ build=${SSS_BUILD_DIR:-build}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE="${SSS_BUILD_TYPE:-Release}" -DSSS_BUILD_TESTS=ON \
       -DSSS_BUILD_EXAMPLES=ON -DSSS_BUILD_BENCH=ON -DSSS_WITH_GLFW=ON ${SSS_CMAKE_ARGS:-}
 cmake --build "$build" -j "$jobs"
-# Tests need no GPU: headless EGL on Mesa llvmpipe. No DISPLAY is needed (or used).
+# Tests need no GPU: headless EGL on Mesa llvmpipe. No DISPLAY is needed (or used). Mesa is
+# installed above, so a GL test without a context is a failure here, not a skip.
+export SSS_REQUIRE_GL="${SSS_REQUIRE_GL:-1}"
 ctest --test-dir "$build" --output-on-failure -j "$jobs"

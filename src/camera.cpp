@@ -27,6 +27,8 @@ std::string str(const T& v) {
 
 std::string str(glm::vec3 v) { return detail::formatVec(v); }
 
+bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
 void requireFinite(float v, const char* what) {
     if (!std::isfinite(v))
         throw Error(ErrorKind::InvalidArgument, std::string(what) + " must be finite, got " + str(v));
@@ -136,8 +138,11 @@ void Camera::frame(const Bounds& bounds) {
     const glm::vec3 c = bounds.center();
     float r = bounds.radius();
     if (!std::isfinite(r) || !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
-        throw Error(ErrorKind::InvalidArgument, "Camera::frame: bounds must be finite, got min " +
-                                                    str(bounds.min) + ", max " + str(bounds.max));
+        throw Error(ErrorKind::InvalidArgument,
+                    "Camera::frame: bounds min " + str(bounds.min) + ", max " + str(bounds.max) +
+                        (isFinite(bounds.min) && isFinite(bounds.max)
+                             ? " are too large: their radius overflows float (keep coordinates within +-1e18)"
+                             : " are not finite"));
     r = std::max(r, 1e-3f);
     m_target = c;
     m_distance = r / std::sin(glm::radians(0.5f * m_fovY));

@@ -3,6 +3,7 @@
 #include "format.h"
 
 #include "sss/error.h"
+#include "sss/log.h"
 
 #include <tiny_obj_loader.h>
 
@@ -10,8 +11,11 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include <cerrno>
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <string_view>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
@@ -24,6 +28,11 @@ namespace {
 std::string str(glm::vec3 v) { return detail::formatVec(v); }
 
 bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool isInRange(glm::vec3 v) {
+    const auto ok = [](float c) { return std::abs(c) <= Mesh::kMaxCoordinate; };  // false for NaN
+    return ok(v.x) && ok(v.y) && ok(v.z);
+}
 
 // A normal is usable if normalizing it gives a finite unit vector.
 bool isUsableNormal(glm::vec3 n) {
@@ -68,26 +77,115 @@ std::string trimmed(std::string s) {
     return s;
 }
 
-// tinyobjloader's number parser reads "nan" (and other non-numbers) as 0, which would load a
-// silently wrong mesh, so vertex lines are checked here first. Returns an error message or "".
-std::string findBadVertexCoordinate(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    std::string line;
-    std::size_t vertex = 0;
-    while (std::getline(in, line)) {
-        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
-        ++vertex;
-        std::istringstream tokens(line.substr(2));
-        std::string token;
-        for (int axis = 0; axis < 3 && tokens >> token; ++axis) {
-            char* end = nullptr;
-            const double value = std::strtod(token.c_str(), &end);
-            if (end != token.c_str() + token.size() || !std::isfinite(value))
-                return "vertex " + std::to_string(vertex) + " has a non-finite or non-numeric coordinate \"" +
-                       token + "\"";
+// The part of a line after leading blanks, and the lines of a file split at "\n", "\r\n" and a
+// lone "\r" (old Mac files), as tinyobjloader splits them.
+std::vector<std::string_view> objLines(std::string_view text) {
+    std::vector<std::string_view> lines;
+    std::size_t begin = 0;
+    for (std::size_t i = 0; i <= text.size(); ++i) {
+        if (i < text.size() && text[i] != '\n' && text[i] != '\r') continue;
+        std::string_view line = text.substr(begin, i - begin);
+        while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+        lines.push_back(line);
+        if (i + 1 < text.size() && text[i] == '\r' && text[i + 1] == '\n') ++i;
+        begin = i + 1;
+    }
+    return lines;
+}
+
+std::vector<std::string_view> tokens(std::string_view line) {
+    std::vector<std::string_view> out;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+        if (i > start) out.push_back(line.substr(start, i - start));
+    }
+    return out;
+}
+
+// A decimal number as tinyobjloader reads it: [+-] digits [. digits] [(e|E) [+-] digits], with
+// digits on at least one side of the point. Everything else ("nan", "inf", hex floats, "1,5")
+// it would read as 0 without a word, so such files are rejected here.
+bool isDecimalNumber(std::string_view t) {
+    std::size_t i = 0;
+    auto digits = [&] {
+        const std::size_t start = i;
+        while (i < t.size() && t[i] >= '0' && t[i] <= '9') ++i;
+        return i - start;
+    };
+    if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+    std::size_t mantissa = digits();
+    if (i < t.size() && t[i] == '.') {
+        ++i;
+        mantissa += digits();
+    }
+    if (mantissa == 0) return false;
+    if (i < t.size() && (t[i] == 'e' || t[i] == 'E')) {
+        ++i;
+        if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+        if (digits() == 0) return false;
+    }
+    return i == t.size();
+}
+
+struct ObjTextCheck {
+    std::string error;  // empty if none
+    std::size_t shortFaces = 0, firstShortFace = 0;  // faces of fewer than 3 vertices (dropped)
+};
+
+// Checks what tinyobjloader would silently misread: vertex coordinates that are not decimal
+// numbers or lie outside Mesh::kMaxCoordinate, face indices that do not fit its int, and faces
+// of fewer than 3 vertices, which it drops.
+ObjTextCheck checkObjText(std::string_view text) {
+    ObjTextCheck check;
+    auto fail = [&](std::string message) {
+        check.error = std::move(message);
+        return check;
+    };
+    std::size_t vertex = 0, face = 0;
+    for (const std::string_view line : objLines(text)) {
+        if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t')) continue;
+        if (line[0] == 'v') {
+            ++vertex;
+            const std::vector<std::string_view> t = tokens(line.substr(2));
+            if (t.size() < 3)
+                return fail("vertex " + std::to_string(vertex) + " has " + std::to_string(t.size()) +
+                       " coordinates; it needs x, y and z");
+            for (std::size_t axis = 0; axis < 3; ++axis) {
+                const std::string token(t[axis]);
+                if (!isDecimalNumber(token))
+                    return fail("vertex " + std::to_string(vertex) + " has a non-finite or non-numeric coordinate \"" +
+                                token + "\"");
+                // Compared as stored: in float.
+                const double value = std::strtod(token.c_str(), nullptr);
+                if (!(std::abs(static_cast<float>(value)) <= Mesh::kMaxCoordinate))
+                    return fail("vertex " + std::to_string(vertex) + " has the coordinate " + token + ", which is " +
+                                (std::isfinite(value) ? "outside" : "non-finite in double, outside") +
+                                " the supported range [-1e18, 1e18]");
+            }
+        } else if (line[0] == 'f') {
+            ++face;
+            const std::vector<std::string_view> corners = tokens(line.substr(2));
+            if (corners.size() < 3 && check.shortFaces++ == 0) check.firstShortFace = face;
+            for (const std::string_view corner : corners) {
+                const std::string index(corner.substr(0, corner.find('/')));
+                char* end = nullptr;
+                errno = 0;
+                const long long v = std::strtoll(index.c_str(), &end, 10);
+                if (index.empty() || *end != '\0')
+                    return fail("face " + std::to_string(face) + " has the vertex index \"" + index +
+                                "\", which is not an integer");
+                if (errno == ERANGE || v > std::numeric_limits<int>::max() ||
+                    v < -static_cast<long long>(std::numeric_limits<int>::max()))
+                    return fail("face " + std::to_string(face) + " references vertex " + index +
+                                ", but the file has " + std::to_string(vertex) +
+                                (vertex == 1 ? " vertex" : " vertices") + " before it");
+            }
         }
     }
-    return {};
+    return check;
 }
 
 }  // namespace
@@ -105,8 +203,9 @@ Mesh Mesh::fromArrays(std::vector<glm::vec3> positions, std::vector<uint32_t> in
     if (positions.size() > std::numeric_limits<uint32_t>::max())
         fail("has " + std::to_string(positions.size()) + " vertices, more than 32-bit indices can address");
     for (std::size_t i = 0; i < positions.size(); ++i)
-        if (!isFinite(positions[i]))
-            fail("vertex " + std::to_string(i) + " has a non-finite coordinate " + str(positions[i]));
+        if (!isInRange(positions[i]))
+            fail("vertex " + std::to_string(i) + " has a coordinate " + str(positions[i]) +
+                 " that is non-finite or outside the supported range [-1e18, 1e18]");
     for (std::size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= positions.size())
             fail("triangle " + std::to_string(i / 3) + " (indices[" + std::to_string(i) +
@@ -144,8 +243,18 @@ Mesh Mesh::load(const std::filesystem::path& path) {
     if (!std::ifstream(path))
         throw Error(ErrorKind::Io, file + ": cannot be opened for reading");
 
-    if (const std::string bad = findBadVertexCoordinate(path); !bad.empty())
-        throw Error(ErrorKind::Parse, file + ": " + bad);
+    {
+        std::ifstream in(path, std::ios::binary);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (in.bad()) throw Error(ErrorKind::Io, file + ": read error");
+        const ObjTextCheck check = checkObjText(text);
+        if (!check.error.empty()) throw Error(ErrorKind::Parse, file + ": " + check.error);
+        if (check.shortFaces > 0)
+            log(LogLevel::Warning, file + ": skipped " + std::to_string(check.shortFaces) +
+                                       (check.shortFaces == 1 ? " face" : " faces") +
+                                       " with fewer than 3 vertices (the first is face " +
+                                       std::to_string(check.firstShortFace) + ")");
+    }
 
     // Triangulate ourselves: tinyobjloader silently drops polygons with out-of-range indices
     // (and keeps triangles with them), so we need the raw faces to report bad indices.
@@ -167,9 +276,10 @@ Mesh Mesh::load(const std::filesystem::path& path) {
         return glm::vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
     };
     for (std::size_t i = 0; i < vertexCount; ++i)
-        if (!isFinite(filePosition(i)))
-            throw Error(ErrorKind::Parse, file + ": vertex " + std::to_string(i + 1) +
-                                              " has a non-finite coordinate " + str(filePosition(i)));
+        if (!isInRange(filePosition(i)))
+            throw Error(ErrorKind::Parse, file + ": vertex " + std::to_string(i + 1) + " has a coordinate " +
+                                              str(filePosition(i)) +
+                                              " that is non-finite or outside the supported range [-1e18, 1e18]");
 
     // Pass 1: validate every face and triangulate into (position, normal) index corners.
     std::vector<tinyobj::index_t> corners;
@@ -201,7 +311,7 @@ Mesh Mesh::load(const std::filesystem::path& path) {
                     smooth = true;
                 }
             }
-            if (n < 3) continue;
+            if (n < 3) continue;  // reported by checkObjText
             auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
                 corners.push_back(face[a]);
                 corners.push_back(face[b]);
@@ -265,9 +375,10 @@ Mesh Mesh::transformed(const glm::mat4& m) const {
     out.m_positions.reserve(m_positions.size());
     for (std::size_t i = 0; i < m_positions.size(); ++i) {
         glm::vec3 p = glm::vec3(m * glm::vec4(m_positions[i], 1.0f));
-        if (!isFinite(p))
-            throw Error(ErrorKind::InvalidArgument, m_name + ": Mesh::transformed: vertex " +
-                                                        std::to_string(i) + " becomes non-finite " + str(p));
+        if (!isInRange(p))
+            throw Error(ErrorKind::InvalidArgument, m_name + ": Mesh::transformed: vertex " + std::to_string(i) +
+                                                        " becomes " + str(p) +
+                                                        ", non-finite or outside the supported range [-1e18, 1e18]");
         out.m_positions.push_back(p);
     }
     out.m_normals.reserve(m_normals.size());

@@ -287,7 +287,7 @@ private:
 
 // Piecewise-linear, constant beyond the end nodes; nodes sorted by strictly increasing x.
 std::array<double, 3> evaluateCurve(const std::vector<CurveNode>& nodes, double x) {
-    if (x <= nodes.front().x) return nodes.front().v;
+    if (!(x > nodes.front().x)) return nodes.front().v;  // also NaN: never index past the end
     if (x >= nodes.back().x) return nodes.back().v;
     auto hi = std::upper_bound(nodes.begin(), nodes.end(), x, [](double v, const CurveNode& n) { return v < n.x; });
     auto lo = hi - 1;
@@ -371,8 +371,16 @@ TransferFunction TransferFunction::loadParaViewJson(const std::filesystem::path&
             hi = std::max(hi, opacity.back().x);
         }
     }
+    // Halved first, so that neither x - lo nor hi - lo overflows for x values near DBL_MAX
+    // apart (-1e308 .. 1e308); halving is exact for all but subnormal values.
+    const double halfRange = hi / 2.0 - lo / 2.0;
     auto toUnit = [&](std::vector<CurveNode>& nodes) {
-        for (CurveNode& n : nodes) n.x = hi > lo ? (n.x - lo) / (hi - lo) : 0.0;
+        for (CurveNode& n : nodes) {
+            n.x = halfRange > 0.0 ? (n.x / 2.0 - lo / 2.0) / halfRange : 0.0;
+            if (!std::isfinite(n.x))
+                file.fail(ErrorKind::Parse, "node x values cannot be mapped onto the data range (" + str(lo) + ", " +
+                                                str(hi) + ")");
+        }
         // Mapping may merge nodes that were distinct in data units (a tiny range); keep the later.
         std::vector<CurveNode> unique;
         for (const CurveNode& n : nodes) {

@@ -3,6 +3,7 @@
 #include <sss/error.h>
 #include <sss/procedural.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -33,10 +34,10 @@ float parseFloat(const std::string& option, const std::string& text) {
     try {
         size_t used = 0;
         const float v = std::stof(text, &used);
-        if (used == text.size()) return v;
+        if (used == text.size() && std::isfinite(v)) return v;
     } catch (const std::exception&) {
     }
-    throw UsageError(option + ": expected a number, got \"" + text + "\"");
+    throw UsageError(option + ": expected a finite number, got \"" + text + "\"");
 }
 
 int parseInt(const std::string& option, const std::string& text) {

@@ -45,6 +45,9 @@ struct HybridOptions {
     int shadowMapResolution = 1024;   ///< mesh shadow maps used by the volumes, 64..8192 (default: 1024)
 };
 
+/// Throws Error(InvalidArgument) naming the bad field of `options`.
+void validate(const HybridOptions& options);
+
 class HybridCompositor {
 public:
     explicit HybridCompositor(const HybridOptions& options = {});

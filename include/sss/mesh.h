@@ -20,17 +20,26 @@ namespace sss {
 /// when seen from the side the normals point to.
 ///
 /// Invariants (checked by every factory): at least one triangle, index count a multiple of 3,
-/// every index < vertexCount(), all coordinates finite, normals().size() == positions().size(),
-/// every normal unit length. Degenerate (zero-area) triangles are allowed.
+/// every index < vertexCount(), all coordinates finite with magnitude <= kMaxCoordinate,
+/// normals().size() == positions().size(), every normal unit length. Degenerate (zero-area)
+/// triangles are allowed.
 class Mesh {
 public:
+    /// The largest coordinate magnitude a mesh may have (1e18). Rendering works in float, where
+    /// squared lengths across larger meshes overflow (FLT_MAX is 3.4e38); scans in metres or
+    /// millimetres are many orders of magnitude inside it.
+    static constexpr float kMaxCoordinate = 1e18f;
+
     /// Loads a Wavefront OBJ file (v/vn/f; texture coordinates and materials are ignored).
     /// Polygons are triangulated (fan; quads split along the shorter diagonal); all shapes are
     /// merged into one vertex array with one vertex per distinct (position, normal) index pair.
     /// If any face corner has no normal, or a referenced normal is zero or non-finite, smooth
     /// area-weighted normals are computed for the whole mesh instead (one vertex per position).
+    /// Lines may end in "\n", "\r\n" or "\r". Faces with fewer than 3 vertices are skipped with
+    /// a warning in the log.
     /// @throws Error Io if the file is missing or unreadable; Parse if tinyobjloader rejects it,
-    ///         it has no faces, a coordinate is non-finite, or a face index is out of range.
+    ///         it has no faces, a coordinate is not a decimal number (nan, inf, hex floats) or is
+    ///         outside [-kMaxCoordinate, kMaxCoordinate], or a face index is out of range.
     ///         Messages start with the path as given.
     static Mesh load(const std::filesystem::path& path);
 
@@ -38,7 +47,8 @@ public:
     /// computed; otherwise it must have one finite, non-zero normal per position (they are
     /// normalized). name is used in error messages and kept as name().
     /// @throws Error InvalidArgument if there are no triangles, indices.size() % 3 != 0, an index
-    ///         is out of range, a coordinate is non-finite, or the normals are unusable.
+    ///         is out of range, a coordinate is non-finite or beyond kMaxCoordinate, or the
+    ///         normals are unusable.
     static Mesh fromArrays(std::vector<glm::vec3> positions, std::vector<uint32_t> indices,
                            std::vector<glm::vec3> normals = {}, std::string_view name = "mesh");
 

@@ -72,6 +72,13 @@ struct MeshRenderOptions {
     bool finishEachPass = false;
 };
 
+/// Throws Error(InvalidArgument) if a colour is negative or non-finite or shininess is not > 0.
+void validate(const BlinnPhongMaterial& material);
+
+/// Throws Error(InvalidArgument) naming the first field of `options` that breaks its documented
+/// range. The renderer checks its options with it; front ends call it before creating a context.
+void validate(const MeshRenderOptions& options);
+
 /// Draws one mesh with the scene's lights into a RenderTarget. Needs a current GlContext.
 class MeshScatteringRenderer {
 public:

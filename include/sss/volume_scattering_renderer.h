@@ -91,6 +91,10 @@ struct VolumeRenderOptions {
     bool finishEachPass = false;
 };
 
+/// Throws Error(InvalidArgument) naming the first field of `options` that breaks its documented
+/// range. The renderer checks its options with it; front ends call it before creating a context.
+void validate(const VolumeRenderOptions& options);
+
 /// Draws one volume into a RenderTarget, compositing premultiplied colour over what the target
 /// holds (clear it to the background first). Needs a current GlContext.
 class VolumeScatteringRenderer {

@@ -17,13 +17,14 @@
 namespace sss {
 namespace {
 
+
+}  // namespace
+
 void validate(const HybridOptions& o) {
     if (o.shadowMapResolution < 64 || o.shadowMapResolution > 8192)
         throw Error(ErrorKind::InvalidArgument, "HybridOptions::shadowMapResolution must be in 64..8192, got " +
                                                     std::to_string(o.shadowMapResolution));
 }
-
-}  // namespace
 
 struct HybridCompositor::Impl {
     HybridOptions options;

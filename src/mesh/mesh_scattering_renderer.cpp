@@ -22,6 +22,41 @@
 namespace sss {
 namespace {
 
+
+// What the light buffer depends on.
+struct LightBufferInputs {
+    std::uint64_t meshGeneration = 0;
+    glm::mat4 model{1.0f};
+    std::vector<Light> lights;
+    int resolution = 0;
+    bool operator==(const LightBufferInputs&) const = default;
+};
+
+// What the scattering maps depend on (besides the light buffer).
+struct ScatteringMapInputs {
+    LightBufferInputs lightBuffer;
+    std::uint64_t materialGeneration = 0;
+    int cameras = 0, samples = 0, resolution = 0;
+    double millimetresPerUnit = 0.0;
+    float sampleRadius = 0.0f, spread = 0.0f;
+    std::uint64_t volumeShadowRevision = 0;  // hybrid scenes: volumes between lights and mesh
+    bool operator==(const ScatteringMapInputs&) const = default;
+};
+
+
+}  // namespace
+
+void validate(const BlinnPhongMaterial& m) {
+    auto bad = [](glm::vec3 c) {
+        return !(c.x >= 0 && c.y >= 0 && c.z >= 0) || !std::isfinite(c.x + c.y + c.z);
+    };
+    if (bad(m.diffuse) || bad(m.specular) || bad(m.ambient))
+        throw Error(ErrorKind::InvalidArgument, "BlinnPhongMaterial: colours must be finite and >= 0");
+    if (!(m.shininess > 0.0f) || !std::isfinite(m.shininess))
+        throw Error(ErrorKind::InvalidArgument,
+                    "BlinnPhongMaterial::shininess must be finite and > 0, got " + detail::formatNumber(m.shininess));
+}
+
 void validate(const MeshRenderOptions& o) {
     auto fail = [](const std::string& field, const std::string& rule, auto value) {
         throw Error(ErrorKind::InvalidArgument,
@@ -44,39 +79,6 @@ void validate(const MeshRenderOptions& o) {
     if (!(o.specular >= 0.0f) || !finite(o.specular)) fail("specular", "finite and >= 0", o.specular);
     if (!(o.shininess > 0.0f) || !finite(o.shininess)) fail("shininess", "finite and > 0", o.shininess);
 }
-
-// What the light buffer depends on.
-struct LightBufferInputs {
-    std::uint64_t meshGeneration = 0;
-    glm::mat4 model{1.0f};
-    std::vector<Light> lights;
-    int resolution = 0;
-    bool operator==(const LightBufferInputs&) const = default;
-};
-
-// What the scattering maps depend on (besides the light buffer).
-struct ScatteringMapInputs {
-    LightBufferInputs lightBuffer;
-    std::uint64_t materialGeneration = 0;
-    int cameras = 0, samples = 0, resolution = 0;
-    double millimetresPerUnit = 0.0;
-    float sampleRadius = 0.0f, spread = 0.0f;
-    std::uint64_t volumeShadowRevision = 0;  // hybrid scenes: volumes between lights and mesh
-    bool operator==(const ScatteringMapInputs&) const = default;
-};
-
-void validate(const BlinnPhongMaterial& m) {
-    auto bad = [](glm::vec3 c) {
-        return !(c.x >= 0 && c.y >= 0 && c.z >= 0) || !std::isfinite(c.x + c.y + c.z);
-    };
-    if (bad(m.diffuse) || bad(m.specular) || bad(m.ambient))
-        throw Error(ErrorKind::InvalidArgument, "BlinnPhongMaterial: colours must be finite and >= 0");
-    if (!(m.shininess > 0.0f) || !std::isfinite(m.shininess))
-        throw Error(ErrorKind::InvalidArgument,
-                    "BlinnPhongMaterial::shininess must be finite and > 0, got " + detail::formatNumber(m.shininess));
-}
-
-}  // namespace
 
 struct MeshScatteringRenderer::Impl {
     MeshRenderOptions options;

@@ -26,6 +26,28 @@
 namespace sss {
 namespace {
 
+
+// "0.5", "0.125": the shortest text that reads back as the value.
+std::string formatScale(float value) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", static_cast<double>(value));
+    return buf;
+}
+
+// Everything the light volumes depend on; they are rebuilt only when this changes.
+struct LightVolumeInputs {
+    std::uint64_t volumeGeneration = 0;
+    std::uint64_t transferFunctionRevision = 0;
+    int transferFunctionEntries = 0;
+    std::vector<Light> lights;
+    glm::mat4 model{1.0f};
+    float resolutionScale = 0.0f;
+    float anisotropy = 0.0f;
+    bool operator==(const LightVolumeInputs&) const = default;
+};
+
+}  // namespace
+
 void validate(const VolumeRenderOptions& o) {
     auto fail = [](const std::string& field, const std::string& rule, auto value) {
         throw Error(ErrorKind::InvalidArgument,
@@ -52,27 +74,6 @@ void validate(const VolumeRenderOptions& o) {
     if (!(s.x >= 0 && s.y >= 0 && s.z >= 0) || !std::isfinite(s.x + s.y + s.z))
         throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions::specular must be finite and >= 0");
 }
-
-// "0.5", "0.125": the shortest text that reads back as the value.
-std::string formatScale(float value) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", static_cast<double>(value));
-    return buf;
-}
-
-// Everything the light volumes depend on; they are rebuilt only when this changes.
-struct LightVolumeInputs {
-    std::uint64_t volumeGeneration = 0;
-    std::uint64_t transferFunctionRevision = 0;
-    int transferFunctionEntries = 0;
-    std::vector<Light> lights;
-    glm::mat4 model{1.0f};
-    float resolutionScale = 0.0f;
-    float anisotropy = 0.0f;
-    bool operator==(const LightVolumeInputs&) const = default;
-};
-
-}  // namespace
 
 struct VolumeScatteringRenderer::Impl {
     VolumeRenderOptions options;

@@ -2,7 +2,10 @@
 #   CMD       the command line, arguments separated by "|"
 #   EXPECT    "fail": must exit non-zero (1 or 2) with a message matching MATCH on stderr;
 #             "ok":   must exit 0, and OUTPUT (if given) must exist as a non-empty file.
+#   EXIT      the exact exit code required (optional; e.g. 2 for bad usage, 77 for a skip)
 #   MATCH     regular expression the stderr (fail) or stdout (ok) must contain
+#   STDERR    regular expression stderr must contain (ok: a warning, say)
+#   STDOUT    regular expression stdout must contain (fail: a test runner's report, say)
 #   OUTPUT    a file the command must write
 if(DEFINED OUTPUT)
   file(REMOVE "${OUTPUT}")
@@ -10,11 +13,20 @@ endif()
 string(REPLACE "|" ";" CMD "${CMD}")
 execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
 message("exit code: ${rc}\nstdout:\n${out}\nstderr:\n${err}")
+if(DEFINED EXIT AND NOT rc STREQUAL "${EXIT}")
+  message(FATAL_ERROR "expected exit code ${EXIT}, got '${rc}'")
+endif()
+if(DEFINED STDERR AND NOT err MATCHES "${STDERR}")
+  message(FATAL_ERROR "stderr does not match '${STDERR}'")
+endif()
+if(DEFINED STDOUT AND NOT out MATCHES "${STDOUT}")
+  message(FATAL_ERROR "stdout does not match '${STDOUT}'")
+endif()
 if(EXPECT STREQUAL "fail")
   if(rc EQUAL 0)
     message(FATAL_ERROR "expected a failure, but the command succeeded")
   endif()
-  if(NOT rc MATCHES "^[12]$")
+  if(NOT DEFINED EXIT AND NOT rc MATCHES "^[12]$")
     message(FATAL_ERROR "expected exit code 1 or 2, got '${rc}' (a crash?)")
   endif()
   if(DEFINED MATCH AND NOT err MATCHES "${MATCH}")

@@ -1,3 +1,4 @@
+#include "sss/log.h"
 #include "sss/mesh.h"
 
 #include "test_helpers.h"
@@ -158,12 +159,57 @@ TEST_CASE("Mesh::load reports bad files with the file name and the problem", "[c
                           Contains("nan.obj") && Contains("vertex 3") && Contains(token));
     }
 
+    // What tinyobjloader alone reads as 0 or wraps around (issue 9, D3/D4): leading blanks,
+    // lines ending in a lone CR, hex floats, huge but finite coordinates, 64-bit face indices.
+    const std::pair<std::string, std::string> misread[] = {
+        {"  v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 1 has a non-finite or non-numeric coordinate \"nan\""},
+        {"v 0 0 0\rv 1 0 0\rv 0 nan 0\rf 1 2 3\r", "vertex 3 has a non-finite or non-numeric coordinate \"nan\""},
+        {"\tv 0 0 0\r\nv 0x1p3 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n", "vertex 2 has a non-finite or non-numeric coordinate \"0x1p3\""},
+        {"v 0 0 0\nv 1e19 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 2 has the coordinate 1e19, which is outside the supported range"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 -1e30\nf 1 2 3\n", "vertex 3 has the coordinate -1e30"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3000000000\n", "face 1 references vertex 3000000000, but the file has 3 vertices"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9999999999\n", "face 1 references vertex -9999999999"},
+        {"v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 1 has 2 coordinates"},
+    };
+    for (const auto& [text, message] : misread) {
+        const auto bad = dir.write("misread.obj", text);
+        INFO(text);
+        REQUIRE_SSS_ERROR(Mesh::load(bad), ErrorKind::Parse, Contains("misread.obj") && Contains(message));
+    }
+
     // A zero index is invalid OBJ; tinyobjloader's own message is passed on.
     const auto zero = dir.write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
     REQUIRE_SSS_ERROR(Mesh::load(zero), ErrorKind::Parse,
                       Contains("zero.obj") && Contains("cannot parse OBJ") && Contains("line 4"));
 
     REQUIRE_SSS_ERROR(Mesh::load(dir.path()), ErrorKind::Io, Contains(dir.path().string()) && Contains("directory"));
+}
+
+TEST_CASE("Mesh::load accepts the whole supported coordinate range and every line ending", "[cpu]") {
+    sss::test::TempDir dir;
+    for (const char* eol : {"\n", "\r\n", "\r"}) {
+        const std::string text = std::string("v -1e18 0 0") + eol + "  v 1e18 0 0" + eol + "\tv 0 1.5e17 0" + eol +
+                                 "f 1 2 3" + eol;
+        const Mesh mesh = Mesh::load(dir.write("big.obj", text));
+        REQUIRE(mesh.triangleCount() == 1);
+        REQUIRE(mesh.bounds().max.x == 1e18f);
+        REQUIRE(std::isfinite(mesh.bounds().radius()));
+    }
+}
+
+TEST_CASE("Mesh::load skips faces with fewer than 3 vertices, with a warning", "[cpu]") {
+    sss::test::TempDir dir;
+    std::vector<std::string> warnings;
+    sss::setLogHandler([&](sss::LogLevel level, std::string_view m) {
+        if (level == sss::LogLevel::Warning) warnings.emplace_back(m);
+    });
+    const auto file = dir.write("short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\nf 3\n");
+    const Mesh mesh = Mesh::load(file);
+    sss::setLogHandler({});
+    REQUIRE(mesh.triangleCount() == 1);
+    REQUIRE(warnings.size() == 1);
+    REQUIRE_THAT(warnings[0], Contains("short.obj") && Contains("skipped 2 faces with fewer than 3 vertices") &&
+                                  Contains("face 1"));
 }
 
 TEST_CASE("Mesh::fromArrays builds and validates meshes", "[cpu]") {

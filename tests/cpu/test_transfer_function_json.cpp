@@ -127,6 +127,21 @@ TEST_CASE("ParaView JSON: colour and opacity nodes at different x are merged", "
         requireNear(ranged.evaluate(0.5f), {0.5f, 0, 0.5f, 0.5f});  // x = 200
         requireNear(ranged.evaluate(0.1f), {1, 0, 0, 0.1f});        // below the first colour node
     }
+    SECTION("x values near the ends of the double range map without overflow") {
+        // hi - lo overflows to infinity here; the loader once read past the node vector (issue 9, D2).
+        const std::filesystem::path wide =
+            dir.write("wide.json", R"({"RGBPoints": [-1e308, 1, 0, 0, 0, 0, 1, 0, 1e308, 0, 0, 1]})");
+        const TransferFunction tf = TransferFunction::loadParaViewJson(wide);
+        REQUIRE(tf.points().size() == 3);
+        requireNear(tf.evaluate(0.0f), {1, 0, 0, 0});
+        requireNear(tf.evaluate(0.5f), {0, 1, 0, 0.5f});
+        requireNear(tf.evaluate(0.75f), {0, 0.5f, 0.5f, 0.75f});
+        const TransferFunction ranged = TransferFunction::loadParaViewJson(wide, std::pair{-1.7e308, 1.7e308});
+        requireNear(ranged.evaluate(0.5f), {0, 1, 0, 0.5f});
+        for (const TransferFunction* f : {&tf, &ranged})
+            for (const glm::vec4& entry : f->table(256))
+                for (int c = 0; c < 4; ++c) REQUIRE((entry[c] >= 0.0f && entry[c] <= 1.0f));
+    }
     SECTION("equal x: the later node wins") {
         const std::filesystem::path dup =
             dir.write("dup.json", R"([{"RGBPoints": [0, 1, 0, 0, 0.5, 0, 1, 0, 0.5, 0, 0, 1, 1, 1, 1, 1]}])");

@@ -5,9 +5,22 @@
 // message arrived at all, so a test that forgets the check still cannot pass with errors.
 #include <sss/context.h>
 
+#include <string>
+
 namespace sss::test {
 
-/// The process-wide headless debug context (created on first use; a failure fails the test).
+/// Exit code of a test process that skipped its test; ctest reads it through SKIP_RETURN_CODE.
+constexpr int kSkipExitCode = 77;
+
+/// True when a GL test must fail, not skip, without a usable context: under CI (CI=true or 1)
+/// or when asked (SSS_REQUIRE_GL=1; scripts/test.sh sets it, as it installs llvmpipe).
+bool glRequired();
+
+/// Ends the test process as skipped (exit kSkipExitCode), saying why on stderr.
+[[noreturn]] void skipTest(const std::string& why);
+
+/// The process-wide headless debug context, created on first use. Without one the test is
+/// skipped, or fails where glRequired(): it never passes silently.
 GlContext& glContext();
 
 class GlTestScope {
