@@ -1,11 +1,14 @@
 #include "sss/volume.h"
 
+#include "format.h"
+
 #include "sss/error.h"
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -14,6 +17,7 @@ namespace sss {
 namespace {
 
 constexpr int kMaxSide = 8192;
+constexpr double kMaxExtentRatio = 1e6;
 constexpr uint64_t kMaxBytes = uint64_t(4) << 30;  // 4 GiB
 
 std::string dimsStr(glm::ivec3 d) {
@@ -22,11 +26,7 @@ std::string dimsStr(glm::ivec3 d) {
 
 const char* typeStr(VoxelType t) { return t == VoxelType::UInt16 ? "uint16" : "uint8"; }
 
-std::string vecStr(glm::vec3 v) {
-    std::ostringstream s;
-    s << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-    return s.str();
-}
+std::string vecStr(glm::vec3 v) { return detail::formatVec(v); }
 
 // Throws InvalidArgument (prefixed) unless dims/spacing describe a volume we accept.
 // Returns the byte size.
@@ -48,6 +48,18 @@ uint64_t checkLayout(const std::string& prefix, glm::ivec3 dims, VoxelType type,
         if (!std::isfinite(spacing[i]) || spacing[i] <= 0.0f)
             throw Error(ErrorKind::InvalidArgument,
                         prefix + "spacing must be finite and > 0, got " + vecStr(spacing));
+    // The renderers place the volume in a box whose largest side is 1 (worldBounds); a side
+    // more than kMaxExtentRatio times shorter would be degenerate in float.
+    const glm::dvec3 extent = glm::dvec3(dims) * glm::dvec3(spacing);
+    const double ratio = std::max({extent.x, extent.y, extent.z}) / std::min({extent.x, extent.y, extent.z});
+    if (!(ratio <= kMaxExtentRatio)) {
+        char factor[32];
+        std::snprintf(factor, sizeof factor, "%.3g", ratio);
+        throw Error(ErrorKind::InvalidArgument,
+                    prefix + "dims " + dimsStr(dims) + " times spacing " + vecStr(spacing) +
+                        " give sides whose lengths differ by a factor of " + factor +
+                        "; at most 1e6 is supported");
+    }
     return bytes;
 }
 
@@ -185,9 +197,10 @@ float Volume::normalizedAt(int x, int y, int z) const {
 }
 
 Bounds Volume::worldBounds() const {
-    const glm::vec3 extent = glm::vec3(m_dims) * m_spacing;
-    const float largest = std::max(extent.x, std::max(extent.y, extent.z));
-    const glm::vec3 half = 0.5f * extent / largest;
+    // In double: dims * spacing can pass FLT_MAX (spacing 3e38, say) although the ratio is fine.
+    const glm::dvec3 extent = glm::dvec3(m_dims) * glm::dvec3(m_spacing);
+    const double largest = std::max({extent.x, extent.y, extent.z});
+    const glm::vec3 half = glm::vec3(0.5 * extent / largest);
     Bounds b;
     b.extend(-half);
     b.extend(half);

@@ -44,7 +44,8 @@ struct RawLoadOptions {
 std::optional<RawVolumeInfo> parseRawVolumeName(std::string_view filename);
 
 /// A dense 3D grid of unsigned scalars. Layout: x fastest, then y, then z, no padding.
-/// Invariants: every dim in [1, 8192], total size <= 4 GiB, spacing finite and > 0.
+/// Invariants: every dim in [1, 8192], total size <= 4 GiB, spacing finite and > 0, and the
+/// sides dims * spacing within a factor of 1e6 of each other (worldBounds() stays non-degenerate).
 class Volume {
 public:
     /// Loads a headerless .raw file. dims/type come from options, else from the file name

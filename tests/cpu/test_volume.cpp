@@ -168,6 +168,22 @@ TEST_CASE("Volume::loadRaw reports bad input with the file and the problem", "[c
                       Contains("ok_2x2x2_uint8.raw") && Contains("spacing must be finite and > 0"));
     badSpacing.spacing = glm::vec3(1.0f, std::numeric_limits<float>::quiet_NaN(), 1.0f);
     REQUIRE_SSS_ERROR(Volume::loadRaw(ok, badSpacing), ErrorKind::InvalidArgument, Contains("spacing"));
+    // Found by fuzzing (tests/fuzz): sides 1e7 apart made worldBounds() degenerate, and a
+    // spacing near FLT_MAX made it NaN.
+    badSpacing.spacing = glm::vec3(1.0f, 1.0f, 3e38f);
+    REQUIRE_SSS_ERROR(Volume::loadRaw(ok, badSpacing), ErrorKind::InvalidArgument,
+                      Contains("ok_2x2x2_uint8.raw") && Contains("differ by a factor of 3e+38") && Contains("1e6"));
+    badSpacing.spacing = glm::vec3(1e-7f, 1.0f, 1.0f);
+    REQUIRE_SSS_ERROR(Volume::loadRaw(ok, badSpacing), ErrorKind::InvalidArgument, Contains("at most 1e6"));
+    for (const glm::vec3 spacing : {glm::vec3(3e38f), glm::vec3(1e-30f, 1e-30f, 1e-25f)}) {
+        RawLoadOptions scaled;
+        scaled.spacing = spacing;
+        const sss::Bounds b = Volume::loadRaw(ok, scaled).worldBounds();
+        INFO("spacing " << spacing.x << ", " << spacing.y << ", " << spacing.z);
+        REQUIRE(std::isfinite(b.radius()));
+        REQUIRE(b.size().x > 0.0f);
+        REQUIRE(std::max({b.size().x, b.size().y, b.size().z}) == 1.0f);
+    }
 }
 
 TEST_CASE("Volume::fromData validates its arguments", "[cpu]") {

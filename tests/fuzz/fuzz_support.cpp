@@ -1,0 +1,58 @@
+#include "fuzz_support.h"
+
+#include "sss/log.h"
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <system_error>
+#include <vector>
+
+namespace sss::fuzz {
+
+const std::filesystem::path& scratchDir() {
+    static const std::filesystem::path dir = [] {
+        const char* tmp = std::getenv("TMPDIR");
+        std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/sss-fuzz-XXXXXX";
+        std::vector<char> buf(pattern.begin(), pattern.end());
+        buf.push_back('\0');
+        if (!::mkdtemp(buf.data())) {
+            std::fprintf(stderr, "sss fuzz: cannot create a scratch directory %s: %s\n", pattern.c_str(),
+                         std::strerror(errno));
+            std::abort();
+        }
+        std::filesystem::path made(buf.data());
+        static std::filesystem::path forCleanup;
+        forCleanup = made;
+        std::atexit([] {
+            std::error_code ec;
+            std::filesystem::remove_all(forCleanup, ec);
+        });
+        return made;
+    }();
+    return dir;
+}
+
+std::filesystem::path writeScratchFile(const std::string& name, const uint8_t* data, std::size_t size) {
+    std::filesystem::path path = scratchDir() / name;
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    bool ok = f != nullptr;
+    if (ok && size > 0) ok = std::fwrite(data, 1, size, f) == size;
+    if (f) ok = std::fclose(f) == 0 && ok;
+    if (!ok) {
+        std::fprintf(stderr, "sss fuzz: cannot write %s: %s\n", path.c_str(), std::strerror(errno));
+        std::abort();
+    }
+    return path;
+}
+
+}  // namespace sss::fuzz
+
+// Called once by libFuzzer before the first input. The loaders' warnings (skipped faces, ...)
+// would flood the output at thousands of inputs a second: they are dropped unless
+// SSS_FUZZ_LOG=1 is set.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    const char* keep = std::getenv("SSS_FUZZ_LOG");
+    if (!(keep && std::string_view(keep) == "1")) sss::setLogHandler([](sss::LogLevel, std::string_view) {});
+    return 0;
+}
