@@ -118,12 +118,13 @@ std::unique_ptr<EglContext> EglContext::create(const EglContextOptions& options)
     const Devices devices = enumerateDevices(clientExtensions);
 
     // Order: surfaceless, device, default display + pbuffer — except that when a hardware EGL
-    // device exists (an NVIDIA GPU, say) and software was not asked for, the device goes first,
-    // because Mesa's surfaceless platform would otherwise pick llvmpipe on such a machine.
+    // device exists (an NVIDIA GPU, say) the device goes first: Mesa's surfaceless platform
+    // would pick llvmpipe on such a machine, and NVIDIA's own surfaceless platform its GPU, so
+    // only the device list tells hardware and software apart.
     std::vector<EglPlatform> order;
     if (options.platform != EglPlatform::Auto)
         order = {options.platform};
-    else if (!devices.hardware.empty() && !preferSoftware)
+    else if (!devices.hardware.empty())
         order = {EglPlatform::Device, EglPlatform::Surfaceless, EglPlatform::DefaultPbuffer};
     else
         order = {EglPlatform::Surfaceless, EglPlatform::Device, EglPlatform::DefaultPbuffer};

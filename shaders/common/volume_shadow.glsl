@@ -1,6 +1,8 @@
 // Attenuation of each light by a scattering volume, for mesh shading in hybrid scenes: the
 // light-volume intensity l where the light's ray leaves the volume box towards the point (at the
 // point itself inside the box). 1 where no volume is set. See src/hybrid/shared_lighting.h.
+#include "common/ray_box.glsl"
+
 #ifndef MAX_LIGHTS
 #define MAX_LIGHTS 8
 #endif
@@ -13,7 +15,7 @@ float volumeTransmittance(int light, vec3 worldPosition, vec3 towardsLight) {
     vec3 p = (volumeShadowWorldToTexture * vec4(worldPosition, 1.0)).xyz;
     vec3 d = mat3(volumeShadowWorldToTexture) * towardsLight;
     // Where the ray from the point towards the light enters the unit box, if it does.
-    vec3 inv = 1.0 / d;
+    vec3 inv = safeInverse(d);
     vec3 t0 = (vec3(0.0) - p) * inv, t1 = (vec3(1.0) - p) * inv;
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
     float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));

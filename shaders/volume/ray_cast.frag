@@ -160,7 +160,7 @@ void main() {
                 // without skipping would take (and the skipped ones would all be transparent).
                 vec3 brickSize = vec3(brickVoxels) / vec3(volumeDims) * (boxMax - boxMin);
                 vec3 lo = boxMin + vec3(brick) * brickSize, hi = lo + brickSize;
-                vec3 inv = 1.0 / ray.direction;
+                vec3 inv = safeInverse(ray.direction);
                 vec3 tFar = max((lo - ray.origin) * inv, (hi - ray.origin) * inv);
                 float exitT = min(min(tFar.x, tFar.y), tFar.z);
                 i = max(i, int(ceil((exitT - tFirst) / stepLength)) - 1);  // the loop adds one

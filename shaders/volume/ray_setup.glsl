@@ -1,6 +1,8 @@
 // Ray through the current pixel, in the volume's model space (the volume box spans
 // [boxMin, boxMax]). Works for perspective and orthographic cameras because the ray is built
 // by unprojecting the pixel at the near and far planes.
+#include "common/ray_box.glsl"
+
 uniform mat4 inverseViewProjection;
 uniform mat4 worldToModel;
 
@@ -22,8 +24,7 @@ Ray pixelRay(vec2 ndc) {
 
 // Slab test; returns (tEnter, tExit), empty when tEnter >= tExit.
 vec2 intersectBox(Ray ray, vec3 boxMin, vec3 boxMax) {
-    // Division by a zero component gives +-inf, which the min/max below handle.
-    vec3 inv = 1.0 / ray.direction;
+    vec3 inv = safeInverse(ray.direction);
     vec3 t0 = (boxMin - ray.origin) * inv;
     vec3 t1 = (boxMax - ray.origin) * inv;
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
