@@ -177,12 +177,7 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--no-skipping") a.skipping = false;
         else if (opt == "--eye-pass") a.eyePass = true;
         else if (opt == "--light-volume-scale") a.lightVolumeScale = parseFloat(opt, value());
-        else if (opt == "--light-volume-fallback") {
-            const std::string v = value();
-            if (v == "reduce") a.lightVolumeFallback = sss::LightVolumeFallback::Reduce;
-            else if (v == "fail") a.lightVolumeFallback = sss::LightVolumeFallback::Fail;
-            else throw UsageError("--light-volume-fallback: expected reduce or fail, got \"" + v + "\"");
-        }
+        else if (opt == "--light-volume-fallback") a.lightVolumeFallback = parseLightVolumeFallback(opt, value());
         else if (opt == "--anisotropy") a.anisotropy = parseFloat(opt, value());
         else if (opt == "--yaw") a.yaw = parseFloat(opt, value());
         else if (opt == "--pitch") a.pitch = parseFloat(opt, value());

@@ -50,6 +50,12 @@ int parseInt(const std::string& option, const std::string& text) {
     throw UsageError(option + ": expected an integer, got \"" + text + "\"");
 }
 
+sss::LightVolumeFallback parseLightVolumeFallback(const std::string& option, const std::string& text) {
+    if (text == "reduce") return sss::LightVolumeFallback::Reduce;
+    if (text == "fail") return sss::LightVolumeFallback::Fail;
+    throw UsageError(option + ": expected reduce or fail, got \"" + text + "\"");
+}
+
 std::vector<std::string> split(const std::string& text, char separator) {
     std::vector<std::string> parts;
     std::stringstream ss(text);

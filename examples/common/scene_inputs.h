@@ -3,6 +3,7 @@
 // vectors from option values, the data directory, and meshes/volumes named by a path or by
 // "procedural:NAME".
 #include <sss/mesh.h>
+#include <sss/volume_scattering_renderer.h>
 #include <sss/volume.h>
 
 #include <glm/vec3.hpp>
@@ -26,6 +27,7 @@ std::vector<std::string> split(const std::string& text, char separator);
 glm::vec3 parseVec3(const std::string& option, const std::string& text);  ///< "X,Y,Z"
 glm::ivec3 parseDims(const std::string& option, const std::string& text);  ///< "XxYxZ"
 sss::VoxelType parseVoxelType(const std::string& option, const std::string& text);  ///< uint8|uint16
+sss::LightVolumeFallback parseLightVolumeFallback(const std::string& option, const std::string& text);  ///< reduce|fail
 
 /// --data-dir if given, else $SSS_DATA_DIR, else ../shared/data if it exists, else empty.
 std::filesystem::path dataDirectory(const std::string& dataDirOption);

@@ -108,6 +108,7 @@ public:
         m_volumeHighlights = args.volumeMode == "scattering-gradient";
         m_volumeBaselineGradient = args.volumeMode != "emission-absorption";
         m_volumeOptions.lightVolumeScale = args.lightVolumeScale;
+        m_volumeOptions.lightVolumeFallback = args.lightVolumeFallback;
         m_hybrid.cornellBox = args.cornellBox;
         m_lightAzimuth = args.lightAzimuth;
         m_lightElevation = args.lightElevation;
@@ -587,6 +588,10 @@ private:
         if (m_volumeScattering) {
             m_volumeDirty |= ImGui::SliderFloat("light-volume scale", &m_volumeOptions.lightVolumeScale, 0.1f, 1.0f,
                                                 "%.2f");
+            // LightVolumeFallback::Reduce lowered it: the asked-for light volume does not fit the GPU.
+            const float inUse = m_compositor->volume(0).lightVolumeScaleInUse();
+            if (inUse > 0.0f && inUse < m_volumeOptions.lightVolumeScale)
+                ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "does not fit the GPU: using %.3g", inUse);
             m_volumeDirty |= ImGui::SliderFloat("anisotropy g", &m_volumeOptions.anisotropy, -0.9f, 0.9f, "%.2f");
         }
         m_volumeDirty |= ImGui::SliderFloat("ambient", &m_volumeOptions.ambient, 0.0f, 1.0f, "%.2f");

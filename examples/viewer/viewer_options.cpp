@@ -16,6 +16,7 @@ namespace {
 
 using examples::parseFloat;
 using examples::parseInt;
+using examples::parseLightVolumeFallback;
 using examples::split;
 
 constexpr const char* kUsage = R"(usage: sss-viewer [--mesh PATH] [--volume PATH] [options]
@@ -46,6 +47,9 @@ scene:
   --map-resolution R        scattering-map and light-buffer side in texels (default: 512)
   --accumulation F          map frames accumulated while the scene is static (default: 8)
   --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
+  --light-volume-fallback reduce|fail
+                            when the light volume does not fit the GPU: halve its resolution
+                            until it fits, with a warning, or fail (default: reduce)
   --tf NAME|FILE.json       transfer-function preset or ParaView JSON (default: from the volume's name)
   --yaw DEG --pitch DEG     initial camera orbit angles (default: 25, 15; 14, 12 with --cornell-box)
   --light-angles AZ,EL      light azimuth and elevation in degrees (default: 35,40)
@@ -126,6 +130,8 @@ ViewerOptions parseArgs(int argc, char** argv) {
             o.lightVolumeScale = parseFloat(opt, value());
             if (!(o.lightVolumeScale > 0.0f && o.lightVolumeScale <= 1.0f))
                 throw UsageError("--light-volume-scale: must be in (0, 1]");
+        } else if (opt == "--light-volume-fallback") {
+            o.lightVolumeFallback = parseLightVolumeFallback(opt, value());
         } else if (opt == "--cornell-box") o.cornellBox = true;
         else if (opt == "--yaw") o.yaw = parseFloat(opt, value());
         else if (opt == "--pitch") o.pitch = parseFloat(opt, value());
