@@ -11,6 +11,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <fstream>
@@ -130,6 +131,23 @@ bool isDecimalNumber(std::string_view t) {
     return i == t.size();
 }
 
+// Blanks "vw" (vertex weight) lines in place, keeping the line numbers of tinyobjloader's
+// messages. libsss does not use skin weights, and tinyobjloader converts their joint ids from
+// float to int without a range check (undefined behaviour, found by tests/fuzz).
+void blankVertexWeights(std::string& text) {
+    std::size_t i = 0;
+    while (i < text.size()) {
+        std::size_t start = i;
+        while (start < text.size() && (text[start] == ' ' || text[start] == '\t')) ++start;
+        std::size_t end = start;
+        while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
+        if (end - start >= 3 && text[start] == 'v' && text[start + 1] == 'w' &&
+            (text[start + 2] == ' ' || text[start + 2] == '\t'))
+            std::fill(text.begin() + static_cast<std::ptrdiff_t>(start), text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+        i = end + 1;
+    }
+}
+
 struct ObjTextCheck {
     std::string error;  // empty if none
     std::size_t shortFaces = 0, firstShortFace = 0;  // faces of fewer than 3 vertices (dropped)
@@ -243,27 +261,26 @@ Mesh Mesh::load(const std::filesystem::path& path) {
     if (!std::ifstream(path))
         throw Error(ErrorKind::Io, file + ": cannot be opened for reading");
 
-    {
-        std::ifstream in(path, std::ios::binary);
-        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (in.bad()) throw Error(ErrorKind::Io, file + ": read error");
-        const ObjTextCheck check = checkObjText(text);
-        if (!check.error.empty()) throw Error(ErrorKind::Parse, file + ": " + check.error);
-        if (check.shortFaces > 0)
-            log(LogLevel::Warning, file + ": skipped " + std::to_string(check.shortFaces) +
-                                       (check.shortFaces == 1 ? " face" : " faces") +
-                                       " with fewer than 3 vertices (the first is face " +
-                                       std::to_string(check.firstShortFace) + ")");
-    }
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw Error(ErrorKind::Io, file + ": read error");
+    const ObjTextCheck check = checkObjText(text);
+    if (!check.error.empty()) throw Error(ErrorKind::Parse, file + ": " + check.error);
+    if (check.shortFaces > 0)
+        log(LogLevel::Warning, file + ": skipped " + std::to_string(check.shortFaces) +
+                                   (check.shortFaces == 1 ? " face" : " faces") +
+                                   " with fewer than 3 vertices (the first is face " +
+                                   std::to_string(check.firstShortFace) + ")");
+    blankVertexWeights(text);
 
     // Triangulate ourselves: tinyobjloader silently drops polygons with out-of-range indices
     // (and keeps triangles with them), so we need the raw faces to report bad indices.
+    // Materials are not used, so none are read.
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;
     config.vertex_color = false;
-    config.mtl_search_path = path.parent_path().string();
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(file, config))
+    if (!reader.ParseFromString(text, "", config))
         throw Error(ErrorKind::Parse, file + ": cannot parse OBJ: " + trimmed(reader.Error()));
 
     const tinyobj::attrib_t& attrib = reader.GetAttrib();

@@ -197,6 +197,17 @@ TEST_CASE("Mesh::load accepts the whole supported coordinate range and every lin
     }
 }
 
+TEST_CASE("Mesh::load ignores vertex weights, even out-of-range ones", "[cpu]") {
+    // tinyobjloader converts "vw" joint ids to int unchecked (undefined behaviour under UBSan,
+    // found by tests/fuzz); libsss does not use them and blanks those lines before parsing.
+    sss::test::TempDir dir;
+    const auto file = dir.write("weights.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n  vw 0 63333333333333333333333333333333 0.5\n"
+                                                "vw 1 0 1\nf 1 2 3\nf 1 2 9\n");
+    REQUIRE_SSS_ERROR(Mesh::load(file), ErrorKind::Parse, Contains("weights.obj") && Contains("face 2 references vertex 9"));
+    const auto ok = dir.write("weights_ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 1e31 0.5\nf 1 2 3\n");
+    REQUIRE(Mesh::load(ok).triangleCount() == 1);
+}
+
 TEST_CASE("Mesh::load skips faces with fewer than 3 vertices, with a warning", "[cpu]") {
     sss::test::TempDir dir;
     std::vector<std::string> warnings;
