@@ -6,6 +6,7 @@
 //         bare-draw          an EglContext, one raw GL program (no libsss objects) and one draw
 //         renderers          an EglContext with libsss volume and mesh renderers drawing a frame
 //         one-context        the renderers of "renderers", rebuilt N times in a single context
+//         bare-one-context   the program and draw of "bare-draw", repeated N times in a single context
 //
 // It prints the resident set growth per cycle after a warm-up, the growth of anonymous
 // executable mappings (where JIT compilers put machine code) and what libsss still holds on
@@ -96,18 +97,20 @@ int run(int argc, char** argv) {
         if (arg == "--mode" && i + 1 < argc) mode = argv[++i];
         else if (arg == "--cycles" && i + 1 < argc) cycles = std::atoi(argv[++i]);
         else {
-            std::fprintf(stderr, "usage: sss-context-churn [--mode context|bare-draw|renderers|one-context] [--cycles N]\n");
+            std::fprintf(stderr, "usage: sss-context-churn [--mode context|bare-draw|renderers|one-context|"
+                                 "bare-one-context] [--cycles N]\n");
             return 2;
         }
     }
-    if (cycles < 40 || (mode != "context" && mode != "bare-draw" && mode != "renderers" && mode != "one-context")) {
+    if (cycles < 40 || (mode != "context" && mode != "bare-draw" && mode != "renderers" && mode != "one-context" &&
+                        mode != "bare-one-context")) {
         std::fprintf(stderr, "sss-context-churn: unknown --mode \"%s\" or --cycles below 40\n", mode.c_str());
         return 2;
     }
     const sss::Volume volume = sss::makeBlobsVolume(32);
     const sss::Mesh mesh = sss::makeUvSphere(16, 8);
     std::unique_ptr<sss::EglContext> shared;
-    if (mode == "one-context") shared = sss::EglContext::create();
+    if (mode == "one-context" || mode == "bare-one-context") shared = sss::EglContext::create();
     const int warmUp = 20;
     Footprint start;
     std::string renderer;
@@ -115,7 +118,7 @@ int run(int argc, char** argv) {
         std::unique_ptr<sss::EglContext> own;
         if (!shared) own = sss::EglContext::create();
         if (renderer.empty()) renderer = (shared ? shared : own)->info().renderer;
-        if (mode == "bare-draw") bareDraw();
+        if (mode == "bare-draw" || mode == "bare-one-context") bareDraw();
         if (mode == "renderers" || mode == "one-context") renderersFrame(volume, mesh);
         own.reset();
         if (i + 1 == warmUp) start = footprint();
