@@ -1,5 +1,7 @@
 #include "sss/transfer_function_editor.h"
 
+#include "format.h"
+
 #include "sss/error.h"
 #include "sss/volume.h"
 
@@ -19,7 +21,7 @@ void checkOptions(const TransferFunctionEditorOptions& options) {
     const glm::vec2 r = options.pickRadius;
     if (!finite(r) || !(r.x > 0.0f) || !(r.y > 0.0f))
         throw Error(ErrorKind::InvalidArgument, "TransferFunctionEditorOptions::pickRadius must be finite and > 0, got (" +
-                                                    std::to_string(r.x) + ", " + std::to_string(r.y) + ")");
+                                                    detail::formatNumber(r.x) + ", " + detail::formatNumber(r.y) + ")");
 }
 
 bool insideCanvas(glm::vec2 p) { return p.x >= 0.0f && p.x <= 1.0f && p.y >= 0.0f && p.y <= 1.0f; }

@@ -27,13 +27,6 @@ namespace sss {
 namespace {
 
 
-// "0.5", "0.125": the shortest text that reads back as the value.
-std::string formatScale(float value) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", static_cast<double>(value));
-    return buf;
-}
-
 // Everything the light volumes depend on; they are rebuilt only when this changes.
 struct LightVolumeInputs {
     std::uint64_t volumeGeneration = 0;
@@ -137,7 +130,7 @@ struct VolumeScatteringRenderer::Impl {
                 const glm::ivec3 reduced = detail::lightVolumeDims(volume->dims, scale);
                 log(LogLevel::Warning, std::string(e.what()) + "; the light volume falls back to " +
                                            std::to_string(reduced.x) + "x" + std::to_string(reduced.y) + "x" +
-                                           std::to_string(reduced.z) + " (lightVolumeScale " + formatScale(scale) +
+                                           std::to_string(reduced.z) + " (lightVolumeScale " + detail::formatNumber(scale) +
                                            "; LightVolumeFallback::Fail makes this an error)");
             }
         }
