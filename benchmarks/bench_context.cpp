@@ -100,7 +100,7 @@ Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget
     const sss::Image image = target.readColor();
     if (!m_options.imageDir.empty()) {
         std::filesystem::create_directories(m_options.imageDir);
-        image.savePng(m_options.imageDir / (id + ".png"));
+        sss::toDisplay(image).savePng(m_options.imageDir / (id + ".png"));  // the display image (sRGB)
     }
     m.coverage = drawnFraction(image, id);
     if (m.coverage < kMinCoverage)

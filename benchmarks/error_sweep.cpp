@@ -67,7 +67,6 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
                 mo.mapResolution = mo.lightMapResolution = resolution;
                 mo.accumulationFrames = 1;
                 mo.millimetresPerUnit = mmPerUnit;
-                mo.gamma = 1.0f;
                 mo.specular = 0.0f;
                 sss::MeshScatteringRenderer renderer(mo);
                 renderer.setMesh(sphere);

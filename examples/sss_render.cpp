@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -39,9 +40,14 @@ input:
   --spacing X,Y,Z           voxel spacing (default 1,1,1)
   --data-dir DIR            where to look for relative paths
 output:
-  --out FILE.png            output image (default: sss-render.png)
+  --out FILE.png|FILE.exr   output image (default: sss-render.png): a PNG is the display image
+                            (exposure, tone mapping, sRGB); an OpenEXR file holds the linear
+                            radiance in 32-bit float, untransformed
+  --exposure EV             exposure in stops for the display image (default: 0)
+  --tonemap none|filmic     tone mapping for the display image (default: none: values above 1 clip)
   --size WxH                image size (default: 1200x680, the thesis viewport)
-  --background R,G,B        background colour in [0,1] (default: 0.1,0.1,0.12)
+  --background R,G,B        linear background colour (default: 0.01,0.01,0.0137, which
+                            displays as the dark grey-blue sRGB 0.1,0.1,0.12)
   --repeat N                render N times and report median/min/max (default: 1)
 shading:
   --mode MODE               blinn-phong or sss (mesh); emission-absorption, gradient,
@@ -100,10 +106,11 @@ struct Args {
     std::optional<sss::VoxelType> type;
     std::optional<glm::vec3> spacing;
     int width = 1200, height = 680, repeat = 1;
-    glm::vec3 background{0.1f, 0.1f, 0.12f};
+    glm::vec3 background{0.010f, 0.010f, 0.0137f};  // linear; displays as sRGB (0.1, 0.1, 0.12)
     glm::vec3 color{0.8f, 0.75f, 0.7f};
     float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
     bool eyePass = false;
+    sss::DisplayTransform display;
     sss::LightVolumeFallback lightVolumeFallback = sss::LightVolumeFallback::Reduce;
     bool jitter = true, skipping = true, ortho = false, listTf = false, cornellBox = false, lightGiven = false;
     float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
@@ -136,6 +143,12 @@ Args parseArgs(int argc, char** argv) {
         } else if (opt == "--mesh") a.mesh = value();
         else if (opt == "--volume") a.volume = value();
         else if (opt == "--out") a.out = value();
+        else if (opt == "--exposure") a.display.exposure = parseFloat(opt, value());
+        else if (opt == "--tonemap") {
+            const std::string v = value();
+            if (v != "none" && v != "filmic") throw UsageError("--tonemap: expected none or filmic, got \"" + v + "\"");
+            a.display.toneMap = sss::parseToneMap(v);
+        }
         else if (opt == "--mode") a.mode = value();
         else if (opt == "--tf") a.tf = value();
         else if (opt == "--list-tf") a.listTf = true;
@@ -196,6 +209,9 @@ Args parseArgs(int argc, char** argv) {
         else throw UsageError("unknown option \"" + opt + "\" (see --help)");
     }
     if (a.listTf || a.listMaterials) return a;
+    if (!(std::abs(a.display.exposure) <= 64.0f)) throw UsageError("--exposure: must be within [-64, 64] stops");
+    const std::string ext = fs::path(a.out).extension().string();
+    if (ext != ".png" && ext != ".exr") throw UsageError("--out: the file must end in .png or .exr, got \"" + a.out + "\"");
     for (const auto& [name, offset] : {std::pair{"--mesh-offset", a.meshOffset}, std::pair{"--volume-offset", a.volumeOffset}})
         if (!(glm::all(glm::lessThanEqual(glm::abs(offset), glm::vec3(sss::Mesh::kMaxCoordinate)))))
             throw UsageError(std::string(name) + ": components must be within +-1e18 (scene units)");
@@ -339,7 +355,10 @@ int run(const Args& a) {
         times.push_back(timer.endMilliseconds());
     }
     const sss::Image image = target.readColor();
-    image.toRgba8().savePng(a.out);
+    if (fs::path(a.out).extension() == ".exr")
+        image.saveExr(a.out);  // linear radiance, as rendered
+    else
+        sss::toDisplay(image, a.display).savePng(a.out);
     if (showsOnlyBackground(image, a.background))
         std::fprintf(stderr, "sss-render: warning: the image shows only the background: nothing of the scene is in "
                              "view (check --mesh-offset, --volume-offset, --zoom, --step and the scene's size)\n");

@@ -13,7 +13,7 @@ packages=(
   # (swrast_dri.so); nothing pulls it in under --no-install-recommends, so list it.
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   # libraries
-  libglm-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev catch2
+  libglm-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev catch2 libopenexr-dev
   # clang with libFuzzer and the sanitizer runtimes: the loader fuzz targets (tests/fuzz)
   clang-14 libclang-rt-14-dev
 )

@@ -109,6 +109,7 @@ public:
         m_volumeBaselineGradient = args.volumeMode != "emission-absorption";
         m_volumeOptions.lightVolumeScale = args.lightVolumeScale;
         m_volumeOptions.lightVolumeFallback = args.lightVolumeFallback;
+        m_displayTransform = args.display;
         m_hybrid.cornellBox = args.cornellBox;
         m_lightAzimuth = args.lightAzimuth;
         m_lightElevation = args.lightElevation;
@@ -306,7 +307,10 @@ private:
         if (saveScreenshot && !m_args.screenshotUi) writeScreenshot(m_args.screenshot, false);
         if (m_screenshotRequested) writeScreenshot(m_screenshotPath, false);
 
-        m_gl->present(m_target->framebufferId(), fb.x, fb.y, fb.x, fb.y);
+        // The target holds linear radiance; the window shows its display image.
+        if (!m_display) m_display.emplace();
+        m_display->encode(*m_target, m_displayTransform);
+        m_gl->present(m_display->framebufferId(), fb.x, fb.y, fb.x, fb.y);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (saveScreenshot && m_args.screenshotUi) writeScreenshot(m_args.screenshot, true);
@@ -327,7 +331,7 @@ private:
                 const glm::ivec2 fb = m_context->framebufferSize();
                 m_gl->readBackBuffer(fb.x, fb.y).savePng(path);
             } else {
-                m_target->readColor().toRgba8().savePng(path);
+                sss::toDisplay(m_target->readColor(), m_displayTransform).savePng(path);
             }
             std::printf("wrote %s\n", path.c_str());
             std::fflush(stdout);
@@ -497,6 +501,10 @@ private:
         m_lightsDirty |= ImGui::SliderFloat("light elevation", &m_lightElevation, -89.0f, 89.0f, "%.0f deg");
         m_lightsDirty |= colorEdit("light colour", m_lightColor);
         m_lightsDirty |= ImGui::SliderFloat("light intensity", &m_lightIntensity, 0.0f, 4.0f, "%.2f");
+        ImGui::SliderFloat("exposure (stops)", &m_displayTransform.exposure, -8.0f, 8.0f, "%.1f");
+        int toneMap = m_displayTransform.toneMap == sss::ToneMap::Filmic ? 1 : 0;
+        if (ImGui::Combo("tone mapping", &toneMap, "none (clip)\0filmic\0"))
+            m_displayTransform.toneMap = toneMap == 1 ? sss::ToneMap::Filmic : sss::ToneMap::None;
         ImGui::TextDisabled("left drag: orbit, right/middle: pan, wheel: zoom");
     }
 
@@ -707,7 +715,9 @@ private:
     std::unique_ptr<sss::GlfwContext> m_context;
     std::optional<viewer::PresentGl> m_gl;
     std::optional<sss::HybridCompositor> m_compositor;
-    std::optional<sss::RenderTarget> m_target;
+    std::optional<sss::RenderTarget> m_target;  // linear radiance
+    std::optional<sss::DisplayEncoder> m_display;  // its display image, presented in the window
+    sss::DisplayTransform m_displayTransform;
     sss::Camera m_camera;
 
     std::optional<sss::Mesh> m_mesh;

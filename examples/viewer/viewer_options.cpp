@@ -47,6 +47,8 @@ scene:
   --map-resolution R        scattering-map and light-buffer side in texels (default: 512)
   --accumulation F          map frames accumulated while the scene is static (default: 8)
   --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
+  --exposure EV             display exposure in stops (default: 0)
+  --tonemap none|filmic     display tone mapping (default: none)
   --light-volume-fallback reduce|fail
                             when the light volume does not fit the GPU: halve its resolution
                             until it fits, with a warning, or fail (default: reduce)
@@ -130,6 +132,13 @@ ViewerOptions parseArgs(int argc, char** argv) {
             o.lightVolumeScale = parseFloat(opt, value());
             if (!(o.lightVolumeScale > 0.0f && o.lightVolumeScale <= 1.0f))
                 throw UsageError("--light-volume-scale: must be in (0, 1]");
+        } else if (opt == "--exposure") {
+            o.display.exposure = parseFloat(opt, value());
+            if (!(std::abs(o.display.exposure) <= 64.0f)) throw UsageError("--exposure: must be within [-64, 64] stops");
+        } else if (opt == "--tonemap") {
+            const std::string v = value();
+            if (v != "none" && v != "filmic") throw UsageError("--tonemap: expected none or filmic, got \"" + v + "\"");
+            o.display.toneMap = sss::parseToneMap(v);
         } else if (opt == "--light-volume-fallback") {
             o.lightVolumeFallback = parseLightVolumeFallback(opt, value());
         } else if (opt == "--cornell-box") o.cornellBox = true;

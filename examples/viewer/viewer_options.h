@@ -3,6 +3,7 @@
 
 #include "common/scene_inputs.h"
 
+#include <sss/display.h>
 #include <sss/mesh.h>
 #include <sss/volume.h>
 
@@ -35,6 +36,7 @@ struct ViewerOptions {
     int cameras = 8, samples = 24, mapResolution = 512, accumulation = 8;
     float lightVolumeScale = 1.0f;         ///< --light-volume-scale
     sss::LightVolumeFallback lightVolumeFallback = sss::LightVolumeFallback::Reduce;  ///< --light-volume-fallback
+    sss::DisplayTransform display;         ///< --exposure, --tonemap
     bool cornellBox = false;               ///< --cornell-box
     std::optional<float> yaw, pitch;       ///< --yaw/--pitch (degrees; default 25, 15; 14, 12 in a Cornell box)
     float lightAzimuth = 35.0f, lightElevation = 40.0f;  ///< --light-angles AZ,EL (degrees)

@@ -38,7 +38,9 @@
 namespace sss {
 
 struct HybridOptions {
-    glm::vec4 background{0.1f, 0.1f, 0.12f, 1.0f};  ///< clear colour (default: dark grey-blue)
+    /// Clear colour, linear like everything in the target (default: the dark grey-blue whose
+    /// display value is sRGB (0.1, 0.1, 0.12)).
+    glm::vec4 background{0.010f, 0.010f, 0.0137f, 1.0f};
     bool cornellBox = false;          ///< surround the content with a Cornell box (default: off)
     bool meshShadowsInVolumes = true;   ///< meshes shadow the volumes' light volumes (default: on)
     bool volumeShadowsOnMeshes = true;  ///< volumes attenuate the light reaching meshes (default: on)

@@ -39,9 +39,17 @@ public:
     Image8 toRgba8() const;
     /// Copy with the rows in reverse order (GL reads back bottom row first).
     Image flippedVertically() const;
-    /// Writes toRgba8() as an 8-bit RGBA PNG.
+    /// Writes toRgba8() as an 8-bit RGBA PNG: values are clamped, not display-transformed (for
+    /// a picture of linear radiance use toDisplay(), include/sss/display.h).
     /// @throws Error Io naming the file if it cannot be written.
     void savePng(const std::filesystem::path& path) const;
+    /// Writes an OpenEXR file with 32-bit float R, G, B, A channels: the values exactly, linear.
+    /// @throws Error Io naming the file if it cannot be written.
+    void saveExr(const std::filesystem::path& path) const;
+    /// Reads an OpenEXR file's R, G, B (and A, else 1) channels as 32-bit floats; a missing
+    /// colour channel reads as 0. @throws Error Io if missing, Parse if OpenEXR cannot read it,
+    /// InvalidArgument if it is larger than 16384 on a side.
+    static Image loadExr(const std::filesystem::path& path);
 
 private:
     int m_width = 0, m_height = 0;

@@ -43,8 +43,6 @@ struct BlinnPhongMaterial {
 
 struct MeshRenderOptions {
     MeshShading shading = MeshShading::BlinnPhong;
-    /// Output is encoded as colour^(1/gamma); 1 writes linear values (default: 2.2).
-    float gamma = 2.2f;
     // Scattering (MeshShading::Scattering):
     int cameras = 8;               ///< K scattering maps, 1..32 (default: 8)
     int samples = 24;              ///< N proposals per light per frame, 1..4096 (default: 24)
@@ -82,7 +80,7 @@ void validate(const MeshRenderOptions& options);
 /// Draws one mesh with the scene's lights into a RenderTarget. Needs a current GlContext.
 class MeshScatteringRenderer {
 public:
-    /// Throws Error(InvalidArgument) for invalid options (e.g. gamma <= 0).
+    /// Throws Error(InvalidArgument) for invalid options (e.g. cameras 0).
     explicit MeshScatteringRenderer(const MeshRenderOptions& options = {});
     ~MeshScatteringRenderer();
     MeshScatteringRenderer(MeshScatteringRenderer&&) noexcept;

@@ -13,8 +13,9 @@
 namespace sss {
 
 /// Offscreen colour + depth target. Needs a current GlContext for its whole lifetime.
-/// Colour is linear floating point (renderers write display-ready values; see each renderer's
-/// gamma option); depth is window-space depth in [0,1], 1 = far plane.
+/// Colour is linear radiance in 32-bit float (every renderer writes linear values; the display
+/// transform of include/sss/display.h turns them into a picture at output); depth is
+/// window-space depth in [0,1], 1 = far plane.
 class RenderTarget {
 public:
     /// Throws Error(InvalidArgument) unless 0 < width, height <= 16384.

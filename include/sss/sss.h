@@ -5,6 +5,7 @@
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/context.h"
+#include "sss/display.h"
 #include "sss/error.h"
 #include "sss/gpu_memory.h"
 #ifdef SSS_WITH_GLFW

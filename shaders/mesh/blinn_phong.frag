@@ -10,7 +10,6 @@ uniform vec3 ambient;
 uniform vec3 diffuseColor;
 uniform vec3 specularColor;
 uniform float shininess;
-uniform float inverseGamma;   // 1/gamma; 1 writes linear values
 
 layout(location = 0) out vec4 fragColor;
 
@@ -26,5 +25,5 @@ void main() {
         radiance *= volumeTransmittance(i, worldPosition, l);
         color += blinnPhong(n, l, v, radiance, diffuseColor, specularColor, shininess);
     }
-    fragColor = vec4(pow(max(color, vec3(0.0)), vec3(inverseGamma)), 1.0);
+    fragColor = vec4(max(color, vec3(0.0)), 1.0);  // linear radiance
 }

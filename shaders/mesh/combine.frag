@@ -1,6 +1,6 @@
 // Combine (Dal Corso et al. 2017, pass 3): look the visible point up in every scattering map
 // like a shadow map, average the layers that see it, apply the exit Fresnel factor, add an
-// optional specular highlight and encode gamma.
+// optional specular highlight; writes linear radiance.
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
@@ -21,7 +21,6 @@ uniform float seamShrink;    // model units
 uniform float eta;
 uniform float specularStrength;
 uniform float shininess;
-uniform float inverseGamma;
 
 layout(location = 0) out vec4 fragColor;
 
@@ -76,5 +75,5 @@ void main() {
             color += specularStrength * (1.0 - exitT) * radiance * nDotL * pow(max(dot(nWorld, h), 0.0), shininess);
         }
     }
-    fragColor = vec4(pow(max(color, vec3(0.0)), vec3(inverseGamma)), 1.0);
+    fragColor = vec4(max(color, vec3(0.0)), 1.0);  // linear radiance
 }

@@ -13,7 +13,7 @@ BlinnPhongPass::BlinnPhongPass()
                                    {GL_FRAGMENT_SHADER, "mesh/blinn_phong.frag"}})) {}
 
 void BlinnPhongPass::run(const GpuMesh& mesh, const glm::mat4& model, const BlinnPhongMaterial& material,
-                         const std::vector<Light>& lights, const Camera& camera, float aspect, float gamma,
+                         const std::vector<Light>& lights, const Camera& camera, float aspect,
                          const VolumeShadows* volumeShadows) const {
     m_program.set("model", model);
     m_program.set("viewProjection", camera.projection(aspect) * camera.view());
@@ -23,7 +23,6 @@ void BlinnPhongPass::run(const GpuMesh& mesh, const glm::mat4& model, const Blin
     m_program.set("diffuseColor", material.diffuse);
     m_program.set("specularColor", material.specular);
     m_program.set("shininess", material.shininess);
-    m_program.set("inverseGamma", 1.0f / gamma);
     setLightUniforms(m_program, lights);
     setVolumeShadowUniforms(m_program, volumeShadows, lights.size());
 

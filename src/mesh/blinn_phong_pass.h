@@ -15,7 +15,7 @@ class BlinnPhongPass {
 public:
     BlinnPhongPass();
     void run(const GpuMesh& mesh, const glm::mat4& model, const BlinnPhongMaterial& material,
-             const std::vector<Light>& lights, const Camera& camera, float aspect, float gamma,
+             const std::vector<Light>& lights, const Camera& camera, float aspect,
              const VolumeShadows* volumeShadows = nullptr) const;
 
 private:

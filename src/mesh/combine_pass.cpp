@@ -34,7 +34,6 @@ void CombinePass::run(const GpuMesh& mesh, const glm::mat4& model, const Scatter
     p.set("eta", s.eta);
     p.set("specularStrength", s.specularStrength);
     p.set("shininess", s.shininess);
-    p.set("inverseGamma", 1.0f / s.gamma);
     setLightUniforms(p, lights);
     setVolumeShadowUniforms(p, volumeShadows, lights.size());
     maps.maps().bind(0);

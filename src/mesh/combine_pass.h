@@ -2,7 +2,7 @@
 // Combine (Dal Corso et al. 2017, pass 3): the mesh from the viewer; each visible point reads
 // the scattering maps that see it (3x3 percentage-closer visibility against each layer's depth,
 // with a depth bias and a seam shrink), averages them, and applies exit Fresnel, an optional
-// specular highlight and gamma (shaders/mesh/combine.frag).
+// specular highlight; linear output (shaders/mesh/combine.frag).
 #include "gl/program.h"
 #include "hybrid/shared_lighting.h"
 #include "mesh/gpu_mesh.h"
@@ -20,7 +20,6 @@ struct CombineSettings {
     float seamShrink = 0.0f;  ///< model units
     float specularStrength = 1.0f;
     float shininess = 40.0f;
-    float gamma = 2.2f;
 };
 
 class CombinePass {

@@ -63,7 +63,6 @@ void validate(const MeshRenderOptions& o) {
                     "MeshRenderOptions::" + field + " must be " + rule + ", got " + detail::formatNumber(value));
     };
     auto finite = [](double v) { return std::isfinite(v); };
-    if (!(o.gamma > 0.0f) || !finite(o.gamma)) fail("gamma", "a finite value > 0", o.gamma);
     if (o.cameras < 1 || o.cameras > detail::kMaxScatteringCameras) fail("cameras", "in 1..32", o.cameras);
     if (o.samples < 1 || o.samples > 4096) fail("samples", "in 1..4096", o.samples);
     if (o.mapResolution < 16 || o.mapResolution > 8192) fail("mapResolution", "in 16..8192", o.mapResolution);
@@ -217,7 +216,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         if (!r.blinnPhong) r.blinnPhong.emplace();
         r.timed("blinn-phong", [&] {
             target.bindForDrawing();
-            r.blinnPhong->run(*r.mesh, r.model, r.material, r.lights, camera, target.aspect(), r.options.gamma,
+            r.blinnPhong->run(*r.mesh, r.model, r.material, r.lights, camera, target.aspect(),
                               r.volumeShadows ? &*r.volumeShadows : nullptr);
         });
         return;
@@ -234,7 +233,6 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.seamShrink = r.options.seamShrink * 2.0f * radius / texels;
     settings.specularStrength = r.options.specular;
     settings.shininess = r.options.shininess;
-    settings.gamma = r.options.gamma;
     r.timed("combine", [&] {
         target.bindForDrawing();
         r.combine->run(*r.mesh, r.model, r.cameras, *r.scatteringMaps, r.lights, camera, target.aspect(), settings,

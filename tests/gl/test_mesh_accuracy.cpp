@@ -34,10 +34,9 @@ struct Scene {
     }
 };
 
-// Linear radiance (gamma 1), no specular: what the reference computes.
+// Linear radiance (what every renderer writes), no specular: what the reference computes.
 MeshRenderOptions comparable(MeshRenderOptions o = {}) {
     o.shading = MeshShading::Scattering;
-    o.gamma = 1.0f;
     o.specular = 0.0f;
     o.millimetresPerUnit = kMillimetresPerUnit;
     return o;

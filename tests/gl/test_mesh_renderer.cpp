@@ -31,7 +31,7 @@ TEST_CASE("Blinn-Phong sphere matches its golden image", "[gl][mesh][golden]") {
     RenderTarget target(kWidth, kHeight);
     target.clear(kBackground);
     renderer.render(orbitCamera(sphere.bounds(), 20.0f, 15.0f), target);
-    test::requireMatchesGolden(target.readColor().toRgba8(), "mesh_blinn_phong_sphere");
+    test::requireMatchesGolden(target.readColor(), "mesh_blinn_phong_sphere");
     CHECK(renderer.stats().runs("blinn-phong") == 1);
     gl.requireNoErrors();
 }
@@ -51,16 +51,16 @@ TEST_CASE("Blinn-Phong torus with a directional and a point light matches its go
     camera.setProjectionType(Projection::Orthographic);
     camera.setOrthoHeight(2.2f);
     renderer.render(camera, target);
-    test::requireMatchesGolden(target.readColor().toRgba8(), "mesh_blinn_phong_torus_two_lights");
+    test::requireMatchesGolden(target.readColor(), "mesh_blinn_phong_torus_two_lights");
     gl.requireNoErrors();
 }
 
 TEST_CASE("Lambert term of a sphere follows n.l analytically", "[gl][mesh][analytic]") {
-    // Orthographic view along -z, light travelling along -z, no ambient or specular, gamma 1:
+    // Orthographic view along -z, light travelling along -z, no ambient or specular, linear output:
     // a pixel at distance r (in sphere radii) from the centre must read albedo * sqrt(1 - r^2).
     test::GlTestScope gl;
     const Mesh sphere = makeUvSphere(96, 64);  // fine tessellation so normals are near-exact
-    MeshScatteringRenderer renderer({.gamma = 1.0f});
+    MeshScatteringRenderer renderer;
     renderer.setMesh(sphere);
     const float albedo = 0.6f;
     renderer.setMaterial({.diffuse = glm::vec3(albedo), .specular = glm::vec3(0.0f), .ambient = glm::vec3(0.0f)});
@@ -87,7 +87,7 @@ TEST_CASE("Lambert term of a sphere follows n.l analytically", "[gl][mesh][analy
 
 TEST_CASE("mesh renderer rejects bad parameters with clear errors", "[gl][mesh][errors]") {
     test::GlTestScope gl;
-    CHECK_THROWS_WITH(MeshScatteringRenderer({.gamma = 0.0f}), Catch::Contains("gamma"));
+    CHECK_THROWS_WITH(MeshScatteringRenderer({.cameras = 0}), Catch::Contains("cameras"));
     MeshScatteringRenderer renderer;
     RenderTarget target(8, 8);
     CHECK_THROWS_WITH(renderer.render(Camera{}, target), Catch::Contains("no mesh"));

@@ -57,7 +57,7 @@ TEST_CASE("cream sphere lit from the front matches the golden image", "[gl][mesh
     renderer.setScatteringMaterial(materialPreset("cream"));
     renderer.setLights({DirectionalLight{.direction = {-0.3f, -0.3f, -1.0f}}});
     const Image image = renderConverged(renderer, orbitCamera(sphere.bounds(), 15.0f, 10.0f));
-    test::requireMatchesGolden(image.toRgba8(), "mesh_sss_cream_sphere");
+    test::requireMatchesGolden(image, "mesh_sss_cream_sphere");
     gl.requireNoErrors();
 }
 
@@ -74,11 +74,11 @@ TEST_CASE("a thin potato slab lit from behind glows through (translucency)", "[g
     const Image image = renderConverged(renderer, camera);
     const glm::vec4 centre = image.at(kWidth / 2, kHeight / 2);
     INFO("front-face centre " << centre.r << " " << centre.g << " " << centre.b);
-    CHECK(centre.r > 0.2f);  // light came through
+    CHECK(centre.r > 0.03f);  // light came through (linear; 0.2 when this test wrote gamma 2.2)
     // Potato absorbs blue most (sigma_a 0.0024 / 0.0090 / 0.12 per mm): red leads.
     CHECK(centre.r > centre.g);
     CHECK(centre.g > centre.b);
-    test::requireMatchesGolden(image.toRgba8(), "mesh_sss_potato_slab_backlit");
+    test::requireMatchesGolden(image, "mesh_sss_potato_slab_backlit");
 
     // The same slab 30 times thicker lets (next to) nothing through.
     MeshScatteringRenderer thick(testOptions());
@@ -103,7 +103,7 @@ TEST_CASE("torus with concavities at K = 4 and K = 16 matches the golden images"
         renderer.setScatteringMaterial(materialPreset("marble"));
         renderer.setLights({DirectionalLight{.direction = {0.4f, -1.0f, -0.5f}}});
         const Image image = renderConverged(renderer, orbitCamera(torus.bounds(), -25.0f, 10.0f));
-        test::requireMatchesGolden(image.toRgba8(), "mesh_sss_marble_torus_k" + std::to_string(cameras));
+        test::requireMatchesGolden(image, "mesh_sss_marble_torus_k" + std::to_string(cameras));
     }
     gl.requireNoErrors();
 }
@@ -149,9 +149,8 @@ TEST_CASE("a camera-only change reruns only the combine pass", "[gl][mesh][scatt
         CHECK(runs("light-buffer") == 2);
         CHECK(runs("scattering-maps") == 5);
     }
-    SECTION("changing only the gamma or the specular term reruns nothing but the combine pass") {
+    SECTION("changing only the specular term reruns nothing but the combine pass") {
         MeshRenderOptions o = renderer.options();
-        o.gamma = 1.8f;
         o.specular = 0.0f;
         renderer.setOptions(o);
         frame();

@@ -46,7 +46,7 @@ TEST_CASE("emission-absorption blobs match the golden image", "[gl][volume][gold
     test::GlTestScope gl;
     const Volume volume = makeBlobsVolume(64);
     const Image image = renderVolume(volume, test::blobsTransferFunction(), {}, orbitCamera(volume.worldBounds(), 30.0f, 20.0f));
-    test::requireMatchesGolden(image.toRgba8(), "volume_emission_absorption_blobs");
+    test::requireMatchesGolden(image, "volume_emission_absorption_blobs");
     gl.requireNoErrors();
 }
 
@@ -55,7 +55,7 @@ TEST_CASE("emission-absorption bucky-like volume matches the golden image", "[gl
     const Volume volume = makeBuckyLikeVolume(32);
     const Image image = renderVolume(volume, TransferFunction::preset("bucky"), {.stepSize = 0.5f},
                                      orbitCamera(volume.worldBounds(), -20.0f, 25.0f));
-    test::requireMatchesGolden(image.toRgba8(), "volume_emission_absorption_bucky");
+    test::requireMatchesGolden(image, "volume_emission_absorption_bucky");
     gl.requireNoErrors();
 }
 
@@ -65,7 +65,7 @@ TEST_CASE("gradient-shaded bucky-like volume matches the golden image", "[gl][vo
     const Image image = renderVolume(volume, TransferFunction::preset("bucky"),
                                      {.shading = VolumeShading::Gradient, .stepSize = 0.5f},
                                      orbitCamera(volume.worldBounds(), -20.0f, 25.0f));
-    test::requireMatchesGolden(image.toRgba8(), "volume_gradient_bucky");
+    test::requireMatchesGolden(image, "volume_gradient_bucky");
     gl.requireNoErrors();
 }
 
@@ -78,7 +78,7 @@ TEST_CASE("gradient-shaded hollow shell matches the golden image", "[gl][volume]
     // gradient normals must produce a terminator across the sphere.
     const Image image = renderVolume(volume, tf, {.shading = VolumeShading::Gradient},
                                      orbitCamera(volume.worldBounds(), 10.0f, 10.0f));
-    test::requireMatchesGolden(image.toRgba8(), "volume_gradient_shell");
+    test::requireMatchesGolden(image, "volume_gradient_shell");
     gl.requireNoErrors();
 }
 

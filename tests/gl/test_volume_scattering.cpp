@@ -265,7 +265,7 @@ TEST_CASE("scattering bucky-like volume matches the golden image", "[gl][volume]
     const Image image = renderScattering(volume, TransferFunction::preset("bucky"),
                                          {DirectionalLight{.direction = {-1.0f, -0.6f, -0.3f}}},
                                          orbitCamera(volume.worldBounds(), -20.0f, 25.0f), 256, 144, {.stepSize = 0.5f});
-    test::requireMatchesGolden(image.toRgba8(), "volume_scattering_bucky");
+    test::requireMatchesGolden(image, "volume_scattering_bucky");
     gl.requireNoErrors();
 }
 
@@ -276,7 +276,7 @@ TEST_CASE("hollow sphere lit from the side shadows its own far wall (golden)", "
                                {0.6f, {0.95f, 0.8f, 0.6f}, 0.35f}, {1.0f, {1, 1, 1}, 0.5f}});
     const Image image = renderScattering(volume, tf, {DirectionalLight{.direction = {1.0f, -0.4f, -0.2f}}},
                                          orbitCamera(volume.worldBounds(), 10.0f, 10.0f), 256, 144);
-    test::requireMatchesGolden(image.toRgba8(), "volume_scattering_shell_shadow");
+    test::requireMatchesGolden(image, "volume_scattering_shell_shadow");
     gl.requireNoErrors();
 }
 

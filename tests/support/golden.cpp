@@ -3,6 +3,7 @@
 #include "support/gl_test.h"
 
 #include <catch2/catch.hpp>
+#include <sss/display.h>
 #include <sss/error.h>
 #include <sss/image_compare.h>
 
@@ -12,7 +13,8 @@
 
 namespace sss::test {
 
-void requireMatchesGolden(const Image8& actual, const std::string& name, GoldenTolerance tolerance) {
+void requireMatchesGolden(const Image& linear, const std::string& name, GoldenTolerance tolerance) {
+    const Image8 actual = toDisplay(linear);
     // Goldens are made on Mesa's llvmpipe; other rasterisers round differently. ctest runs the
     // [golden] cases with SSS_EGL_SOFTWARE=1, which picks Mesa's software device on GPU machines.
     if (const ContextInfo& info = glContext().info(); !info.software)
