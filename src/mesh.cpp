@@ -35,11 +35,18 @@ bool isInRange(glm::vec3 v) {
     return ok(v.x) && ok(v.y) && ok(v.z);
 }
 
-// A normal is usable if normalizing it gives a finite unit vector.
+// A normal is usable if it is finite and not zero.
 bool isUsableNormal(glm::vec3 n) {
-    if (!isFinite(n)) return false;
-    float len = glm::length(n);
-    return std::isfinite(len) && len > std::numeric_limits<float>::min();
+    const float largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+    return std::isfinite(largest) && largest > 0.0f;
+}
+
+// The unit vector along a usable normal. Divided by its largest component first, so that
+// neither tiny vectors (squares in the denormal range, found by tests/fuzz: |n| came out
+// 0.98) nor huge ones (squares overflowing float) lose precision.
+glm::vec3 unitNormal(glm::vec3 n) {
+    const float largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+    return glm::normalize(n / largest);
 }
 
 Bounds boundsOf(const std::vector<glm::vec3>& positions) {
@@ -64,11 +71,11 @@ std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
     }
     for (std::size_t i = 0; i < acc.size(); ++i) {
         if (isUsableNormal(acc[i])) {
-            acc[i] = glm::normalize(acc[i]);
+            acc[i] = unitNormal(acc[i]);
             continue;
         }
         glm::vec3 d = positions[i] - centre;
-        acc[i] = isUsableNormal(d) ? glm::normalize(d) : glm::vec3(0.0f, 0.0f, 1.0f);
+        acc[i] = isUsableNormal(d) ? unitNormal(d) : glm::vec3(0.0f, 0.0f, 1.0f);
     }
     return acc;
 }
@@ -241,7 +248,7 @@ Mesh Mesh::fromArrays(std::vector<glm::vec3> positions, std::vector<uint32_t> in
         for (std::size_t i = 0; i < normals.size(); ++i) {
             if (!isUsableNormal(normals[i]))
                 fail("normal " + std::to_string(i) + " is zero or non-finite " + str(normals[i]));
-            normals[i] = glm::normalize(normals[i]);
+            normals[i] = unitNormal(normals[i]);
         }
     }
     mesh.m_positions = std::move(positions);
@@ -363,7 +370,7 @@ Mesh Mesh::load(const std::filesystem::path& path) {
         auto [it, inserted] = remap.try_emplace(key, static_cast<uint32_t>(positions.size()));
         if (inserted) {
             positions.push_back(filePosition(static_cast<std::size_t>(v)));
-            if (!smooth) normals.push_back(glm::normalize(fileNormal(static_cast<std::size_t>(c.normal_index))));
+            if (!smooth) normals.push_back(unitNormal(fileNormal(static_cast<std::size_t>(c.normal_index))));
         }
         indices.push_back(it->second);
     }
@@ -401,7 +408,7 @@ Mesh Mesh::transformed(const glm::mat4& m) const {
     out.m_normals.reserve(m_normals.size());
     for (const glm::vec3& n : m_normals) {
         glm::vec3 t = normalMatrix * n;
-        out.m_normals.push_back(isUsableNormal(t) ? glm::normalize(t) : n);
+        out.m_normals.push_back(isUsableNormal(t) ? unitNormal(t) : n);
     }
     out.m_indices = m_indices;
     // A mirror turns counter-clockwise triangles clockwise; swap two corners to undo it.

@@ -197,6 +197,20 @@ TEST_CASE("Mesh::load accepts the whole supported coordinate range and every lin
     }
 }
 
+TEST_CASE("normals are unit length for tiny and huge geometry", "[cpu]") {
+    // Found by tests/fuzz: a smoothed normal whose squared length was denormal came out with
+    // length 0.98; squares of huge vectors overflow float instead.
+    for (const float s : {1e-20f, 1e-12f, 1.0f, 1e12f, 1e18f}) {
+        const Mesh mesh = Mesh::fromArrays({{0, 0, 0}, {s, 0, 0}, {0, s, 0}, {0, 0, s}}, {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3});
+        for (const glm::vec3& n : mesh.normals()) {
+            INFO("scale " << s << ": normal (" << n.x << ", " << n.y << ", " << n.z << ")");
+            REQUIRE(std::abs(glm::length(n) - 1.0f) < 1e-6f);
+        }
+        const Mesh scaled = Mesh::fromArrays({{0, 0, 0}, {s, 0, 0}, {0, s, 0}}, {0, 1, 2}, {{0, 0, s}, {0, 0, s}, {0, 0, s}});
+        REQUIRE(scaled.normals()[0] == glm::vec3(0, 0, 1));
+    }
+}
+
 TEST_CASE("Mesh::load ignores vertex weights, even out-of-range ones", "[cpu]") {
     // tinyobjloader converts "vw" joint ids to int unchecked (undefined behaviour under UBSan,
     // found by tests/fuzz); libsss does not use them and blanks those lines before parsing.
