@@ -2,8 +2,9 @@
 
 #include "gl/framebuffer.h"
 #include "gl/program.h"
-#include "hybrid/shared_lighting.h"
-#include "light_uniforms.h"
+#include "mesh/renderer_access.h"
+#include "volume/renderer_access.h"
+#include "lighting/light_uniforms.h"
 #include "mesh/light_buffer_pass.h"
 #include "sss/error.h"
 #include "sss/procedural.h"

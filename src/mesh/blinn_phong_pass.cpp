@@ -1,7 +1,7 @@
 #include "mesh/blinn_phong_pass.h"
 
-#include "camera_uniforms.h"
-#include "light_uniforms.h"
+#include "lighting/camera_uniforms.h"
+#include "lighting/light_uniforms.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>

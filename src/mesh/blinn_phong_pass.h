@@ -4,7 +4,7 @@
 #include "mesh/gpu_mesh.h"
 #include "sss/camera.h"
 #include "sss/light.h"
-#include "hybrid/shared_lighting.h"
+#include "lighting/shadows.h"
 #include "sss/mesh_scattering_renderer.h"
 
 #include <vector>

@@ -1,7 +1,7 @@
 #include "mesh/combine_pass.h"
 
-#include "camera_uniforms.h"
-#include "light_uniforms.h"
+#include "lighting/camera_uniforms.h"
+#include "lighting/light_uniforms.h"
 
 #include <glm/matrix.hpp>
 

@@ -4,7 +4,7 @@
 // with a depth bias and a seam shrink), averages them, and applies exit Fresnel, an optional
 // specular highlight; linear output (shaders/mesh/combine.frag).
 #include "gl/program.h"
-#include "hybrid/shared_lighting.h"
+#include "lighting/shadows.h"
 #include "mesh/gpu_mesh.h"
 #include "mesh/scattering_map_pass.h"
 #include "sss/camera.h"

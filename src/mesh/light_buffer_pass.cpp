@@ -1,6 +1,6 @@
 #include "mesh/light_buffer_pass.h"
 
-#include "light_uniforms.h"
+#include "lighting/light_uniforms.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>

@@ -2,13 +2,13 @@
 
 #include "format.h"
 
-#include "light_uniforms.h"
+#include "lighting/light_uniforms.h"
 #include "mesh/blinn_phong_pass.h"
 #include "mesh/combine_pass.h"
 #include "mesh/gpu_mesh.h"
 #include "mesh/light_buffer_pass.h"
 #include "mesh/scattering_map_pass.h"
-#include "hybrid/shared_lighting.h"
+#include "mesh/renderer_access.h"
 #include "sss/error.h"
 #include "sss/timing.h"
 

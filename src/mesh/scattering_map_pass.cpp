@@ -1,6 +1,6 @@
 #include "mesh/scattering_map_pass.h"
 
-#include "light_uniforms.h"
+#include "lighting/light_uniforms.h"
 #include "mesh/dipole_uniforms.h"
 
 #include <glm/gtc/matrix_transform.hpp>

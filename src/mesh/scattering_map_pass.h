@@ -7,7 +7,7 @@
 #include "gl/framebuffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
-#include "hybrid/shared_lighting.h"
+#include "lighting/shadows.h"
 #include "mesh/gpu_mesh.h"
 #include "sss/bssrdf.h"
 #include "sss/light.h"

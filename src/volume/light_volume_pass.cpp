@@ -1,5 +1,7 @@
 #include "volume/light_volume_pass.h"
 
+#include "lighting/texture_units.h"
+
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -96,8 +98,8 @@ void LightVolumePass::run(const GpuVolume& volume, const gl::Texture& transferFu
 void LightVolumePass::runEyePass(const GpuVolume& volume, const gl::Texture& transferFunction,
                                  const gl::Texture& litColour, glm::vec3 viewDirection, const glm::mat4& model,
                                  const LightVolumeSettings& settings, gl::Texture& output) {
-    m_program.set("litColour", 4);
-    litColour.bind(4);
+    m_program.set("litColour", units::kLitColour);
+    litColour.bind(units::kLitColour);
     // Light travelling towards the viewer; nothing enters from behind the volume.
     sweep(volume, transferFunction, DirectionalLight{.direction = -viewDirection}, model, settings, output,
           glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));

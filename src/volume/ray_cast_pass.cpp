@@ -1,7 +1,9 @@
 #include "volume/ray_cast_pass.h"
 
-#include "camera_uniforms.h"
-#include "light_uniforms.h"
+#include "lighting/texture_units.h"
+
+#include "lighting/camera_uniforms.h"
+#include "lighting/light_uniforms.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -36,12 +38,13 @@ RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::si
                                    {"EYE_PASS", eyePass ? "1" : "0"}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
-void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
-                      const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes,
-                      const MeshShadowMaps* meshShadows, const gl::Texture* eyeVolume, const glm::mat4& model,
-                      const std::vector<Light>& lights, const VolumeRenderOptions& options, const Camera& camera,
-                      float aspect) const {
-    const glm::mat4 viewProjection = camera.projection(aspect) * camera.view();
+void RayCastPass::run(const RayCastInputs& in) const {
+    const GpuVolume& volume = in.volume;
+    const glm::mat4& model = in.model;
+    const std::vector<Light>& lights = in.lights;
+    const VolumeRenderOptions& options = in.options;
+    const MeshShadowMaps* meshShadows = in.meshShadows;
+    const glm::mat4 viewProjection = in.camera.projection(in.aspect) * in.camera.view();
     const float stepLength = options.stepSize * volume.voxelLength;
     const glm::vec3 size = volume.box.size();
     // Enough steps to cross the box diagonally, plus one for the jittered start.
@@ -56,7 +59,7 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
     p.set("sceneDepth", 2);
     p.set("occupancy", 3);
     p.set("brickVoxels", kBrickVoxels);
-    p.set("transferFunctionEntries", static_cast<float>(transferFunction.size().x));
+    p.set("transferFunctionEntries", static_cast<float>(in.transferFunction.size().x));
     p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("boxMin", volume.box.min);
     p.set("boxMax", volume.box.max);
@@ -75,7 +78,7 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
     }
     if (usesGradient(m_shading)) {
         p.set("normalToWorld", glm::mat3(glm::transpose(glm::inverse(model))));
-        setCameraUniforms(p, camera);
+        setCameraUniforms(p, in.camera);
         p.set("specularColor", options.specular);
         p.set("shininess", options.shininess);
         p.set("gradientThreshold", options.gradientThreshold);
@@ -83,30 +86,30 @@ void RayCastPass::run(const GpuVolume& volume, const gl::Texture& transferFuncti
     if (usesLightVolume(m_shading)) {
         const bool shadowed = meshShadows && meshShadows->worldToClip.size() >= lights.size();
         p.set("meshShadows", shadowed ? 1 : 0);
-        p.set("meshShadowDepth", kMeshShadowUnit);
+        p.set("meshShadowDepth", units::kMeshShadowDepth);
         if (shadowed) {
             for (size_t i = 0; i < lights.size(); ++i)
                 p.set("worldToShadowClip[" + std::to_string(i) + "]", meshShadows->worldToClip[i]);
             // About two shadow-map texels' worth of depth (the maps span the scene's diameter).
             p.set("meshShadowBias", 2.0f / static_cast<float>(meshShadows->depth.size().x));
-            meshShadows->depth.bind(kMeshShadowUnit);
+            meshShadows->depth.bind(units::kMeshShadowDepth);
         }
-        if (m_eyePass && eyeVolume) {
-            p.set("eyeVolume", kEyeVolumeUnit);
+        if (m_eyePass && in.eyeVolume) {
+            p.set("eyeVolume", units::kEyeVolume);
             p.set("eyePassStrength", options.eyePassStrength);
-            eyeVolume->bind(kEyeVolumeUnit);
+            in.eyeVolume->bind(units::kEyeVolume);
         }
-        for (size_t i = 0; i < lightVolumes.size(); ++i) {
-            const int unit = kFirstLightVolumeUnit + static_cast<int>(i);
+        for (size_t i = 0; i < in.lightVolumes.size(); ++i) {
+            const int unit = units::kLightVolumes + static_cast<int>(i);
             p.set("lightVolumes[" + std::to_string(i) + "]", unit);
-            lightVolumes[i].bind(static_cast<GLuint>(unit));
+            in.lightVolumes[i].bind(static_cast<GLuint>(unit));
         }
     }
 
     volume.texture.bind(0);
-    transferFunction.bind(1);
-    sceneDepth.bind(2);
-    if (m_emptySpaceSkipping) occupancy.bind(3);
+    in.transferFunction.bind(1);
+    in.sceneDepth.bind(2);
+    if (m_emptySpaceSkipping) in.occupancy.bind(3);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);

@@ -7,7 +7,7 @@
 #include "gl/vertex_array.h"
 #include "sss/camera.h"
 #include "sss/volume_scattering_renderer.h"
-#include "hybrid/shared_lighting.h"
+#include "lighting/shadows.h"
 #include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
 
@@ -18,6 +18,22 @@ namespace sss::detail {
 /// Scattering modes sample light volumes.
 bool usesLightVolume(VolumeShading shading);
 
+/// What one ray-cast draw reads. References stay owned by the renderer.
+struct RayCastInputs {
+    const GpuVolume& volume;
+    const gl::Texture& transferFunction;
+    const gl::Texture& sceneDepth;  ///< a copy of the target's depth: rays stop there
+    const gl::Texture& occupancy;
+    const std::vector<gl::Texture>& lightVolumes;  ///< one per light in the scattering modes
+    const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights
+    const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
+    const glm::mat4& model;
+    const std::vector<Light>& lights;
+    const VolumeRenderOptions& options;
+    const Camera& camera;
+    float aspect = 1.0f;
+};
+
 class RayCastPass {
 public:
     RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass);
@@ -27,21 +43,14 @@ public:
         return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping && lightCount == m_lightCount &&
                eyePass == m_eyePass;
     }
-    /// `sceneDepth` is a copy of the target's depth (rays stop there); `lightVolumes` has one
-    /// texture per light in the scattering modes. The target is bound.
-    void run(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& sceneDepth,
-             const gl::Texture& occupancy, const std::vector<gl::Texture>& lightVolumes,
-             const MeshShadowMaps* meshShadows, const gl::Texture* eyeVolume, const glm::mat4& model, const std::vector<Light>& lights,
-             const VolumeRenderOptions& options, const Camera& camera, float aspect) const;
+    /// Draws into the bound target.
+    void run(const RayCastInputs& in) const;
 
 private:
-    static constexpr int kFirstLightVolumeUnit = 4;  // 0 volume, 1 TF, 2 scene depth, 3 occupancy
-    static constexpr int kMeshShadowUnit = 12;       // after the light volumes (4..11)
     VolumeShading m_shading;
     bool m_emptySpaceSkipping;
     std::size_t m_lightCount;
     bool m_eyePass;
-    static constexpr int kEyeVolumeUnit = 13;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
 };

@@ -3,7 +3,8 @@
 #include "format.h"
 
 #include "gl/texture.h"
-#include "light_uniforms.h"
+#include "lighting/light_uniforms.h"
+#include "lighting/texture_units.h"
 #include "sss/error.h"
 #include "sss/log.h"
 #include "sss/timing.h"
@@ -11,6 +12,7 @@
 #include "volume/gpu_volume.h"
 #include "volume/light_volume_pass.h"
 #include "volume/ray_cast_pass.h"
+#include "volume/renderer_access.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -169,8 +171,8 @@ struct VolumeScatteringRenderer::Impl {
         p.set("diffuseStrength", options.diffuse);
         detail::setLightUniforms(p, lights);
         for (size_t i = 0; i < lights.size(); ++i) {
-            p.set("lightVolumes[" + std::to_string(i) + "]", 4 + static_cast<int>(i));
-            lightVolumes[i].bind(4 + static_cast<GLuint>(i));
+            p.set("lightVolumes[" + std::to_string(i) + "]", detail::units::kLightVolumes + static_cast<int>(i));
+            lightVolumes[i].bind(static_cast<GLuint>(detail::units::kLightVolumes + static_cast<int>(i)));
         }
         volume->texture.bind(0);
         transferFunctionTable.bind(1);
@@ -254,10 +256,19 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     const auto start = std::chrono::steady_clock::now();
     m_impl->copyDepth(target);
     target.bindForDrawing();
-    m_impl->rayCast->run(*m_impl->volume, m_impl->transferFunctionTable, m_impl->sceneDepth,
-                         m_impl->occupancy->texture(), m_impl->lightVolumes, m_impl->meshShadows,
-                         eyePass ? &m_impl->eyeVolume : nullptr,
-                         m_impl->model, m_impl->lights, m_impl->options, camera, target.aspect());
+    const Impl& r = *m_impl;
+    r.rayCast->run({.volume = *r.volume,
+                    .transferFunction = r.transferFunctionTable,
+                    .sceneDepth = r.sceneDepth,
+                    .occupancy = r.occupancy->texture(),
+                    .lightVolumes = r.lightVolumes,
+                    .meshShadows = r.meshShadows,
+                    .eyeVolume = eyePass ? &r.eyeVolume : nullptr,
+                    .model = r.model,
+                    .lights = r.lights,
+                    .options = r.options,
+                    .camera = camera,
+                    .aspect = target.aspect()});
     if (m_impl->options.finishEachPass) finishGpuWork();
     m_impl->stats.record("ray-cast",
                          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

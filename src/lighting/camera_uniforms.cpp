@@ -1,4 +1,4 @@
-#include "camera_uniforms.h"
+#include "lighting/camera_uniforms.h"
 
 namespace sss::detail {
 

@@ -1,4 +1,4 @@
-#include "light_uniforms.h"
+#include "lighting/light_uniforms.h"
 
 #include "sss/error.h"
 

@@ -1,6 +1,8 @@
-#include "hybrid/shared_lighting.h"
+#include "lighting/shadows.h"
 
-#include "light_uniforms.h"
+#include "lighting/texture_units.h"
+
+#include "lighting/light_uniforms.h"
 
 #include <string>
 
@@ -12,11 +14,11 @@ void setVolumeShadowUniforms(const gl::Program& program, const VolumeShadows* sh
     // Samplers keep their own units even when unused: two samplers of different types on one
     // unit (these default to unit 0) make every draw fail validation.
     for (int i = 0; i < kMaxLights; ++i)
-        program.set("volumeShadowLight[" + std::to_string(i) + "]", kVolumeShadowFirstUnit + i);
+        program.set("volumeShadowLight[" + std::to_string(i) + "]", units::kVolumeShadows + i);
     if (!enabled) return;
     program.set("volumeShadowWorldToTexture", shadows->worldToTexture);
     for (std::size_t i = 0; i < lightCount; ++i) {
-        (*shadows->lightVolumes)[i].bind(static_cast<GLuint>(kVolumeShadowFirstUnit + static_cast<int>(i)));
+        (*shadows->lightVolumes)[i].bind(static_cast<GLuint>(units::kVolumeShadows + static_cast<int>(i)));
     }
 }
 
