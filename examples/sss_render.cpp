@@ -143,12 +143,8 @@ Args parseArgs(int argc, char** argv) {
         } else if (opt == "--mesh") a.mesh = value();
         else if (opt == "--volume") a.volume = value();
         else if (opt == "--out") a.out = value();
-        else if (opt == "--exposure") a.display.exposure = parseFloat(opt, value());
-        else if (opt == "--tonemap") {
-            const std::string v = value();
-            if (v != "none" && v != "filmic") throw UsageError("--tonemap: expected none or filmic, got \"" + v + "\"");
-            a.display.toneMap = sss::parseToneMap(v);
-        }
+        else if (opt == "--exposure") a.display.exposure = parseExposure(opt, value());
+        else if (opt == "--tonemap") a.display.toneMap = parseToneMap(opt, value());
         else if (opt == "--mode") a.mode = value();
         else if (opt == "--tf") a.tf = value();
         else if (opt == "--list-tf") a.listTf = true;
@@ -209,7 +205,6 @@ Args parseArgs(int argc, char** argv) {
         else throw UsageError("unknown option \"" + opt + "\" (see --help)");
     }
     if (a.listTf || a.listMaterials) return a;
-    if (!(std::abs(a.display.exposure) <= 64.0f)) throw UsageError("--exposure: must be within [-64, 64] stops");
     const std::string ext = fs::path(a.out).extension().string();
     if (ext != ".png" && ext != ".exr") throw UsageError("--out: the file must end in .png or .exr, got \"" + a.out + "\"");
     for (const auto& [name, offset] : {std::pair{"--mesh-offset", a.meshOffset}, std::pair{"--volume-offset", a.volumeOffset}})

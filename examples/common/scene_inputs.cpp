@@ -56,6 +56,17 @@ sss::LightVolumeFallback parseLightVolumeFallback(const std::string& option, con
     throw UsageError(option + ": expected reduce or fail, got \"" + text + "\"");
 }
 
+sss::ToneMap parseToneMap(const std::string& option, const std::string& text) {
+    if (text == "none" || text == "filmic") return sss::parseToneMap(text);
+    throw UsageError(option + ": expected none or filmic, got \"" + text + "\"");
+}
+
+float parseExposure(const std::string& option, const std::string& text) {
+    const float stops = parseFloat(option, text);
+    if (!(std::abs(stops) <= 64.0f)) throw UsageError(option + ": must be within [-64, 64] stops");
+    return stops;
+}
+
 std::vector<std::string> split(const std::string& text, char separator) {
     std::vector<std::string> parts;
     std::stringstream ss(text);

@@ -2,6 +2,7 @@
 // Command-line parsing and scene loading shared by sss-render and sss-viewer: numbers and
 // vectors from option values, the data directory, and meshes/volumes named by a path or by
 // "procedural:NAME".
+#include <sss/display.h>
 #include <sss/mesh.h>
 #include <sss/volume_scattering_renderer.h>
 #include <sss/volume.h>
@@ -28,6 +29,8 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text);  ///< "
 glm::ivec3 parseDims(const std::string& option, const std::string& text);  ///< "XxYxZ"
 sss::VoxelType parseVoxelType(const std::string& option, const std::string& text);  ///< uint8|uint16
 sss::LightVolumeFallback parseLightVolumeFallback(const std::string& option, const std::string& text);  ///< reduce|fail
+sss::ToneMap parseToneMap(const std::string& option, const std::string& text);  ///< none|filmic
+float parseExposure(const std::string& option, const std::string& text);  ///< stops in [-64, 64]
 
 /// --data-dir if given, else $SSS_DATA_DIR, else ../shared/data if it exists, else empty.
 std::filesystem::path dataDirectory(const std::string& dataDirOption);

@@ -133,12 +133,9 @@ ViewerOptions parseArgs(int argc, char** argv) {
             if (!(o.lightVolumeScale > 0.0f && o.lightVolumeScale <= 1.0f))
                 throw UsageError("--light-volume-scale: must be in (0, 1]");
         } else if (opt == "--exposure") {
-            o.display.exposure = parseFloat(opt, value());
-            if (!(std::abs(o.display.exposure) <= 64.0f)) throw UsageError("--exposure: must be within [-64, 64] stops");
+            o.display.exposure = examples::parseExposure(opt, value());
         } else if (opt == "--tonemap") {
-            const std::string v = value();
-            if (v != "none" && v != "filmic") throw UsageError("--tonemap: expected none or filmic, got \"" + v + "\"");
-            o.display.toneMap = sss::parseToneMap(v);
+            o.display.toneMap = examples::parseToneMap(opt, value());
         } else if (opt == "--light-volume-fallback") {
             o.lightVolumeFallback = parseLightVolumeFallback(opt, value());
         } else if (opt == "--cornell-box") o.cornellBox = true;
