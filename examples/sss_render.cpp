@@ -64,6 +64,9 @@ shading:
   --frames F                frames accumulated into the scattering maps (default: 8)
   --scale MM                millimetres per scene unit (default: 1000, i.e. metres)
   --no-specular             no specular highlight on the translucent surface
+  --environment R,G,B       radiance of a uniform environment lighting the translucent mesh, so
+                            faces the light misses are not black (default: 0,0,0; 0.05 in
+                            a Cornell box)
   --color R,G,B             mesh diffuse colour (default: 0.8,0.75,0.7)
   --shininess S             mesh Blinn-Phong exponent (default: 40)
   --tf NAME|FILE.json       transfer-function preset (default: ramp; see --list-tf) or a
@@ -116,7 +119,7 @@ struct Args {
     float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
     float lightIntensity = 1.0f;
-    std::optional<glm::vec3> pointLight;
+    std::optional<glm::vec3> pointLight, environment;
     std::optional<std::pair<double, double>> tfRange;
     glm::vec3 meshOffset{0.0f}, volumeOffset{0.0f};
 };
@@ -162,6 +165,7 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--frames") a.frames = parseInt(opt, value());
         else if (opt == "--scale") a.scale = parseFloat(opt, value());
         else if (opt == "--no-specular") a.specular = false;
+        else if (opt == "--environment") a.environment = parseVec3(opt, value());
         else if (opt == "--data-dir") a.dataDir = value();
         else if (opt == "--dims") a.dims = parseDims(opt, value());
         else if (opt == "--type") a.type = parseVoxelType(opt, value());
@@ -275,6 +279,7 @@ int run(const Args& a) {
     meshOptions.accumulationFrames = a.frames;
     meshOptions.millimetresPerUnit = a.scale;
     meshOptions.specular = a.specular ? 1.0f : 0.0f;
+    meshOptions.environment = a.environment.value_or(glm::vec3(a.cornellBox ? 0.05f : 0.0f));
     const sss::BlinnPhongMaterial meshMaterial{.diffuse = a.color, .shininess = a.shininess};
     const sss::VolumeRenderOptions volumeOptions{
         .shading = a.mode == "hybrid" ? sss::VolumeShading::Scattering

@@ -462,6 +462,7 @@ private:
         ImGui::SameLine();
         if (ImGui::Button("Reframe (F)")) reframe();
         m_hybridDirty |= ImGui::Checkbox("meshes shadow volumes", &m_hybrid.meshShadowsInVolumes);
+        m_hybridDirty |= ImGui::Checkbox("meshes shadow meshes", &m_hybrid.meshShadowsOnMeshes);
         m_hybridDirty |= ImGui::Checkbox("volumes shadow meshes", &m_hybrid.volumeShadowsOnMeshes);
         float background[3] = {m_hybrid.background.r, m_hybrid.background.g, m_hybrid.background.b};
         if (ImGui::ColorEdit3("background", background)) {

@@ -77,6 +77,12 @@ double fresnelMoment3C2(double eta);
 ///         finite and > 0.
 DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double millimetresPerUnit = 1.0);
 
+/// Total diffuse reflectance R_d of a semi-infinite medium under uniform illumination, per
+/// channel: the classic dipole's closed form (Jensen et al. 2001), with the constants' boundary
+/// term A: R_d = alpha'/2 (1 + exp(-4/3 A s)) exp(-s), s = sqrt(3 (1 - alpha')). Used for the
+/// light a uniform environment gives a scattering surface.
+glm::dvec3 dipoleDiffuseReflectance(const DipoleConstants& constants);
+
 /// Exact dielectric Fresnel transmittance T = 1 - F_r(eta, cosTheta) of an unpolarised ray
 /// meeting the boundary at cosTheta to the normal (outside). 0 for cosTheta <= 0 and under total
 /// internal reflection.

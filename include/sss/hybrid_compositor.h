@@ -9,14 +9,20 @@
 /// cuts its rays at the surface. Volumes whose boxes overlap each other along a view ray are
 /// composited box by box (ordered by their centres' distance), not sample by sample.
 ///
-/// Light shared between the two (both on by default, see HybridOptions):
-///  - meshes cast shadows into the volumes: a ray-cast sample that a mesh hides from a light
-///    (shadow map of the meshes from that light) gets none of its light. The light volume itself
-///    stays the volume's own, so moving a mesh does not recompute it;
-///  - volumes attenuate the light reaching the meshes: a mesh point's irradiance from each light
-///    is multiplied by the light-volume intensity where that light's ray leaves the volume box
-///    towards the point (or at the point, inside the box). Its chromaticity is not applied, and
-///    light scattered by a volume does not illuminate meshes.
+/// Shadows between every pair of objects (each kind can be turned off, see HybridOptions):
+///  - meshes shadow the volumes: a ray-cast sample that a mesh hides from a light (shadow map of
+///    the meshes from that light) gets none of its light. The light volume itself stays the
+///    volume's own, so moving a mesh does not recompute it;
+///  - meshes shadow meshes and the Cornell box through the same maps (3x3 percentage-closer
+///    filtering for Blinn-Phong surfaces and the box; scattering meshes test each point where
+///    light enters, so their subsurface transport blurs the shadow's edge). A mesh is shadowed by
+///    the other meshes only: a scattering mesh's light buffer already holds its self-shadowing,
+///    and a Blinn-Phong mesh's n.l its attached shadows (its cast self-shadows are not drawn);
+///  - every scattering volume tints and dims the light reaching meshes and the box: a mesh
+///    point's light from each light is multiplied by the light-volume value (c, l) where that
+///    light's ray leaves the volume box towards the point (or at the point, inside the box). Up to
+///    16 volume-light pairs do so (16 volumes with one light, 2 with eight); a warning names
+///    the volumes left out. Light scattered by a volume does not illuminate meshes.
 /// Every renderer keeps its own caches: a camera move reruns neither the scattering maps nor the
 /// light volumes; moving a mesh redraws the meshes' shadow maps and the mesh's own scattering
 /// passes; changing a light or the volume reruns both renderers' passes.
@@ -43,8 +49,9 @@ struct HybridOptions {
     glm::vec4 background{0.010f, 0.010f, 0.0137f, 1.0f};
     bool cornellBox = false;          ///< surround the content with a Cornell box (default: off)
     bool meshShadowsInVolumes = true;   ///< meshes shadow the volumes' light volumes (default: on)
-    bool volumeShadowsOnMeshes = true;  ///< volumes attenuate the light reaching meshes (default: on)
-    int shadowMapResolution = 1024;   ///< mesh shadow maps used by the volumes, 64..8192 (default: 1024)
+    bool meshShadowsOnMeshes = true;    ///< meshes shadow meshes and the Cornell box (default: on)
+    bool volumeShadowsOnMeshes = true;  ///< volumes tint and dim the light reaching meshes (default: on)
+    int shadowMapResolution = 1024;   ///< the meshes' shadow maps, texels per side, 64..8192 (default: 1024)
 };
 
 /// Throws Error(InvalidArgument) naming the bad field of `options`.

@@ -66,6 +66,11 @@ struct MeshRenderOptions {
     /// reflectance 1 - T, >= 0 (default: 1; 0 turns it off).
     float specular = 1.0f;
     float shininess = 60.0f;       ///< highlight exponent, > 0 (default: 60)
+    /// Radiance of a uniform environment around the mesh, linear RGB, each >= 0: the surface
+    /// reflects it with the material's total diffuse reflectance (dipoleDiffuseReflectance), so
+    /// faces the lights miss are not black. Blinn-Phong shading uses its material's ambient
+    /// instead (default: 0, none; sss-render and sss-viewer use 0.05 in a Cornell box).
+    glm::vec3 environment{0.0f};
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).
     bool finishEachPass = false;
 };

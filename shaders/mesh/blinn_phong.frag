@@ -1,7 +1,7 @@
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/blinn_phong.glsl"
-#include "common/volume_shadow.glsl"
+#include "common/surface_shadows.glsl"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -23,6 +23,7 @@ void main() {
         vec3 radiance;
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
         radiance *= volumeTransmittance(i, worldPosition, l);
+        if (dot(n, l) > 0.0) radiance *= meshShadow(i, worldPosition, n, l, 1);
         color += blinnPhong(n, l, v, radiance, diffuseColor, specularColor, shininess);
     }
     fragColor = vec4(max(color, vec3(0.0)), 1.0);  // linear radiance

@@ -4,7 +4,7 @@
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
-#include "common/volume_shadow.glsl"
+#include "common/surface_shadows.glsl"
 
 in vec3 modelPosition;
 in vec3 modelNormal;
@@ -21,6 +21,7 @@ uniform float seamShrink;    // model units
 uniform float eta;
 uniform float specularStrength;
 uniform float shininess;
+uniform vec3 environment;    // a uniform environment's radiance times the total diffuse reflectance
 
 layout(location = 0) out vec4 fragColor;
 
@@ -62,14 +63,14 @@ void main() {
     float exitT = dirpoleFresnelT(eta, dot(wo, nWorld));
     // The maps hold the integral of T_in S_d E over the lit surface (S_d is per steradian), so the
     // radiance leaving towards the eye is that times the exit transmittance.
-    vec3 color = exitT * radiosity;
+    vec3 color = exitT * radiosity + environment;
     if (specularStrength > 0.0) {
         for (int i = 0; i < lightCount; ++i) {
             vec3 radiance;
             vec3 l = lightDirectionAt(i, worldPosition, radiance);
-            radiance *= volumeTransmittance(i, worldPosition, l);
             float nDotL = dot(nWorld, l);
             if (nDotL <= 0.0) continue;
+            radiance *= volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
             vec3 h = normalize(l + wo);
             // The surface reflects what it does not transmit: 1 - T at the viewing angle.
             color += specularStrength * (1.0 - exitT) * radiance * nDotL * pow(max(dot(nWorld, h), 0.0), shininess);

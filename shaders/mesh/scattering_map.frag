@@ -10,7 +10,7 @@
 // The exit Fresnel factor T(eta, w_o) is view-dependent and applied in the combine pass.
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
-#include "common/volume_shadow.glsl"
+#include "common/surface_shadows.glsl"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -82,7 +82,9 @@ void main() {
                 irradiance = lightRadiance[l];
                 wi = -axis;
             }
-            irradiance *= volumeTransmittance(l, xi, wi);  // a volume between the light and x_i
+            // Volumes and other meshes between the light and x_i (one tap: the samples spread
+            // over the disk filter the shadow's edge).
+            irradiance *= volumeTransmittance(l, xi, wi) * meshShadow(l, xi, dot(ni, wi) < 0.0 ? -ni : ni, wi, 0);
             float entry = dirpoleFresnelT(dipole.eta, dot(wi, ni));
             sum += dirpoleSd(dipole, xi, ni, wi, xo, no) * (entry / pdf) * irradiance;
         }

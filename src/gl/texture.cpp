@@ -12,7 +12,7 @@ namespace sss::gl {
 std::uint64_t bytesPerTexel(GLenum internalFormat) {
     switch (internalFormat) {
         case GL_R8: return 1;
-        case GL_R16: case GL_R16F: return 2;
+        case GL_R16: case GL_R16F: case GL_R16UI: return 2;
         case GL_RGBA8: case GL_R32F: case GL_RG16F: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
         case GL_RGBA16F: case GL_RG32F: return 8;
         case GL_RGBA32F: return 16;
@@ -26,6 +26,7 @@ const char* formatName(GLenum internalFormat) {
         case GL_R8: return "R8";
         case GL_R16: return "R16";
         case GL_R16F: return "R16F";
+        case GL_R16UI: return "R16UI";
         case GL_RGBA8: return "RGBA8";
         case GL_R32F: return "R32F";
         case GL_RG16F: return "RG16F";

@@ -5,7 +5,9 @@
 #include "mesh/renderer_access.h"
 #include "volume/renderer_access.h"
 #include "lighting/light_uniforms.h"
+#include "hybrid/mesh_shadow_map_pass.h"
 #include "mesh/light_buffer_pass.h"
+#include "sss/log.h"
 #include "sss/error.h"
 #include "sss/procedural.h"
 #include "sss/timing.h"
@@ -37,12 +39,13 @@ struct HybridCompositor::Impl {
     std::optional<Bounds> wallsFor;                              // content bounds the walls were built for
     RenderStats stats;
 
-    // Meshes seen from the lights, for the volumes (rebuilt when meshes, lights or bounds change).
+    // Meshes seen from the lights, for volumes and mesh surfaces (rebuilt when meshes, lights or
+    // bounds change).
     detail::MeshShadowMaps meshShadows;
     std::uint64_t sceneRevision = 1;      // bumped by every change the shadow maps depend on
     std::uint64_t shadowMapsRevision = 0; // sceneRevision the maps were drawn for
-    std::optional<gl::Program> shadowProgram;
-    gl::Framebuffer shadowFramebuffer;
+    std::optional<detail::MeshShadowMapPass> shadowMapPass;
+    bool warnedVolumeShadowLimit = false;
 
     Bounds contentBounds() const {
         Bounds b;
@@ -79,49 +82,44 @@ struct HybridCompositor::Impl {
     void updateMeshShadowMaps() {
         if (shadowMapsRevision == sceneRevision && meshShadows.depth) return;
         const auto start = std::chrono::steady_clock::now();
-        const int size = options.shadowMapResolution;
-        const int layers = std::max<int>(1, static_cast<int>(lights.size()));
-        if (!meshShadows.depth || meshShadows.depth.size() != glm::ivec3(size, size, layers)) {
-            meshShadows.depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, layers, "hybrid mesh shadow maps");
-            meshShadows.depth.setFilter(GL_NEAREST, GL_NEAREST);
-            meshShadows.depth.setWrap(GL_CLAMP_TO_EDGE);
-        }
-        if (!shadowProgram)
-            shadowProgram = gl::Program::link({{GL_VERTEX_SHADER, "mesh/shadow_depth.vert"},
-                                               {GL_FRAGMENT_SHADER, "mesh/depth_only.frag"}});
-        // One view per light that holds everything it may shadow: meshes and volumes.
-        const Bounds content = contentBounds();
-        const glm::vec3 centre = content.center();
-        const float radius = std::max(content.radius(), 1e-6f);
-        meshShadows.worldToClip.clear();
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        glDisable(GL_CULL_FACE);
-        glViewport(0, 0, size, size);
-        for (size_t i = 0; i < lights.size(); ++i) {
-            meshShadows.worldToClip.push_back(detail::lightViewProjection(lights[i], centre, radius));
-            if (!shadowFramebuffer) shadowFramebuffer = gl::Framebuffer::create();
-            shadowFramebuffer.attachLayer(GL_DEPTH_ATTACHMENT, meshShadows.depth, static_cast<int>(i));
-            glNamedFramebufferDrawBuffer(shadowFramebuffer.id(), GL_NONE);
-            shadowFramebuffer.checkComplete("hybrid mesh shadow map");
-            const float one = 1.0f;
-            glClearNamedFramebufferfv(shadowFramebuffer.id(), GL_DEPTH, 0, &one);
-            shadowFramebuffer.bind();
-            shadowProgram->use();
-            for (const auto& m : meshes) {
-                const detail::GpuMesh* gpu = detail::MeshRendererAccess::mesh(*m);
-                if (!gpu) continue;
-                shadowProgram->set("modelToClip", meshShadows.worldToClip.back() * detail::MeshRendererAccess::model(*m));
-                gpu->draw();
-            }
-        }
-        glBindVertexArray(0);
-        glUseProgram(0);
+        std::vector<detail::ShadowCaster> casters;
+        for (const auto& m : meshes)
+            if (const detail::GpuMesh* gpu = detail::MeshRendererAccess::mesh(*m))
+                casters.push_back({gpu, detail::MeshRendererAccess::model(*m)});
+        if (!shadowMapPass) shadowMapPass.emplace();
+        shadowMapPass->run({lights, casters, contentBounds(), options.shadowMapResolution}, meshShadows);
         meshShadows.revision = sceneRevision;
         shadowMapsRevision = sceneRevision;
         stats.record("mesh-shadow-maps",
                      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+
+    // What shadows each mesh and wall: the mesh shadow maps (if on) and every volume's light
+    // volumes (if on), as many as fit the texture units.
+    void shareShadows(bool useMeshMaps) {
+        std::vector<detail::VolumeShadows> volumeShadows;
+        if (options.volumeShadowsOnMeshes)
+            for (auto& v : volumes)
+                if (auto s = detail::VolumeRendererAccess::shadows(*v)) volumeShadows.push_back(*s);
+        const std::size_t fit = static_cast<std::size_t>(detail::kMaxVolumeShadowPairs) / std::max<std::size_t>(1, lights.size());
+        if (volumeShadows.size() > fit && !warnedVolumeShadowLimit) {
+            log(LogLevel::Warning, "hybrid scene: only the first " + std::to_string(fit) + " of " +
+                                              std::to_string(volumeShadows.size()) + " volumes shadow meshes with " +
+                                              std::to_string(lights.size()) + " lights (at most " +
+                                              std::to_string(detail::kMaxVolumeShadowPairs) + " volume-light pairs)");
+            warnedVolumeShadowLimit = true;
+        }
+        for (std::size_t i = 0; i < meshes.size(); ++i) {
+            detail::SurfaceShadows shadows;
+            shadows.meshes = useMeshMaps ? &meshShadows : nullptr;
+            shadows.selfId = static_cast<unsigned>(i + 1);
+            shadows.volumes = volumeShadows;
+            detail::MeshRendererAccess::setShadows(*meshes[i], &shadows);
+        }
+        detail::SurfaceShadows wallShadows;
+        wallShadows.meshes = useMeshMaps ? &meshShadows : nullptr;
+        wallShadows.volumes = volumeShadows;
+        for (auto& w : walls) detail::MeshRendererAccess::setShadows(*w, &wallShadows);
     }
 };
 
@@ -207,20 +205,18 @@ void HybridCompositor::render(const Camera& camera, RenderTarget& target) {
     r.updateWalls();
     for (auto& w : r.walls) w->setLights(r.lights);
 
-    // 1. Meshes shadow the volumes' light volumes.
-    const bool meshShadows = r.options.meshShadowsInVolumes && !r.meshes.empty() && !r.volumes.empty();
-    if (meshShadows) r.updateMeshShadowMaps();
+    // 1. Meshes seen from the lights: they shadow the volumes' samples and every mesh surface
+    //    (each mesh by the others: see SurfaceShadows::selfId).
+    const bool shadowsInVolumes = r.options.meshShadowsInVolumes && !r.volumes.empty();
+    const bool shadowsOnMeshes = r.options.meshShadowsOnMeshes && (r.meshes.size() > 1 || !r.walls.empty());
+    const bool meshMaps = !r.meshes.empty() && (shadowsInVolumes || shadowsOnMeshes);
+    if (meshMaps) r.updateMeshShadowMaps();
     for (auto& v : r.volumes) {
-        detail::VolumeRendererAccess::setMeshShadows(*v, meshShadows ? &r.meshShadows : nullptr);
+        detail::VolumeRendererAccess::setMeshShadows(*v, shadowsInVolumes && meshMaps ? &r.meshShadows : nullptr);
         detail::VolumeRendererAccess::updateLightVolumes(*v);
     }
-    // 2. The first scattering volume attenuates the light reaching meshes and walls.
-    std::optional<detail::VolumeShadows> volumeShadows;
-    if (r.options.volumeShadowsOnMeshes)
-        for (auto& v : r.volumes)
-            if ((volumeShadows = detail::VolumeRendererAccess::shadows(*v))) break;
-    for (auto* list : {&r.meshes, &r.walls})
-        for (auto& m : *list) detail::MeshRendererAccess::setVolumeShadows(*m, volumeShadows ? &*volumeShadows : nullptr);
+    // 2. Every scattering volume tints and dims the light reaching meshes and walls.
+    r.shareShadows(shadowsOnMeshes && meshMaps);
 
     // 3. Opaque surfaces with depth, then volumes back to front, each stopping at that depth.
     target.clear(r.options.background);

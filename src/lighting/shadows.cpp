@@ -1,25 +1,61 @@
 #include "lighting/shadows.h"
 
+#include "lighting/light_uniforms.h"
 #include "lighting/texture_units.h"
 
-#include "lighting/light_uniforms.h"
-
+#include <algorithm>
 #include <string>
 
 namespace sss::detail {
 
-void setVolumeShadowUniforms(const gl::Program& program, const VolumeShadows* shadows, std::size_t lightCount) {
-    const bool enabled = shadows && shadows->lightVolumes && shadows->lightVolumes->size() >= lightCount;
-    program.set("volumeShadowEnabled", enabled ? 1 : 0);
+std::uint64_t SurfaceShadows::revision() const {
+    // FNV-1a over everything the shadows are made of; 0 stays "no shadows".
+    if (!meshes && volumes.empty()) return 0;
+    std::uint64_t hash = 1469598103934665603ull;
+    auto mix = [&](std::uint64_t value) {
+        hash ^= value;
+        hash *= 1099511628211ull;
+    };
+    mix(meshes ? meshes->revision : 0);
+    mix(selfId);
+    for (const VolumeShadows& v : volumes) mix(v.revision);
+    return hash == 0 ? 1 : hash;
+}
+
+void setSurfaceShadowUniforms(const gl::Program& program, const SurfaceShadows* shadows, std::size_t lightCount) {
     // Samplers keep their own units even when unused: two samplers of different types on one
-    // unit (these default to unit 0) make every draw fail validation.
-    for (int i = 0; i < kMaxLights; ++i)
+    // unit (they default to unit 0) make every draw fail validation.
+    program.set("meshShadowDepth", units::kSurfaceMeshShadowDepth);
+    program.set("meshShadowIds", units::kSurfaceMeshShadowIds);
+    for (int i = 0; i < kMaxVolumeShadowPairs; ++i)
         program.set("volumeShadowLight[" + std::to_string(i) + "]", units::kVolumeShadows + i);
-    if (!enabled) return;
-    program.set("volumeShadowWorldToTexture", shadows->worldToTexture);
-    for (std::size_t i = 0; i < lightCount; ++i) {
-        (*shadows->lightVolumes)[i].bind(static_cast<GLuint>(units::kVolumeShadows + static_cast<int>(i)));
+
+    const MeshShadowMaps* meshes = shadows ? shadows->meshes : nullptr;
+    const bool meshesEnabled = meshes && meshes->depth && meshes->worldToClip.size() >= lightCount;
+    program.set("meshShadowEnabled", meshesEnabled ? 1 : 0);
+    if (meshesEnabled) {
+        for (std::size_t i = 0; i < lightCount; ++i)
+            program.set("meshShadowWorldToClip[" + std::to_string(i) + "]", meshes->worldToClip[i]);
+        program.set("meshShadowTexel", meshes->texelWorldSize);
+        program.set("meshShadowSelf", shadows->selfId);
+        meshes->depth.bind(units::kSurfaceMeshShadowDepth);
+        meshes->ids.bind(units::kSurfaceMeshShadowIds);
     }
+
+    int volumes = 0;
+    if (shadows && lightCount > 0) {
+        const int fit = kMaxVolumeShadowPairs / static_cast<int>(lightCount);
+        for (const VolumeShadows& v : shadows->volumes) {
+            if (volumes >= fit) break;
+            if (!v.lightVolumes || v.lightVolumes->size() < lightCount) continue;
+            program.set("volumeShadowWorldToTexture[" + std::to_string(volumes) + "]", v.worldToTexture);
+            for (std::size_t i = 0; i < lightCount; ++i)
+                (*v.lightVolumes)[i].bind(
+                    static_cast<GLuint>(units::kVolumeShadows + volumes * static_cast<int>(lightCount) + static_cast<int>(i)));
+            ++volumes;
+        }
+    }
+    program.set("volumeShadowCount", volumes);
 }
 
 }  // namespace sss::detail

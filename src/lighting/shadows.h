@@ -1,6 +1,6 @@
 #pragma once
-// Shadows one kind of object casts on another, as the passes of the other kind consume them:
-// the lighting layer below src/mesh and src/volume. Hybrid scenes fill these in
+// Shadows one object casts on another, as the passes of the receiving object consume them: the
+// lighting layer below src/mesh and src/volume. Hybrid scenes fill these in
 // (src/hybrid/hybrid_compositor.cpp); the renderers only read them.
 #include "gl/program.h"
 #include "gl/texture.h"
@@ -12,23 +12,44 @@
 
 namespace sss::detail {
 
-/// Depth of the meshes seen from each light (one array layer per light), for the volumes' ray
-/// caster: a sample behind a mesh, as seen from a light, gets none of that light.
+/// The meshes seen from each light (one array layer per light): depth, and which mesh is nearest.
+/// Volumes test ray-cast samples against the depth; mesh passes test surface points against it
+/// (shaders/common/mesh_shadow.glsl).
 struct MeshShadowMaps {
     gl::Texture depth;                   ///< 2D array, DEPTH_COMPONENT32F
+    gl::Texture ids;                     ///< 2D array, R16UI: 1 + index of the nearest mesh, 0: none
     std::vector<glm::mat4> worldToClip;  ///< per light
+    float texelWorldSize = 0.0f;         ///< edge of one texel at the scene, world units
     std::uint64_t revision = 0;          ///< changes whenever the maps change
 };
 
-/// One volume's light volumes, through which meshes see the lights (intensity only).
+/// One volume's light volumes, through which meshes see the lights (tinted by the light volume's
+/// chromaticity, dimmed by its intensity).
 struct VolumeShadows {
     const std::vector<gl::Texture>* lightVolumes = nullptr;  ///< per light: (c, l)
     glm::mat4 worldToTexture{1.0f};  ///< world space -> the volume box's [0,1]^3
     std::uint64_t revision = 0;      ///< changes whenever the light volumes change
 };
 
-/// Sets the uniforms of shaders/common/volume_shadow.glsl (shadows may be null: no volume) and
-/// binds the light volumes to units::kVolumeShadows...
-void setVolumeShadowUniforms(const gl::Program& program, const VolumeShadows* shadows, std::size_t lightCount);
+/// Everything that may shadow a mesh surface from the lights.
+struct SurfaceShadows {
+    const MeshShadowMaps* meshes = nullptr;  ///< null: no mesh casts shadows on this surface
+    /// 1 + this mesh's index in `meshes->ids` (0: the surface is not in the maps). A mesh ignores
+    /// its own entries: a scattering mesh's light buffer already holds its self-shadowing, and
+    /// Blinn-Phong's n.l its attached shadows (cast self-shadows would depend on how the maps
+    /// frame the scene, a texel's worth of flicker at the terminator).
+    unsigned selfId = 0;
+    std::vector<VolumeShadows> volumes;  ///< every volume between the lights and the surface
+
+    /// Changes whenever anything above does (a cache key for what the shadows feed).
+    std::uint64_t revision() const;
+};
+
+/// At most this many (volume, light) pairs shadow one mesh: each takes a texture unit.
+inline constexpr int kMaxVolumeShadowPairs = 16;
+
+/// Sets the uniforms of shaders/common/surface_shadows.glsl (null: nothing shadows the surface)
+/// and binds its textures. Volumes beyond kMaxVolumeShadowPairs / lightCount are left out.
+void setSurfaceShadowUniforms(const gl::Program& program, const SurfaceShadows* shadows, std::size_t lightCount);
 
 }  // namespace sss::detail

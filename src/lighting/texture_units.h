@@ -1,15 +1,18 @@
 #pragma once
 // Every texture unit a libsss pass binds, in one table. A unit matters only within one program,
 // but two samplers of different types on one unit make a draw fail validation, and passes
-// that share lighting inputs must agree on where those are.
+// that share lighting inputs must agree on where those are. The highest unit used is 31: every
+// GL 4.5 driver libsss runs on (Mesa, NVIDIA, AMD, Intel) has 32 per fragment shader.
 namespace sss::detail::units {
 
 // Inputs of a pass's own (volume, transfer function, light buffer, scattering maps...) are
 // bound from unit 0 up; each pass's .cpp says which. No pass uses more than 4.
 inline constexpr int kPassInputs = 0;
 
-// Mesh passes (Blinn-Phong, scattering maps, combine): shaders/common/volume_shadow.glsl.
-inline constexpr int kVolumeShadows = 8;  // 8..15: volumeShadowLight[MAX_LIGHTS]
+// Mesh passes (Blinn-Phong, scattering maps, combine): shaders/common/surface_shadows.glsl.
+inline constexpr int kSurfaceMeshShadowDepth = 6;
+inline constexpr int kSurfaceMeshShadowIds = 7;
+inline constexpr int kVolumeShadows = 16;  // 16..31: volumeShadowLight[kMaxVolumeShadowPairs]
 
 // Volume ray cast (shaders/volume/ray_cast.frag) and the eye pass's lit-colour compute.
 inline constexpr int kLightVolumes = 4;   // 4..11: lightVolumes[MAX_LIGHTS]

@@ -14,7 +14,7 @@ BlinnPhongPass::BlinnPhongPass()
 
 void BlinnPhongPass::run(const GpuMesh& mesh, const glm::mat4& model, const BlinnPhongMaterial& material,
                          const std::vector<Light>& lights, const Camera& camera, float aspect,
-                         const VolumeShadows* volumeShadows) const {
+                         const SurfaceShadows* shadows) const {
     m_program.set("model", model);
     m_program.set("viewProjection", camera.projection(aspect) * camera.view());
     m_program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
@@ -24,7 +24,7 @@ void BlinnPhongPass::run(const GpuMesh& mesh, const glm::mat4& model, const Blin
     m_program.set("specularColor", material.specular);
     m_program.set("shininess", material.shininess);
     setLightUniforms(m_program, lights);
-    setVolumeShadowUniforms(m_program, volumeShadows, lights.size());
+    setSurfaceShadowUniforms(m_program, shadows, lights.size());
 
     mesh.drawOpaque(m_program);
 }

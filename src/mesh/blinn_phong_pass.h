@@ -16,7 +16,7 @@ public:
     BlinnPhongPass();
     void run(const GpuMesh& mesh, const glm::mat4& model, const BlinnPhongMaterial& material,
              const std::vector<Light>& lights, const Camera& camera, float aspect,
-             const VolumeShadows* volumeShadows = nullptr) const;
+             const SurfaceShadows* shadows = nullptr) const;
 
 private:
     gl::Program m_program;

@@ -8,6 +8,7 @@
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -97,6 +98,15 @@ DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double
     c.cPhiInv = cPhiOf(1.0 / c.eta);
     c.normalization = 1.0 / (4.0 * c.cPhiInv) / (4.0 * std::numbers::pi * std::numbers::pi);
     return c;
+}
+
+glm::dvec3 dipoleDiffuseReflectance(const DipoleConstants& c) {
+    glm::dvec3 r;
+    for (int i = 0; i < 3; ++i) {
+        const double s = std::sqrt(3.0 * std::max(0.0, 1.0 - c.alphaPrime[i]));
+        r[i] = 0.5 * c.alphaPrime[i] * (1.0 + std::exp(-4.0 / 3.0 * c.A * s)) * std::exp(-s);
+    }
+    return r;
 }
 
 }  // namespace sss

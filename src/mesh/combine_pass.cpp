@@ -15,7 +15,7 @@ CombinePass::CombinePass()
 
 void CombinePass::run(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
                       const ScatteringMapPass& maps, const std::vector<Light>& lights, const Camera& camera,
-                      float aspect, const CombineSettings& s, const VolumeShadows* volumeShadows) const {
+                      float aspect, const CombineSettings& s, const SurfaceShadows* shadows) const {
     const gl::Program& p = m_program;
     p.set("model", model);
     p.set("viewProjection", camera.projection(aspect) * camera.view());
@@ -34,8 +34,9 @@ void CombinePass::run(const GpuMesh& mesh, const glm::mat4& model, const Scatter
     p.set("eta", s.eta);
     p.set("specularStrength", s.specularStrength);
     p.set("shininess", s.shininess);
+    p.set("environment", s.environment);
     setLightUniforms(p, lights);
-    setVolumeShadowUniforms(p, volumeShadows, lights.size());
+    setSurfaceShadowUniforms(p, shadows, lights.size());
     maps.maps().bind(0);
     maps.depth().bind(1);
 

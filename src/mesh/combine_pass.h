@@ -20,6 +20,7 @@ struct CombineSettings {
     float seamShrink = 0.0f;  ///< model units
     float specularStrength = 1.0f;
     float shininess = 40.0f;
+    glm::vec3 environment{0.0f};  ///< the environment's radiance times R_d: added as is
 };
 
 class CombinePass {
@@ -27,7 +28,7 @@ public:
     CombinePass();
     void run(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
              const ScatteringMapPass& maps, const std::vector<Light>& lights, const Camera& camera, float aspect,
-             const CombineSettings& settings, const VolumeShadows* volumeShadows = nullptr) const;
+             const CombineSettings& settings, const SurfaceShadows* shadows = nullptr) const;
 
 private:
     gl::Program m_program;

@@ -39,7 +39,7 @@ struct ScatteringMapInputs {
     int cameras = 0, samples = 0, resolution = 0;
     double millimetresPerUnit = 0.0;
     float sampleRadius = 0.0f, spread = 0.0f;
-    std::uint64_t volumeShadowRevision = 0;  // hybrid scenes: volumes between lights and mesh
+    std::uint64_t shadowRevision = 0;  // hybrid scenes: meshes and volumes between lights and mesh
     bool operator==(const ScatteringMapInputs&) const = default;
 };
 
@@ -77,6 +77,9 @@ void validate(const MeshRenderOptions& o) {
     if (!(o.seamShrink >= 0.0f) || !finite(o.seamShrink)) fail("seamShrink", "finite and >= 0", o.seamShrink);
     if (!(o.specular >= 0.0f) || !finite(o.specular)) fail("specular", "finite and >= 0", o.specular);
     if (!(o.shininess > 0.0f) || !finite(o.shininess)) fail("shininess", "finite and > 0", o.shininess);
+    for (int i = 0; i < 3; ++i)
+        if (!(o.environment[i] >= 0.0f) || !finite(o.environment[i]))
+            fail("environment", "finite and >= 0 in every channel", o.environment[i]);
 }
 
 struct MeshScatteringRenderer::Impl {
@@ -97,7 +100,7 @@ struct MeshScatteringRenderer::Impl {
     detail::ScatteringCameras cameras;
     std::optional<LightBufferInputs> lightBufferInputs;
     std::optional<ScatteringMapInputs> scatteringMapInputs;
-    std::optional<detail::VolumeShadows> volumeShadows;  // set by HybridCompositor
+    std::optional<detail::SurfaceShadows> shadows;  // set by HybridCompositor
 
     template <typename Work>
     void timed(const char* pass, Work&& work) {
@@ -116,7 +119,7 @@ struct MeshScatteringRenderer::Impl {
                 options.millimetresPerUnit,
                 options.sampleRadius,
                 options.spread,
-                volumeShadows ? volumeShadows->revision : 0};
+                shadows ? shadows->revision() : 0};
     }
 
     bool mapsConverged() const {
@@ -157,7 +160,7 @@ struct MeshScatteringRenderer::Impl {
         timed("scattering-maps", [&] {
             scatteringMaps->accumulate(*mesh, model, cameras, lights, lightBuffer->viewProjections(),
                                        lightBuffer->positions(), lightBuffer->normals(), dipole, sampling,
-                                       volumeShadows ? &*volumeShadows : nullptr);
+                                       shadows ? &*shadows : nullptr);
         });
     }
 };
@@ -217,7 +220,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         r.timed("blinn-phong", [&] {
             target.bindForDrawing();
             r.blinnPhong->run(*r.mesh, r.model, r.material, r.lights, camera, target.aspect(),
-                              r.volumeShadows ? &*r.volumeShadows : nullptr);
+                              r.shadows ? &*r.shadows : nullptr);
         });
         return;
     }
@@ -233,20 +236,22 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.seamShrink = r.options.seamShrink * 2.0f * radius / texels;
     settings.specularStrength = r.options.specular;
     settings.shininess = r.options.shininess;
+    settings.environment = r.options.environment *
+                           glm::vec3(dipoleDiffuseReflectance(deriveDipoleConstants(r.scatteringMaterial)));
     r.timed("combine", [&] {
         target.bindForDrawing();
         r.combine->run(*r.mesh, r.model, r.cameras, *r.scatteringMaps, r.lights, camera, target.aspect(), settings,
-                       r.volumeShadows ? &*r.volumeShadows : nullptr);
+                       r.shadows ? &*r.shadows : nullptr);
     });
 }
 
 namespace detail {
 
-void MeshRendererAccess::setVolumeShadows(MeshScatteringRenderer& r, const VolumeShadows* shadows) {
+void MeshRendererAccess::setShadows(MeshScatteringRenderer& r, const SurfaceShadows* shadows) {
     if (shadows)
-        r.m_impl->volumeShadows = *shadows;
+        r.m_impl->shadows = *shadows;
     else
-        r.m_impl->volumeShadows.reset();
+        r.m_impl->shadows.reset();
 }
 
 const GpuMesh* MeshRendererAccess::mesh(const MeshScatteringRenderer& r) {

@@ -10,7 +10,8 @@
 namespace sss::detail {
 
 struct MeshRendererAccess {
-    static void setVolumeShadows(MeshScatteringRenderer& r, const VolumeShadows* shadows);
+    /// What shadows the mesh from the lights (null: nothing); a copy is kept.
+    static void setShadows(MeshScatteringRenderer& r, const SurfaceShadows* shadows);
     static const GpuMesh* mesh(const MeshScatteringRenderer& r);
     static const glm::mat4& model(const MeshScatteringRenderer& r);
 };

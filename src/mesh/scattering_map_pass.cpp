@@ -72,7 +72,7 @@ void ScatteringMapPass::accumulate(const GpuMesh& mesh, const glm::mat4& model, 
                                    const std::vector<Light>& lights, const std::vector<glm::mat4>& lightViewProjections,
                                    const gl::Texture& lightPositions, const gl::Texture& lightNormals,
                                    const DipoleConstants& dipole, const ScatteringSampling& sampling,
-                                   const VolumeShadows* volumeShadows) {
+                                   const SurfaceShadows* shadows) {
     const glm::mat3 normalMatrix = glm::mat3(glm::transpose(glm::inverse(model)));
     for (const gl::Program* p : {&m_depthProgram, &m_program}) {
         p->set("model", model);
@@ -107,7 +107,7 @@ void ScatteringMapPass::accumulate(const GpuMesh& mesh, const glm::mat4& model, 
     for (size_t i = 0; i < lights.size(); ++i)
         p.set("lightViewProjection[" + std::to_string(i) + "]", lightViewProjections[i]);
     setDipoleUniforms(p, "dipole", dipole);
-    setVolumeShadowUniforms(p, volumeShadows, lights.size());
+    setSurfaceShadowUniforms(p, shadows, lights.size());
     p.set("diskRadius", sampling.diskRadius);
     p.set("sigmaStar", sampling.sigmaStar);
     p.set("sigmaNear", sampling.sigmaNear);

@@ -50,7 +50,7 @@ public:
                     const std::vector<Light>& lights, const std::vector<glm::mat4>& lightViewProjections,
                     const gl::Texture& lightPositions, const gl::Texture& lightNormals,
                     const DipoleConstants& dipole, const ScatteringSampling& sampling,
-                    const VolumeShadows* volumeShadows = nullptr);
+                    const SurfaceShadows* shadows = nullptr);
 
     int frames() const { return m_frames; }
     const gl::Texture& maps() const { return m_maps; }

@@ -135,8 +135,8 @@ TEST_CASE("every embedded shader program compiles and links", "[gl][shaders]") {
                                         {{"CAMERA_COUNT", "16"}, {"MAX_LIGHTS", "8"}}));
     CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
                                     {{"MAX_CAMERAS", "32"}}));
-    CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/shadow_depth.vert"},
-                                     {GL_FRAGMENT_SHADER, "mesh/depth_only.frag"}}));
+    CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "hybrid/mesh_shadow_map.vert"},
+                                     {GL_FRAGMENT_SHADER, "hybrid/mesh_shadow_map.frag"}}));
     for (const char* eye : {"0", "1"})
         CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}}, {{"EYE_PASS", eye}}));
     CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}}, {{"LIGHT_COUNT", "2"}}));

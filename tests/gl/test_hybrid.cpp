@@ -176,6 +176,140 @@ TEST_CASE("light is shared: meshes shadow volumes and volumes shadow meshes", "[
     gl.requireNoErrors();
 }
 
+namespace {
+
+// The pixel where `world` lands in a kWidth x kHeight image.
+glm::ivec2 pixelOf(const Camera& camera, glm::vec3 world) {
+    const glm::vec4 c = camera.projection(static_cast<float>(kWidth) / kHeight) * camera.view() * glm::vec4(world, 1.0f);
+    return {static_cast<int>((c.x / c.w * 0.5f + 0.5f) * kWidth), static_cast<int>((0.5f - c.y / c.w * 0.5f) * kHeight)};
+}
+
+float luminance(glm::vec4 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+// Mean luminance over a 5x5 block around `p` (shadow-map texels are coarser than pixels).
+float meanLuminance(const Image& image, glm::ivec2 p) {
+    float sum = 0.0f;
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) sum += luminance(image.at(p.x + dx, p.y + dy));
+    return sum / 25.0f;
+}
+
+}  // namespace
+
+TEST_CASE("a mesh between the light and the floor darkens the floor under it", "[gl][hybrid][shadows]") {
+    test::GlTestScope gl;
+    // A slab hangs above the middle of a floor, lit from straight above; the floor is either a
+    // Blinn-Phong mesh, a translucent mesh, or the Cornell box's own floor.
+    enum class Floor { BlinnPhong, Scattering, CornellBox };
+    auto render = [](Floor kind, bool shadows, glm::ivec2* under, glm::ivec2* aside) {
+        HybridCompositor scene({.cornellBox = kind == Floor::CornellBox, .meshShadowsOnMeshes = shadows});
+        scene.setLights({DirectionalLight{.direction = {0.0f, -1.0f, 0.0f}, .intensity = 2.0f}});
+        float floorY = -1.0f, asideX = 1.0f;
+        if (kind != Floor::CornellBox) {
+            MeshRenderOptions floor = kind == Floor::Scattering ? smallScattering() : MeshRenderOptions{};
+            floor.specular = 0.0f;
+            scene.addMesh(makeSlab({3.0f, 0.2f, 3.0f}), glm::translate(glm::mat4(1.0f), {0, -1.1f, 0}), floor)
+                .setScatteringMaterial(materialPreset("marble"));
+        }
+        scene.addMesh(makeSlab({0.8f, 0.1f, 0.8f}), glm::translate(glm::mat4(1.0f), {0, 0.3f, 0}));
+        if (kind == Floor::CornellBox) {
+            const Bounds box = makeCornellBox(scene.bounds()).bounds;
+            floorY = box.min.y;
+            asideX = 0.8f * box.max.x;
+        }
+        Camera camera;
+        camera.frame(kind == Floor::CornellBox ? makeCornellBox(scene.bounds()).bounds : scene.bounds());
+        camera.setPitch(40.0f);
+        camera.setYaw(10.0f);
+        *under = pixelOf(camera, {0.0f, floorY + 0.01f, 0.0f});
+        *aside = pixelOf(camera, {asideX, floorY + 0.01f, 0.0f});
+        return renderScene(scene, camera, kind == Floor::Scattering ? 3 : 1);
+    };
+    for (Floor kind : {Floor::BlinnPhong, Floor::Scattering, Floor::CornellBox}) {
+        glm::ivec2 under, aside;
+        const Image off = render(kind, false, &under, &aside), on = render(kind, true, &under, &aside);
+        const float litUnder = meanLuminance(off, under), shadowUnder = meanLuminance(on, under);
+        const float litAside = meanLuminance(off, aside), stillAside = meanLuminance(on, aside);
+        INFO("floor " << static_cast<int>(kind) << ": under the slab " << litUnder << " -> " << shadowUnder
+                      << ", beside it " << litAside << " -> " << stillAside);
+        CHECK(litUnder > 0.05f);
+        CHECK(litAside > 0.05f);
+        // Measured: the shadowed floor keeps 1-6 % (ambient / environment, light scattered in
+        // from the lit floor around); unshadowed pixels change by < 1 %.
+        CHECK(shadowUnder < 0.25f * litUnder);
+        CHECK(stillAside == Approx(litAside).epsilon(0.02));
+    }
+    gl.requireNoErrors();
+}
+
+TEST_CASE("every volume shadows the floor, tinted by its light volume", "[gl][hybrid][shadows]") {
+    test::GlTestScope gl;
+    // Two dense shells side by side above a floor, lit from straight above. The second volume is
+    // blue (its light volume turns the light blue and dims it) or transparent.
+    auto render = [](bool secondOpaque, const Camera& camera) {
+        HybridCompositor scene;
+        scene.setLights({DirectionalLight{.direction = {0.0f, -1.0f, 0.0f}, .intensity = 2.0f}});
+        MeshRenderOptions floor;
+        scene.addMesh(makeSlab({4.0f, 0.1f, 2.0f}), glm::translate(glm::mat4(1.0f), {0, -1.0f, 0}), floor)
+            .setMaterial({.diffuse = glm::vec3(0.8f), .specular = glm::vec3(0.0f), .ambient = glm::vec3(0.0f)});
+        const TransferFunction dense({{0.0f, {1, 1, 1}, 0.0f}, {0.1f, {1, 1, 1}, 0.0f}, {0.3f, {1, 1, 1}, 0.6f},
+                                      {1.0f, {1, 1, 1}, 0.6f}});
+        const TransferFunction blue({{0.0f, {0.1f, 0.2f, 1}, 0.0f}, {0.1f, {0.1f, 0.2f, 1}, 0.0f},
+                                     {0.3f, {0.1f, 0.2f, 1}, secondOpaque ? 0.6f : 0.0f},
+                                     {1.0f, {0.1f, 0.2f, 1}, secondOpaque ? 0.6f : 0.0f}});
+        scene.addVolume(makeShellVolume(32), glm::translate(glm::mat4(1.0f), {-1.0f, 0, 0}),
+                        {.shading = VolumeShading::Scattering}).setTransferFunction(dense);
+        scene.addVolume(makeShellVolume(32), glm::translate(glm::mat4(1.0f), {1.0f, 0, 0}),
+                        {.shading = VolumeShading::Scattering}).setTransferFunction(blue);
+        return renderScene(scene, camera, 1);
+    };
+    Camera camera;
+    camera.setDistance(5.0f);
+    camera.setPitch(30.0f);
+    const glm::ivec2 underFirst = pixelOf(camera, {-1.0f, -0.94f, 0.0f}), underSecond = pixelOf(camera, {1.0f, -0.94f, 0.0f});
+    const Image open = render(false, camera), shaded = render(true, camera);
+    const glm::vec4 lit = open.at(underSecond.x, underSecond.y), under = shaded.at(underSecond.x, underSecond.y);
+    INFO("floor under the second volume: " << lit.r << "," << lit.g << "," << lit.b << " open, " << under.r << ","
+                                           << under.g << "," << under.b << " under the blue shell");
+    CHECK(luminance(under) < 0.7f * luminance(lit));
+    CHECK(under.b / under.r > 1.5f * lit.b / lit.r);  // the light arrives blue
+    // The first volume's shadow is there in both.
+    CHECK(luminance(open.at(underFirst.x, underFirst.y)) < 0.7f * luminance(lit));
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a volume behind an opaque mesh changes no pixel of it, with every shadow on", "[gl][hybrid][shadows]") {
+    test::GlTestScope gl;
+    // The light comes from behind the camera: the volume is behind the mesh for the eye and for
+    // the light, so neither occlusion nor any shadow may change the mesh.
+    const glm::mat4 inFront = glm::scale(glm::translate(glm::mat4(1.0f), {0.2f, 0.1f, 1.2f}), glm::vec3(0.25f));
+    for (MeshShading shading : {MeshShading::BlinnPhong, MeshShading::Scattering}) {
+        HybridCompositor with, without;
+        for (HybridCompositor* scene : {&with, &without}) {
+            scene->setLights({DirectionalLight{.direction = {0.0f, 0.0f, -1.0f}}});
+            MeshRenderOptions options = smallScattering();
+            options.shading = shading;
+            scene->addMesh(makeUvSphere(), inFront, options).setScatteringMaterial(materialPreset("marble"));
+        }
+        with.addVolume(makeBlobsVolume(32), glm::mat4(1.0f), {.shading = VolumeShading::Scattering})
+            .setTransferFunction(test::blobsTransferFunction());
+        const Camera camera = frontCamera();
+        const Image a = renderScene(with, camera), b = renderScene(without, camera);
+        int covered = 0, changed = 0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x)
+                if (b.at(x, y) != HybridOptions{}.background) {
+                    ++covered;
+                    changed += a.at(x, y) != b.at(x, y) ? 1 : 0;
+                }
+        INFO((shading == MeshShading::BlinnPhong ? "Blinn-Phong" : "scattering") << " mesh pixels " << covered
+                                                                                 << ", changed " << changed);
+        CHECK(covered > 200);
+        CHECK(changed == 0);
+    }
+    gl.requireNoErrors();
+}
+
 TEST_CASE("a camera-only change in a hybrid scene reruns neither scattering maps nor light volumes",
           "[gl][hybrid][caching]") {
     test::GlTestScope gl;
