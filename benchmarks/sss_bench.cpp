@@ -32,6 +32,9 @@ options:
   --error-sweep S     time against error for S = mesh or volume, against the CPU reference;
                       records with sweep, the swept parameters, ms and rel_rmse, and a plot
   --plot FILE         where the sweep's PNG plot goes (default: the JSON path with .png)
+  --reference-cache DIR
+                      keep the sweeps' CPU references there as OpenEXR and reuse them when the
+                      scene is the same (the file name holds every parameter)
   --help              show this help
 )";
 
@@ -144,6 +147,8 @@ std::optional<Options> parseArgs(int argc, char** argv) {
             o.errorSweep = which;
         } else if (arg == "--plot") {
             o.plotPath = value();
+        } else if (arg == "--reference-cache") {
+            o.referenceCache = value();
         } else {
             throw UsageError{"unknown option \"" + arg + "\" (see --help)"};
         }

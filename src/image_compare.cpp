@@ -102,6 +102,15 @@ ErrorMetrics computeErrorMetrics(const Image& test, const Image& reference) {
     if (peak <= 0.0) peak = 1.0;
     m.psnr = mse == 0.0 ? inf : 10.0 * std::log10(peak * peak / mse);
     m.maxAbsError = maxAbs;
+    auto luminance = [](const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+    std::size_t covered = 0, specks = 0;
+    for (std::size_t i = 0; i < t.size(); i += 4) {
+        const double ref = luminance(&r[i]);
+        if (!(r[i + 3] > 0.0f) || !(ref > 0.0)) continue;
+        ++covered;
+        specks += luminance(&t[i]) < 0.5 * ref ? 1 : 0;
+    }
+    m.speckShare = covered ? double(specks) / double(covered) : 0.0;
     return m;
 }
 

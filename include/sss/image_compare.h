@@ -31,6 +31,9 @@ struct ErrorMetrics {
     double relRmse = 0.0;      ///< sqrt(sum (t - r)^2 / sum r^2); 0 if both are all zero, +inf if only the reference is
     double psnr = 0.0;         ///< 10 log10(peak^2 / MSE) in dB, peak = largest reference value (1 if that is <= 0); +inf if identical
     double maxAbsError = 0.0;  ///< largest |t - r|
+    /// Specks: the share of the reference's covered pixels (alpha > 0, luminance > 0) where the
+    /// test's luminance is below half the reference's: visibility failures, black spots.
+    double speckShare = 0.0;
 };
 
 /// Error of `test` against `reference` over RGB. Non-finite test values make the metrics

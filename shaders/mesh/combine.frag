@@ -11,13 +11,9 @@ in vec3 modelNormal;
 in vec3 worldPosition;
 in vec3 worldNormal;
 
-uniform sampler2DArray scatteringMaps;   // rgb: radiosity summed over frames, a: frames (coverage)
-uniform sampler2DArray scatteringDepth;  // depth of each layer's camera view
-uniform int cameraCount;
-uniform mat4 cameraViewProjection[MAX_CAMERAS];  // model space -> clip space of camera k
-uniform vec3 cameraAxis[MAX_CAMERAS];            // model space, from the object towards camera k
-uniform float depthBias;     // window-space depth
-uniform float seamShrink;    // model units
+#include "mesh/map_lookup.glsl"
+
+in vec3 vertexRadiosity;     // the vertex-radiosity pass's value, interpolated
 uniform float eta;
 uniform float specularStrength;
 uniform float shininess;
@@ -26,36 +22,10 @@ uniform vec3 environment;    // a uniform environment's radiance times the total
 layout(location = 0) out vec4 fragColor;
 
 void main() {
-    vec3 n = normalize(modelNormal);
-    vec2 texel = 1.0 / vec2(textureSize(scatteringDepth, 0).xy);
-    vec3 weighted = vec3(0.0), covered = vec3(0.0);
-    float visibility = 0.0, coverage = 0.0;
-    for (int k = 0; k < cameraCount; ++k) {
-        // Move the lookup away from the silhouette as seen by camera k, where a texel may belong
-        // to the background or to the other side of the object.
-        vec3 axis = cameraAxis[k];
-        vec3 p = modelPosition - seamShrink * (n - axis * dot(n, axis));
-        vec4 clip = cameraViewProjection[k] * vec4(p, 1.0);
-        vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
-        // 3x3 percentage-closer filter: the fraction of neighbours at least as far as this point.
-        float v = 0.0;
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                float stored = texture(scatteringDepth, vec3(window.xy + vec2(dx, dy) * texel, float(k))).r;
-                v += window.z - depthBias <= stored ? 1.0 : 0.0;
-            }
-        v /= 9.0;
-        vec4 map = texture(scatteringMaps, vec3(window.xy, float(k)));
-        if (map.a <= 0.0) continue;     // the camera saw no surface there
-        vec3 radiosity = map.rgb / map.a;  // mean over accumulated frames and covered texels
-        weighted += v * radiosity;
-        visibility += v;
-        covered += radiosity;
-        coverage += 1.0;
-    }
-    // A point no camera sees (deep concavities with few cameras) borrows the mean of the layers
-    // that cover its pixel rather than going black.
-    vec3 radiosity = visibility > 0.0 ? weighted / visibility : (coverage > 0.0 ? covered / coverage : vec3(0.0));
+    MapLookup maps = lookUpScatteringMaps(modelPosition, normalize(modelNormal));
+    // A point no layer sees (deep concavities) takes the radiosity interpolated from its
+    // triangle's vertices, which the vertex pass filled in from the surface around them.
+    vec3 radiosity = maps.weight > 0.0 ? maps.radiosity : vertexRadiosity;
 
     vec3 nWorld = normalize(worldNormal);
     if (!gl_FrontFacing) nWorld = -nWorld;

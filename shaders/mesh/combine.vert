@@ -7,9 +7,13 @@ out vec3 modelPosition;
 out vec3 modelNormal;
 out vec3 worldPosition;
 out vec3 worldNormal;
+out vec3 vertexRadiosity;
+// Per vertex, from src/mesh/vertex_radiosity_pass.cpp: rgb radiosity (filled everywhere).
+layout(std430, binding = 0) readonly buffer VertexRadiosity { vec4 radiosityOfVertex[]; };
 void main() {
     modelPosition = inPosition;
     modelNormal = inNormal;
+    vertexRadiosity = radiosityOfVertex[gl_VertexID].rgb;
     vec4 world = model * vec4(inPosition, 1.0);
     worldPosition = world.xyz;
     worldNormal = normalMatrix * inNormal;

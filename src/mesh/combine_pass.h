@@ -7,6 +7,7 @@
 #include "lighting/shadows.h"
 #include "mesh/gpu_mesh.h"
 #include "mesh/scattering_map_pass.h"
+#include "mesh/vertex_radiosity_pass.h"
 #include "sss/camera.h"
 #include "sss/light.h"
 
@@ -15,20 +16,29 @@
 namespace sss::detail {
 
 struct CombineSettings {
+    MapLookupSettings lookup;
     float eta = 1.3f;
-    float depthBias = 0.0f;   ///< window-space depth
-    float seamShrink = 0.0f;  ///< model units
     float specularStrength = 1.0f;
     float shininess = 40.0f;
     glm::vec3 environment{0.0f};  ///< the environment's radiance times R_d: added as is
 };
 
+struct CombineInputs {
+    const GpuMesh& mesh;
+    const glm::mat4& model;
+    const ScatteringCameras& cameras;
+    const ScatteringMapPass& maps;
+    const VertexRadiosityPass& vertexRadiosity;  ///< where no layer sees the point
+    const std::vector<Light>& lights;
+    const Camera& camera;
+    float aspect = 1.0f;
+    const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes (specular highlight only)
+};
+
 class CombinePass {
 public:
     CombinePass();
-    void run(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
-             const ScatteringMapPass& maps, const std::vector<Light>& lights, const Camera& camera, float aspect,
-             const CombineSettings& settings, const SurfaceShadows* shadows = nullptr) const;
+    void run(const CombineInputs& in, const CombineSettings& settings) const;
 
 private:
     gl::Program m_program;

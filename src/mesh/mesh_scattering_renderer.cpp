@@ -97,6 +97,11 @@ struct MeshScatteringRenderer::Impl {
     std::optional<detail::LightBufferPass> lightBuffer;
     std::optional<detail::ScatteringMapPass> scatteringMaps;
     std::optional<detail::CombinePass> combine;
+    std::optional<detail::VertexRadiosityPass> vertexRadiosity;  // built with the mesh's scattering
+    detail::VertexAdjacency adjacency;  // of the mesh, for the vertex-radiosity pass
+    int vertexRadiosityFrames = -1;
+    std::optional<ScatteringMapInputs> vertexRadiosityInputs;
+    detail::MapLookupSettings vertexRadiosityLookup;
     detail::ScatteringCameras cameras;
     std::optional<LightBufferInputs> lightBufferInputs;
     std::optional<ScatteringMapInputs> scatteringMapInputs;
@@ -179,6 +184,8 @@ void MeshScatteringRenderer::setMesh(const Mesh& mesh, const glm::mat4& model) {
     if (mesh.triangleCount() == 0)
         throw Error(ErrorKind::InvalidArgument, "MeshScatteringRenderer::setMesh: the mesh has no triangles");
     m_impl->mesh = detail::GpuMesh::upload(mesh);
+    m_impl->vertexRadiosity.reset();
+    m_impl->adjacency = detail::buildVertexAdjacency(mesh);
     ++m_impl->meshGeneration;
     m_impl->model = model;
 }
@@ -226,22 +233,32 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     }
     r.updateScattering();
     if (!r.combine) r.combine.emplace();
+    if (!r.vertexRadiosity) r.vertexRadiosity.emplace(r.adjacency);
     // Bias and shrink are given in texels of the scattering maps; convert with the maps' extent
     // (2 radii across, 3 radii of depth; see makeScatteringCameras).
     const float texels = static_cast<float>(r.options.mapResolution);
     const float radius = std::max(r.mesh->bounds.radius(), 1e-6f) * 1.01f;
     detail::CombineSettings settings;
     settings.eta = static_cast<float>(r.scatteringMaterial.eta);
-    settings.depthBias = r.options.depthBias * 2.0f / (3.0f * texels);
-    settings.seamShrink = r.options.seamShrink * 2.0f * radius / texels;
+    settings.lookup.depthBias = r.options.depthBias * 2.0f / (3.0f * texels);
+    settings.lookup.seamShrink = r.options.seamShrink * 2.0f * radius / texels;
     settings.specularStrength = r.options.specular;
     settings.shininess = r.options.shininess;
     settings.environment = r.options.environment *
                            glm::vec3(dipoleDiffuseReflectance(deriveDipoleConstants(r.scatteringMaterial)));
+    // The vertices' radiosity follows the maps: once per accumulated frame.
+    if (r.vertexRadiosityFrames != r.scatteringMaps->frames() || r.vertexRadiosityInputs != r.scatteringMapInputs ||
+        r.vertexRadiosityLookup != settings.lookup) {
+        r.timed("vertex-radiosity", [&] { r.vertexRadiosity->run(*r.mesh, r.cameras, *r.scatteringMaps, settings.lookup); });
+        r.vertexRadiosityFrames = r.scatteringMaps->frames();
+        r.vertexRadiosityInputs = r.scatteringMapInputs;
+        r.vertexRadiosityLookup = settings.lookup;
+    }
     r.timed("combine", [&] {
         target.bindForDrawing();
-        r.combine->run(*r.mesh, r.model, r.cameras, *r.scatteringMaps, r.lights, camera, target.aspect(), settings,
-                       r.shadows ? &*r.shadows : nullptr);
+        r.combine->run({*r.mesh, r.model, r.cameras, *r.scatteringMaps, *r.vertexRadiosity, r.lights, camera,
+                        target.aspect(), r.shadows ? &*r.shadows : nullptr},
+                       settings);
     });
 }
 
