@@ -62,11 +62,21 @@ void main() {
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
             if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) continue;
             vec4 xiTexel = texture(lightPositions, vec3(uv, float(l)));
-            // Bilinear lookup: w < 1 means a neighbour texel is empty (silhouette), where the
-            // blended position would float off the surface.
-            if (xiTexel.w < 0.999) continue;
+            vec3 ni;
+            if (xiTexel.w < 0.999) {
+                // Bilinear lookup: w < 1 means a neighbour texel is empty or (at a depth edge)
+                // the blend mixes two surfaces, so the position would float off the surface.
+                // Take the nearest texel instead: dropping the sample would darken every point
+                // near a silhouette as seen from the light.
+                ivec3 nearest = ivec3(clamp(ivec2(uv * vec2(textureSize(lightPositions, 0).xy)), ivec2(0),
+                                            textureSize(lightPositions, 0).xy - 1), l);
+                xiTexel = texelFetch(lightPositions, nearest, 0);
+                if (xiTexel.w < 0.5) continue;  // no surface there
+                ni = normalize(texelFetch(lightNormals, nearest, 0).xyz);
+            } else {
+                ni = normalize(texture(lightNormals, vec3(uv, float(l))).xyz);
+            }
             vec3 xi = xiTexel.xyz;
-            vec3 ni = normalize(texture(lightNormals, vec3(uv, float(l))).xyz);
             vec3 irradiance;  // per unit disk area
             vec3 wi;
             if (point) {
