@@ -170,7 +170,7 @@ private:
     // ---- scene -------------------------------------------------------------------------------
     void setVolume(sss::Volume volume, const std::string& label) {
         m_histogram.histogram = sss::TransferFunctionEditor::histogramBars(volume, 128);
-        m_histogram.rawMax = volume.type() == sss::VoxelType::UInt16 ? 65535 : 255;
+        m_histogram.rawRange = volume.transferFunctionRange();
         m_volume = std::move(volume);
         m_volumeLabel = label;
     }

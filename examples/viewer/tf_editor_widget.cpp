@@ -113,7 +113,9 @@ bool transferFunctionEditorWidget(sss::TransferFunctionEditor& editor, const TfE
     if (hovered && !editor.dragging()) {
         const glm::vec2 m = glm::clamp(mouse, glm::vec2(0.0f), glm::vec2(1.0f));
         ImGui::SetTooltip("value %.3f (raw %d), opacity %.3f\n%s", m.x,
-                          static_cast<int>(std::lround(m.x * static_cast<float>(state.rawMax))), m.y,
+                          static_cast<int>(std::lround(state.rawRange.first +
+                                                       m.x * (state.rawRange.second - state.rawRange.first))),
+                          m.y,
                           hit ? "drag: move, right-click: delete" : "click: add a point");
     }
 

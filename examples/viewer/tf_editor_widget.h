@@ -5,13 +5,16 @@
 #include <sss/transfer_function_editor.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace viewer {
 
 struct TfEditorWidgetState {
     std::vector<float> histogram;  ///< bar heights in [0,1] (TransferFunctionEditor::histogramBars)
-    int rawMax = 255;              ///< largest raw voxel value, for the tooltip (255 or 65535)
+    /// Raw voxel values at the canvas's left and right edge, for the tooltip
+    /// (Volume::transferFunctionRange(): 0..255, or a 16-bit volume's min..max).
+    std::pair<double, double> rawRange{0.0, 255.0};
 };
 
 /// Draws the editor canvas (full available width, `height` pixels) and the selected point's
