@@ -64,7 +64,7 @@ batch (scripts, tests):
   --screenshot FILE.png     after the last frame save the scene image (without UI) and exit 0;
                             --frames defaults to 10
   --screenshot-ui           save the window with its UI instead
-  --dump-state FILE.json     write the camera, UI layout and transfer function as JSON to FILE
+  --dump-state FILE         write the camera, UI layout and transfer function as JSON to FILE
                             after every frame and at exit (scripted input tests)
   --timeout S               exit 1 if the window is still open after S seconds
   --help                    this text
