@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages libsss needs to build, test and run headless.
 # Idempotent: only packages that are not installed yet are passed to apt-get.
-# Usage: scripts/install-deps.sh [--viewer]   (--viewer adds GLFW, Dear ImGui, Xvfb)
+# Usage: scripts/install-deps.sh [--viewer]   (--viewer adds GLFW, Dear ImGui, Xvfb, xdotool)
 set -euo pipefail
 
 packages=(
@@ -17,7 +17,7 @@ packages=(
   # clang with libFuzzer and the sanitizer runtimes: the loader fuzz targets (tests/fuzz)
   clang-14 libclang-rt-14-dev
 )
-viewer_packages=(libglfw3-dev libimgui-dev xvfb xauth)
+viewer_packages=(libglfw3-dev libimgui-dev xvfb xauth xdotool)
 
 if [[ "${1:-}" == "--viewer" ]]; then packages+=("${viewer_packages[@]}"); fi
 

@@ -260,7 +260,7 @@ std::vector<float> TransferFunctionEditor::histogramBars(const std::vector<uint3
 }
 
 std::vector<float> TransferFunctionEditor::histogramBars(const Volume& volume, int bins) {
-    return histogramBars(volume.histogram(bins));
+    return histogramBars(volume.histogram(bins, volume.transferFunctionRange()));
 }
 
 }  // namespace sss

@@ -81,6 +81,14 @@ bool parseDimsToken(std::string_view token, glm::ivec3& dims) {
            parseInt(token.substr(b + 1), dims.z);
 }
 
+// Histogram counts are counted in 64 bits and returned saturated at UINT32_MAX.
+std::vector<uint32_t> saturated(const std::vector<uint64_t>& counts) {
+    std::vector<uint32_t> result(counts.size());
+    std::transform(counts.begin(), counts.end(), result.begin(),
+                   [](uint64_t c) { return static_cast<uint32_t>(std::min<uint64_t>(c, UINT32_MAX)); });
+    return result;
+}
+
 bool equalsIgnoreCase(std::string_view a, std::string_view b) {
     return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
                return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
@@ -222,10 +230,42 @@ std::vector<uint32_t> Volume::histogram(int bins) const {
             ++counts[static_cast<std::size_t>(value * uint64_t(bins) / range)];
         }
     }
-    std::vector<uint32_t> result(counts.size());
-    std::transform(counts.begin(), counts.end(), result.begin(),
-                   [](uint64_t c) { return static_cast<uint32_t>(std::min<uint64_t>(c, UINT32_MAX)); });
-    return result;
+    return saturated(counts);
+}
+
+std::pair<double, double> Volume::transferFunctionRange() const {
+    if (m_type == VoxelType::UInt8) return {0.0, 255.0};
+    const double lo = m_range.first;
+    return {lo, std::max(lo + 1.0, static_cast<double>(m_range.second))};
+}
+
+std::vector<uint32_t> Volume::histogram(int bins, std::pair<double, double> range) const {
+    const auto [lo, hi] = range;
+    if (bins < 1 || bins > 65536)
+        throw Error(ErrorKind::InvalidArgument,
+                    "Volume::histogram: bins must be in [1, 65536], got " + std::to_string(bins));
+    if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi))
+        throw Error(ErrorKind::InvalidArgument, "Volume::histogram: range must be finite with lo < hi, got (" +
+                                                    detail::formatNumber(lo) + ", " + detail::formatNumber(hi) + ")");
+    // One bin index per possible raw value (-1: outside the range), then one lookup per voxel.
+    const std::size_t values = m_type == VoxelType::UInt8 ? 256 : 65536;
+    std::vector<int32_t> binOf(values, -1);
+    for (std::size_t v = 0; v < values; ++v) {
+        const double value = static_cast<double>(v);
+        if (value < lo || value > hi) continue;
+        const double bin = std::floor((value - lo) / (hi - lo) * bins);
+        binOf[v] = static_cast<int32_t>(std::min(bin, static_cast<double>(bins - 1)));
+    }
+    std::vector<uint64_t> counts(static_cast<std::size_t>(bins), 0);
+    auto count = [&](std::size_t value) {
+        if (const int32_t bin = binOf[value]; bin >= 0) ++counts[static_cast<std::size_t>(bin)];
+    };
+    if (m_type == VoxelType::UInt8) {
+        for (uint8_t value : m_bytes) count(value);
+    } else {
+        for (std::size_t i = 0; i + 1 < m_bytes.size(); i += 2) count(std::size_t(m_bytes[i] | (m_bytes[i + 1] << 8)));
+    }
+    return saturated(counts);
 }
 
 }  // namespace sss

@@ -3,6 +3,7 @@
 #include "present_gl.h"
 #include "tf_editor_widget.h"
 #include "viewer_options.h"
+#include "viewer_state.h"
 
 #include <sss/glfw_context.h>
 #include <sss/hybrid_compositor.h>
@@ -148,11 +149,18 @@ public:
 
     int run() {
         const int frames = m_args.frames;
+        const Clock::time_point start = Clock::now();
         for (int frame = 0; frames == 0 || frame < frames; ++frame) {
             if (m_context->shouldClose()) break;
+            if (m_args.timeout > 0.0 && msSince(start) > 1000.0 * m_args.timeout) {
+                std::fprintf(stderr, "sss-viewer: --timeout: the window is still open after %g s\n", m_args.timeout);
+                dumpState(false);
+                return 1;
+            }
             const bool last = frames > 0 && frame + 1 == frames;
             drawFrame(last && !m_args.screenshot.empty());
         }
+        dumpState(false);
         if (m_args.frames > 0) {
             // Batch runs double as tests: a GL error reported through KHR_debug is a failure.
             const sss::DebugMessageCounts counts = m_context->debugMessages();
@@ -170,7 +178,7 @@ private:
     // ---- scene -------------------------------------------------------------------------------
     void setVolume(sss::Volume volume, const std::string& label) {
         m_histogram.histogram = sss::TransferFunctionEditor::histogramBars(volume, 128);
-        m_histogram.rawMax = volume.type() == sss::VoxelType::UInt16 ? 65535 : 255;
+        m_histogram.rawRange = volume.transferFunctionRange();
         m_volume = std::move(volume);
         m_volumeLabel = label;
     }
@@ -284,6 +292,7 @@ private:
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
+        m_layout = {};
         handleInput();
         if (m_showUi) {
             drawPanel();
@@ -312,6 +321,7 @@ private:
         m_display->encode(*m_target, m_displayTransform);
         m_gl->present(m_display->framebufferId(), fb.x, fb.y, fb.x, fb.y);
         ImGui::Render();
+        m_uiVertices = ImGui::GetDrawData()->TotalVtxCount;
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (saveScreenshot && m_args.screenshotUi) writeScreenshot(m_args.screenshot, true);
         m_context->swapBuffers();
@@ -322,6 +332,29 @@ private:
         const std::size_t n = std::min(m_frameTimes.size(), static_cast<std::size_t>(m_frameIndex));
         m_frameMs = 0.0;
         for (std::size_t i = 0; i < n; ++i) m_frameMs += m_frameTimes[i] / static_cast<double>(n);
+        dumpState(true);
+    }
+
+    // --dump-state: the state after this frame (running) or at exit.
+    void dumpState(bool running) {
+        if (m_args.dumpState.empty()) return;
+        viewer::ViewerState state;
+        state.frame = m_frameIndex;
+        state.running = running;
+        state.window = m_context->framebufferSize();
+        state.camera = m_camera;
+        state.uiShown = m_showUi;
+        state.uiVertices = m_uiVertices;
+        state.panel = m_layout.panel;
+        state.overlay = m_layout.overlay;
+        state.tfWindow = m_layout.tfWindow;
+        state.tfCanvas = m_layout.tfCanvas;
+        state.editor = &m_tfEditor;
+        state.screenshots = m_screenshotsWritten;
+        const sss::DebugMessageCounts counts = m_context->debugMessages();
+        state.glErrors = counts.errors;
+        state.lastGlError = counts.errors > 0 ? m_context->lastDebugError() : std::string();
+        viewer::writeViewerState(m_args.dumpState, state);
     }
 
     void writeScreenshot(const std::string& path, bool withUi) {
@@ -335,6 +368,7 @@ private:
             }
             std::printf("wrote %s\n", path.c_str());
             std::fflush(stdout);
+            m_screenshotsWritten.push_back(path);
             showMessage("saved " + path, false);
         } catch (const sss::Error& e) {
             if (m_args.frames > 0) throw;  // batch: a screenshot that cannot be written is a failure
@@ -370,6 +404,8 @@ private:
             if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) reframe();
         }
         if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) m_screenshotRequested = true;
+        if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Q, false))
+            glfwSetWindowShouldClose(static_cast<GLFWwindow*>(m_context->nativeWindow()), GLFW_TRUE);
         if (io.WantCaptureMouse) return;
         const glm::vec2 delta(io.MouseDelta.x, io.MouseDelta.y);
         if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f)) m_camera.orbit(-0.3f * delta.x, 0.3f * delta.y);
@@ -405,6 +441,7 @@ private:
         ImGui::SetNextWindowBgAlpha(0.88f);
         ImGui::Begin("libsss viewer", nullptr,
                      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+        m_layout.panel = currentWindowRect();
         ImGui::PushItemWidth(-0.38f * panelWidth());
         if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) sceneSection();
         if (ImGui::CollapsingHeader("Light and camera", ImGuiTreeNodeFlags_DefaultOpen)) lightSection();
@@ -432,6 +469,7 @@ private:
         ImGui::SetNextWindowBgAlpha(0.85f);
         ImGui::Begin("Transfer function", nullptr,
                      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+        m_layout.tfWindow = currentWindowRect();
         transferFunctionSection(height);
         ImGui::End();
     }
@@ -652,8 +690,16 @@ private:
         const uint64_t before = m_tfEditor.transferFunction().revision();
         // The canvas takes what is left above the point controls (two rows).
         const float canvasHeight = std::max(60.0f, windowHeight - 4.0f * ImGui::GetFrameHeightWithSpacing() - 20.0f);
-        viewer::transferFunctionEditorWidget(m_tfEditor, m_histogram, canvasHeight);
+        viewer::ScreenRect canvas;
+        viewer::transferFunctionEditorWidget(m_tfEditor, m_histogram, canvasHeight, &canvas);
+        m_layout.tfCanvas = canvas;
         if (m_tfEditor.transferFunction().revision() != before) m_tfPreset.clear();
+    }
+
+    // Where the window being built lies (window pixels).
+    static viewer::ScreenRect currentWindowRect() {
+        const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+        return {pos.x, pos.y, pos.x + size.x, pos.y + size.y};
     }
 
     void statsTable(const char* owner, const sss::RenderStats& stats) {
@@ -695,6 +741,7 @@ private:
                      ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                          ImGuiWindowFlags_NoNav);
+        m_layout.overlay = currentWindowRect();
         ImGui::Text("frame %.1f ms (%.1f fps), scene %s %.1f ms", m_frameMs,
                     m_frameMs > 0 ? 1000.0 / m_frameMs : 0.0, m_honestTimings ? "(GPU)" : "submit", m_renderMs);
         ImGui::Text("%dx%d, %s", m_target ? m_target->width() : 0, m_target ? m_target->height() : 0,
@@ -754,6 +801,14 @@ private:
     std::string m_message;
     bool m_messageIsError = false;
     Clock::time_point m_messageTime;
+
+    // For --dump-state: where this frame's UI went, and what F12 / Save wrote.
+    struct UiLayout {
+        std::optional<viewer::ScreenRect> panel, overlay, tfWindow, tfCanvas;
+    };
+    UiLayout m_layout;
+    int m_uiVertices = 0;
+    std::vector<std::string> m_screenshotsWritten;
 };
 
 bool isJson(const std::string& name) { return name.size() > 5 && name.substr(name.size() - 5) == ".json"; }

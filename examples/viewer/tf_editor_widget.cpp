@@ -24,7 +24,7 @@ bool pressed(int glfwKey) { return ImGui::IsKeyPressed(glfwKey, false); }
 }  // namespace
 
 bool transferFunctionEditorWidget(sss::TransferFunctionEditor& editor, const TfEditorWidgetState& state,
-                                  float height) {
+                                  float height, ScreenRect* canvas) {
     const uint64_t revisionBefore = editor.transferFunction().revision();
     ImDrawList* draw = ImGui::GetWindowDrawList();
     const float margin = 7.0f;  // room for points on the edges
@@ -34,6 +34,7 @@ bool transferFunctionEditorWidget(sss::TransferFunctionEditor& editor, const TfE
     const ImVec2 canvasMin(origin.x + margin, origin.y + margin);
     const ImVec2 canvasMax(outerMax.x - margin, outerMax.y - margin - 12.0f);  // 12 px colour bar below
     const ImVec2 size(canvasMax.x - canvasMin.x, canvasMax.y - canvasMin.y);
+    if (canvas) *canvas = {canvasMin.x, canvasMin.y, canvasMax.x, canvasMax.y};
     auto toCanvas = [&](ImVec2 p) {
         return glm::vec2((p.x - canvasMin.x) / size.x, 1.0f - (p.y - canvasMin.y) / size.y);
     };
@@ -113,7 +114,9 @@ bool transferFunctionEditorWidget(sss::TransferFunctionEditor& editor, const TfE
     if (hovered && !editor.dragging()) {
         const glm::vec2 m = glm::clamp(mouse, glm::vec2(0.0f), glm::vec2(1.0f));
         ImGui::SetTooltip("value %.3f (raw %d), opacity %.3f\n%s", m.x,
-                          static_cast<int>(std::lround(m.x * static_cast<float>(state.rawMax))), m.y,
+                          static_cast<int>(std::lround(state.rawRange.first +
+                                                       m.x * (state.rawRange.second - state.rawRange.first))),
+                          m.y,
                           hit ? "drag: move, right-click: delete" : "click: add a point");
     }
 

@@ -64,11 +64,14 @@ batch (scripts, tests):
   --screenshot FILE.png     after the last frame save the scene image (without UI) and exit 0;
                             --frames defaults to 10
   --screenshot-ui           save the window with its UI instead
+  --dump-state FILE         write the camera, UI layout and transfer function as JSON to FILE
+                            after every frame and at exit (scripted input tests)
+  --timeout S               exit 1 if the window is still open after S seconds
   --help                    this text
 
 controls: left drag orbits, right or middle drag pans, the wheel zooms, F key reframes;
-F12 saves a screenshot, F1 toggles the UI; in the transfer-function editor click to add a
-point, drag to move it, right-click or Delete removes it, Ctrl+Z / Ctrl+Y undo and redo.
+F12 saves a screenshot, F1 toggles the UI, Ctrl+Q quits; in the transfer-function editor click
+to add a point, drag to move it, right-click or Delete removes it, Ctrl+Z / Ctrl+Y undo and redo.
 )";
 
 void requireRange(const std::string& option, int value, int lo, int hi) {
@@ -165,6 +168,13 @@ ViewerOptions parseArgs(int argc, char** argv) {
             o.screenshot = value();
             if (o.screenshot.empty()) throw UsageError("--screenshot: empty file name");
         } else if (opt == "--screenshot-ui") o.screenshotUi = true;
+        else if (opt == "--dump-state") {
+            o.dumpState = value();
+            if (o.dumpState.empty()) throw UsageError("--dump-state: empty file name");
+        } else if (opt == "--timeout") {
+            o.timeout = parseFloat(opt, value());
+            if (!(o.timeout > 0.0) || !std::isfinite(o.timeout)) throw UsageError("--timeout: must be > 0 seconds");
+        }
         else throw UsageError("unknown option \"" + opt + "\" (see --help)");
     }
     if (o.screenshotUi && o.screenshot.empty()) throw UsageError("--screenshot-ui needs --screenshot FILE.png");

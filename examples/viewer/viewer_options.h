@@ -45,6 +45,8 @@ struct ViewerOptions {
     bool screenshotUi = false;             ///< --screenshot-ui: the window with its UI instead of the scene only
     int frames = 0;                        ///< --frames N: exit after N frames (0: run until closed)
     bool hideUi = false;                   ///< --no-ui
+    std::string dumpState;                 ///< --dump-state FILE.json: state after every frame and at exit
+    double timeout = 0.0;                  ///< --timeout S: fail if still open after S seconds (0: never)
     bool vsync = true;                     ///< --no-vsync
 };
 

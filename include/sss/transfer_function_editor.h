@@ -127,7 +127,10 @@ public:
     /// Bar heights in [0,1] for a histogram backdrop: log(1 + count) / log(1 + max count), so
     /// sparse bins stay visible next to a huge background bin. All zeros if every count is 0.
     static std::vector<float> histogramBars(const std::vector<uint32_t>& counts);
-    /// histogramBars(volume.histogram(bins)). @throws Error InvalidArgument unless 1 <= bins <= 65536.
+    /// histogramBars(volume.histogram(bins, volume.transferFunctionRange())): the bars span the
+    /// transfer function's domain, so bar i lies under x in [i / bins, (i + 1) / bins) (for 16-bit
+    /// data the data's min..max, not 0..65535).
+    /// @throws Error InvalidArgument unless 1 <= bins <= 65536.
     static std::vector<float> histogramBars(const Volume& volume, int bins = 128);
 
 private:

@@ -87,11 +87,24 @@ public:
     /// The box centred at the origin whose largest side is 1, other sides proportional to
     /// dims * spacing. This is where renderers place the volume in world space.
     Bounds worldBounds() const;
+    /// The raw values that a transfer function's domain [0,1] spans: a voxel of raw value v has
+    /// the TF coordinate x = clamp((v - lo) / (hi - lo), 0, 1). (0, 255) for UInt8 (the whole
+    /// type range, the thesis's convention); valueRange() for UInt16, since 16-bit data usually
+    /// fills only part of its range (12-bit CT), with hi raised to lo + 1 if all voxels are equal.
+    /// The renderers classify with it, and a transfer-function editor's x axis shows it.
+    std::pair<double, double> transferFunctionRange() const;
     /// Counts of raw values in `bins` equal-width bins over the whole type range (0..255 or
     /// 0..65535, not valueRange()); bin = value * bins / (typeMax + 1). Default 256 bins.
     /// Counts saturate at UINT32_MAX.
     /// @throws Error InvalidArgument if bins < 1 or bins > 65536.
     std::vector<uint32_t> histogram(int bins = 256) const;
+    /// Counts of raw values in `bins` equal-width bins over range = (lo, hi):
+    /// bin = floor((value - lo) / (hi - lo) * bins), with hi itself in the last bin; values
+    /// outside [lo, hi] are not counted. With transferFunctionRange(), bin i holds the voxels
+    /// whose TF coordinate is in [i / bins, (i + 1) / bins), what a TF editor draws under x.
+    /// Counts saturate at UINT32_MAX.
+    /// @throws Error InvalidArgument if bins < 1 or bins > 65536, or unless lo < hi, both finite.
+    std::vector<uint32_t> histogram(int bins, std::pair<double, double> range) const;
 
 private:
     Volume() = default;

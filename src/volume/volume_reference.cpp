@@ -341,15 +341,15 @@ VolumeReference::VolumeReference(const Volume& volume, const TransferFunction& t
         for (std::size_t i = 0; i < impl->raw.size(); ++i)
             impl->raw[i] = static_cast<uint16_t>(bytes[2 * i] | (bytes[2 * i + 1] << 8));
         impl->normalise = 1.0 / 65535.0;
-        // As GpuVolume: the data range maps onto [0,1].
-        const auto [lo, hi] = volume.valueRange();
-        const double range = std::max(1.0, static_cast<double>(hi) - static_cast<double>(lo));
-        impl->valueScale = 65535.0 / range;
-        impl->valueOffset = -static_cast<double>(lo) / range;
     } else {
         for (std::size_t i = 0; i < impl->raw.size(); ++i) impl->raw[i] = bytes[i];
         impl->normalise = 1.0 / 255.0;
     }
+    // As GpuVolume: Volume::transferFunctionRange() maps onto [0,1].
+    const auto [lo, hi] = volume.transferFunctionRange();
+    const double typeMax = volume.type() == VoxelType::UInt16 ? 65535.0 : 255.0;  // 1 / normalise
+    impl->valueScale = typeMax / (hi - lo);
+    impl->valueOffset = -lo / (hi - lo);
     const Bounds box = volume.worldBounds();
     impl->boxMin = glm::dvec3(box.min);
     impl->boxMax = glm::dvec3(box.max);

@@ -6,7 +6,9 @@
 #include "test_helpers.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 using Catch::Contains;
 using sss::ControlPoint;
@@ -275,7 +277,7 @@ TEST_CASE("Histogram bars are log-scaled into [0,1]", "[cpu]") {
     const std::vector<float> fromVolume = TransferFunctionEditor::histogramBars(shell, 64);
     REQUIRE(fromVolume.size() == 64);
     CHECK(fromVolume.front() == Approx(1.0f));  // most of a shell volume is empty space
-    const int top = shell.valueRange().second * 64 / 256;  // the densest voxels' bin
+    const int top = shell.valueRange().second * 64 / 256;  // the densest voxels' bin (0..255, 64 bins)
     CHECK(fromVolume[static_cast<std::size_t>(top)] > 0.0f);
     for (float b : fromVolume) {
         CHECK(b >= 0.0f);
@@ -283,4 +285,44 @@ TEST_CASE("Histogram bars are log-scaled into [0,1]", "[cpu]") {
     }
     CHECK_THROWS_MATCHES(TransferFunctionEditor::histogramBars(shell, 0), sss::Error,
                          KindIs(ErrorKind::InvalidArgument));
+}
+
+TEST_CASE("Histogram bars of 16-bit data span the editor's x axis: the data's min..max, not 0..65535", "[cpu]") {
+    // A 12-bit-like volume with values 1000..4000: 1000..2499 twice each, 2500..4000 once each.
+    std::vector<uint8_t> bytes;
+    auto add = [&](int value) {
+        bytes.push_back(static_cast<uint8_t>(value & 0xff));
+        bytes.push_back(static_cast<uint8_t>(value >> 8));
+    };
+    for (int v = 1000; v <= 4000; ++v) {
+        add(v);
+        if (v < 2500) add(v);
+    }
+    const int voxels = static_cast<int>(bytes.size() / 2);  // 4501
+    const sss::Volume volume = sss::Volume::fromData({voxels, 1, 1}, sss::VoxelType::UInt16, bytes);
+    REQUIRE(volume.transferFunctionRange() == std::pair<double, double>(1000.0, 4000.0));
+
+    // The counts behind the bars: 128 bins of 3000 / 128 = 23.4 values; bin 64 starts at 2500.
+    const std::vector<uint32_t> counts = volume.histogram(128, volume.transferFunctionRange());
+    REQUIRE(counts.size() == 128);
+    for (std::size_t i = 0; i < 64; ++i) {
+        INFO("bin " << i);
+        CHECK(counts[i] >= 2 * 23);
+        CHECK(counts[i] <= 2 * 24);
+    }
+    for (std::size_t i = 64; i < 128; ++i) {
+        INFO("bin " << i);
+        CHECK(counts[i] >= 23);
+        CHECK(counts[i] <= 25);  // the last bin also holds 4000
+    }
+
+    // Every bar is drawn (binned over 0..65535, only bars 1..7 were), in proportion: log(1 + n).
+    const std::vector<float> bars = TransferFunctionEditor::histogramBars(volume, 128);
+    REQUIRE(bars.size() == 128);
+    const double top = std::log1p(48.0);
+    for (std::size_t i = 0; i < 128; ++i) {
+        INFO("bar " << i);
+        const double n = i < 64 ? 47.0 : 23.5;
+        CHECK(bars[i] == Approx(std::log1p(n) / top).margin(0.02));
+    }
 }

@@ -92,6 +92,47 @@ TEST_CASE("Volume::loadRaw loads 16-bit little-endian data", "[cpu]") {
     CHECK(h[255] == 1);   // 0xFFFF
 }
 
+TEST_CASE("Volume::transferFunctionRange: 0..255 for 8-bit data, the data's min..max for 16-bit data", "[cpu]") {
+    const std::vector<uint8_t> bytes8 = {10, 20, 30, 40};
+    CHECK(Volume::fromData({4, 1, 1}, VoxelType::UInt8, bytes8).transferFunctionRange() ==
+          std::pair<double, double>(0.0, 255.0));
+    // 1000, 4000
+    const std::vector<uint8_t> bytes16 = {0xe8, 0x03, 0xa0, 0x0f};
+    CHECK(Volume::fromData({2, 1, 1}, VoxelType::UInt16, bytes16).transferFunctionRange() ==
+          std::pair<double, double>(1000.0, 4000.0));
+    // All voxels equal: the range is one value wide, also at the top of the type.
+    const std::vector<uint8_t> flat = {0xff, 0xff, 0xff, 0xff};
+    CHECK(Volume::fromData({2, 1, 1}, VoxelType::UInt16, flat).transferFunctionRange() ==
+          std::pair<double, double>(65535.0, 65536.0));
+}
+
+TEST_CASE("Volume::histogram over a range bins only the values inside it", "[cpu]") {
+    // 16-bit values 1000..4000, one voxel each.
+    std::vector<uint8_t> bytes;
+    for (int v = 1000; v <= 4000; ++v) {
+        bytes.push_back(static_cast<uint8_t>(v & 0xff));
+        bytes.push_back(static_cast<uint8_t>(v >> 8));
+    }
+    const Volume v = Volume::fromData({3001, 1, 1}, VoxelType::UInt16, bytes);
+    // Over 0..8000 in 8 bins of 1000: 1000..1999, 2000..2999, 3000..3999 and 4000 alone.
+    CHECK(v.histogram(8, {0.0, 8000.0}) == std::vector<uint32_t>{0, 1000, 1000, 1000, 1, 0, 0, 0});
+    // Over the data's own range every bin is filled; hi falls in the last bin.
+    CHECK(v.histogram(3, {1000.0, 4000.0}) == std::vector<uint32_t>{1000, 1000, 1001});
+    // Values outside are left out, on both sides.
+    CHECK(v.histogram(2, {2000.0, 2999.0}) == std::vector<uint32_t>{500, 500});
+    // Over the whole type range (histogram(bins)) they crowd into the first bins.
+    const auto whole = v.histogram(16);  // bins of 4096 values: everything in bin 0
+    CHECK(whole[0] == 3001);
+
+    const Volume v8 = Volume::fromData({4, 1, 1}, VoxelType::UInt8, std::vector<uint8_t>{0, 100, 200, 255});
+    CHECK(v8.histogram(2, v8.transferFunctionRange()) == std::vector<uint32_t>{2, 2});
+
+    REQUIRE_SSS_ERROR(v.histogram(0, {0.0, 1.0}), ErrorKind::InvalidArgument, Contains("got 0"));
+    REQUIRE_SSS_ERROR(v.histogram(4, {5.0, 5.0}), ErrorKind::InvalidArgument, Contains("lo < hi") && Contains("(5, 5)"));
+    REQUIRE_SSS_ERROR(v.histogram(4, {0.0, std::numeric_limits<double>::infinity()}), ErrorKind::InvalidArgument,
+                      Contains("finite"));
+}
+
 TEST_CASE("RawLoadOptions override the file name", "[cpu]") {
     sss::test::TempDir dir;
     const std::vector<uint8_t> bytes(8 * 2 * 1, 7);
