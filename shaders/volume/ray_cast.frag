@@ -43,6 +43,8 @@ uniform float gradientThreshold;   // |gradient| (per voxel) below which shading
 #endif
 #if SHADING_SCATTERING
 uniform sampler3D lightVolumes[MAX_LIGHTS];   // one per light: (c, l) arriving at each point
+uniform mat3 worldToModelDirection;           // inverse of modelToWorld's linear part
+uniform float lightVolumeOffset;              // light-volume texels towards the light
 // Hybrid scenes: meshes between a light and the volume cast hard shadows into it (shadow maps
 // of the meshes from each light; see src/hybrid/shared_lighting.h).
 uniform int meshShadows;
@@ -93,7 +95,7 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
 #endif
 
 #if SHADING_GRADIENT || SHADING_SCATTERING
-vec3 shade(vec3 p, vec3 tc, vec3 color) {
+vec3 shade(vec3 p, vec3 tc, vec3 color, float opacity) {
     vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
 #if SHADING_GRADIENT
     vec3 v = towardsViewer(worldPosition);
@@ -105,7 +107,18 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
 #if SHADING_SCATTERING
         // Diffuse light is what the light volume says arrives here: tinted by c, dimmed by l.
-        vec4 arriving = texture(lightVolumes[i], tc);
+        // Read the light volume a little towards the light: on an opaque or thin structure the
+        // light falls from lit to dark within one light-volume voxel, and a lookup at the sample
+        // itself interpolates across that step as the surface crosses the grid (rings).
+        vec3 towardsLight = worldToModelDirection * l * vec3(textureSize(lightVolumes[i], 0)) / (boxMax - boxMin);
+        float towardsLength = length(towardsLight);
+        // Only nearly opaque samples need it: in translucent media the light does fall within
+        // the voxel, and the offset would only remove self-shadowing.
+        float o2 = opacity * opacity;
+        vec3 offset = towardsLength > 0.0 ? towardsLight / towardsLength * (lightVolumeOffset * o2 * o2) /
+                                                vec3(textureSize(lightVolumes[i], 0))
+                                          : vec3(0.0);
+        vec4 arriving = texture(lightVolumes[i], tc + offset);
         arriving.a *= meshVisibility(i, worldPosition);
         lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
 #if SHADING_GRADIENT
@@ -173,7 +186,7 @@ void main() {
             // Opacity correction: the TF opacity is defined per voxel length.
             float a = correctOpacity(tf.a, opacityExponent, 1.0);
 #if SHADING_GRADIENT || SHADING_SCATTERING
-            vec3 c = shade(p, tc, tf.rgb);
+            vec3 c = shade(p, tc, tf.rgb, tf.a);
 #else
             vec3 c = tf.rgb;
 #endif

@@ -99,6 +99,14 @@ void RayCastPass::run(const RayCastInputs& in) const {
             p.set("eyePassStrength", options.eyePassStrength);
             in.eyeVolume->bind(units::kEyeVolume);
         }
+        p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
+        // Up to half a light-volume texel towards the light, for nearly opaque samples (the
+        // shader scales it by opacity^4). Measured against the CPU reference (sss-bench
+        // --error-sweep volume, 400x226, step 0.5, llvmpipe), relRMSE at 0 / 0.5 / 0.75 / 1
+        // texel: opaque blobs 24.5 / 15.7 / 15.8 / 19.7 %, shell (ct-bone) 18.6 / 16.7 / 18.4 /
+        // 21.6 %, bonsai 10.9 / 10.5 / 10.3 / 10.1 %; the translucent blobs of the reference
+        // test stay at 1.6 %.
+        p.set("lightVolumeOffset", 0.5f);
         for (size_t i = 0; i < in.lightVolumes.size(); ++i) {
             const int unit = units::kLightVolumes + static_cast<int>(i);
             p.set("lightVolumes[" + std::to_string(i) + "]", unit);
