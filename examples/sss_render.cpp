@@ -49,6 +49,8 @@ output:
   --background R,G,B        linear background colour (default: 0.01,0.01,0.0137, which
                             displays as the dark grey-blue sRGB 0.1,0.1,0.12)
   --repeat N                render N times and report median/min/max (default: 1)
+  --aa N                    anti-aliasing: average N frames with sub-pixel camera offsets, after
+                            the timed frames (default: 4; 1 = off)
 shading:
   --mode MODE               blinn-phong or sss (mesh); emission-absorption, gradient,
                             scattering or scattering-gradient (volume); hybrid (a mesh and a
@@ -108,7 +110,7 @@ struct Args {
     std::optional<glm::ivec3> dims;
     std::optional<sss::VoxelType> type;
     std::optional<glm::vec3> spacing;
-    int width = 1200, height = 680, repeat = 1;
+    int width = 1200, height = 680, repeat = 1, antiAliasing = 4;
     glm::vec3 background{0.010f, 0.010f, 0.0137f};  // linear; displays as sRGB (0.1, 0.1, 0.12)
     glm::vec3 color{0.8f, 0.75f, 0.7f};
     float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
@@ -182,6 +184,9 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--repeat") {
             a.repeat = parseInt(opt, value());
             if (a.repeat < 1) throw UsageError("--repeat: must be >= 1");
+        } else if (opt == "--aa") {
+            a.antiAliasing = parseInt(opt, value());
+            if (a.antiAliasing < 1 || a.antiAliasing > 256) throw UsageError("--aa: must be in 1..256");
         } else if (opt == "--color") a.color = parseVec3(opt, value());
         else if (opt == "--shininess") a.shininess = parseFloat(opt, value());
         else if (opt == "--step") a.step = parseFloat(opt, value());
@@ -354,7 +359,17 @@ int run(const Args& a) {
         scene.render(camera, target);
         times.push_back(timer.endMilliseconds());
     }
-    const sss::Image image = target.readColor();
+    sss::Image image = target.readColor();
+    if (a.antiAliasing > 1) {
+        sss::FrameAccumulator accumulator(a.width, a.height);
+        for (int i = 0; i < a.antiAliasing; ++i) {
+            camera.setSubpixelOffset(sss::FrameAccumulator::subpixelOffset(i, a.width, a.height));
+            scene.render(camera, target);
+            accumulator.add(target);
+        }
+        camera.setSubpixelOffset({0.0f, 0.0f});
+        image = accumulator.result().readColor();
+    }
     if (fs::path(a.out).extension() == ".exr")
         image.saveExr(a.out);  // linear radiance, as rendered
     else

@@ -108,10 +108,22 @@ glm::mat4 Camera::projection(float aspect) const {
     if (!std::isfinite(aspect) || aspect <= 0.0f)
         throw Error(ErrorKind::InvalidArgument, "Camera::projection: aspect must be finite and > 0, got " + str(aspect));
     // Explicit _NO (clip z in [-1, 1]) so a GLM_FORCE_DEPTH_ZERO_TO_ONE elsewhere cannot change it.
-    if (m_projection == Projection::Perspective)
-        return glm::perspectiveRH_NO(glm::radians(m_fovY), aspect, m_near, m_far);
-    const float h = 0.5f * m_orthoHeight, w = h * aspect;
-    return glm::orthoRH_NO(-w, w, -h, h, m_near, m_far);
+    glm::mat4 p;
+    if (m_projection == Projection::Perspective) {
+        p = glm::perspectiveRH_NO(glm::radians(m_fovY), aspect, m_near, m_far);
+    } else {
+        const float h = 0.5f * m_orthoHeight, w = h * aspect;
+        p = glm::orthoRH_NO(-w, w, -h, h, m_near, m_far);
+    }
+    // A shift in NDC (x_ndc += offset.x): a translation applied after the projection.
+    if (m_subpixelOffset == glm::vec2(0.0f)) return p;
+    return glm::translate(glm::mat4(1.0f), glm::vec3(m_subpixelOffset, 0.0f)) * p;
+}
+
+void Camera::setSubpixelOffset(glm::vec2 offset) {
+    requireFinite(offset.x, "Camera::setSubpixelOffset: offset.x");
+    requireFinite(offset.y, "Camera::setSubpixelOffset: offset.y");
+    m_subpixelOffset = offset;
 }
 
 void Camera::orbit(float dYawDeg, float dPitchDeg) {

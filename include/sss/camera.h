@@ -51,6 +51,12 @@ public:
     void setClipPlanes(float nearPlane, float farPlane);
     /// Chooses perspective or orthographic projection.
     void setProjectionType(Projection projection) { m_projection = projection; }
+    /// Shifts the image by `offset` in normalized device coordinates (one pixel of a W x H
+    /// target is 2/W by 2/H) without moving the camera: the sub-pixel jitter of progressive
+    /// anti-aliasing (FrameAccumulator). Default (0, 0).
+    /// @throws Error InvalidArgument if offset is not finite.
+    void setSubpixelOffset(glm::vec2 offset);
+    glm::vec2 subpixelOffset() const { return m_subpixelOffset; }
 
     /// Eye position in world space.
     glm::vec3 position() const;
@@ -94,6 +100,7 @@ private:
     float m_near = 0.01f;
     float m_far = 100.0f;
     Projection m_projection = Projection::Perspective;
+    glm::vec2 m_subpixelOffset{0.0f};
 };
 
 }  // namespace sss

@@ -7,6 +7,7 @@
 #include "sss/context.h"
 #include "sss/display.h"
 #include "sss/error.h"
+#include "sss/frame_accumulator.h"
 #include "sss/gpu_memory.h"
 #ifdef SSS_WITH_GLFW
 #include "sss/glfw_context.h"

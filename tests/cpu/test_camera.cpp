@@ -1,4 +1,6 @@
 #include "sss/camera.h"
+#include "sss/error.h"
+#include "sss/frame_accumulator.h"
 #include "sss/light.h"
 
 #include "test_helpers.h"
@@ -11,6 +13,9 @@
 
 using Catch::Contains;
 using sss::Camera;
+using sss::Error;
+using sss::FrameAccumulator;
+using sss::Projection;
 using sss::ErrorKind;
 
 namespace {
@@ -198,4 +203,38 @@ TEST_CASE("validateLight rejects unusable lights", "[cpu]") {
     p.intensity = 1.0f;
     p.position.x = kNaN;
     REQUIRE_SSS_ERROR(sss::validateLight(p, "fill"), ErrorKind::InvalidArgument, Contains("PointLight::position"));
+}
+
+TEST_CASE("a sub-pixel offset shifts the image in NDC without moving the camera", "[camera][aa]") {
+    for (Projection kind : {Projection::Perspective, Projection::Orthographic}) {
+        Camera camera;
+        camera.setProjectionType(kind);
+        const glm::vec4 point(0.3f, -0.2f, 0.1f, 1.0f);
+        const glm::vec4 a = camera.projection(1.5f) * camera.view() * point;
+        camera.setSubpixelOffset({0.01f, -0.02f});
+        const glm::vec4 b = camera.projection(1.5f) * camera.view() * point;
+        CHECK(b.x / b.w - a.x / a.w == Approx(0.01f).margin(1e-6));
+        CHECK(b.y / b.w - a.y / a.w == Approx(-0.02f).margin(1e-6));
+        CHECK(b.z / b.w == Approx(a.z / a.w).margin(1e-7));
+        CHECK(camera.position() == Camera().position());
+    }
+    Camera camera;
+    CHECK_THROWS_AS(camera.setSubpixelOffset({std::nanf(""), 0.0f}), Error);
+}
+
+TEST_CASE("anti-aliasing offsets cover the pixel around its centre, frame 0 at the centre", "[camera][aa]") {
+    CHECK(FrameAccumulator::subpixelOffset(0, 100, 50) == glm::vec2(0.0f));
+    glm::vec2 mean(0.0f);
+    for (int i = 0; i < 64; ++i) {
+        const glm::vec2 o = FrameAccumulator::subpixelOffset(i, 100, 50) * glm::vec2(50.0f, 25.0f);  // in pixels
+        CHECK(o.x >= -0.5f);
+        CHECK(o.x < 0.5f);
+        CHECK(o.y >= -0.5f);
+        CHECK(o.y < 0.5f);
+        mean += o / 64.0f;
+    }
+    // Low-discrepancy: the 64 offsets average out near the centre.
+    CHECK(glm::length(mean) < 0.05f);
+    CHECK(FrameAccumulator::subpixelOffset(1, 100, 50) != FrameAccumulator::subpixelOffset(2, 100, 50));
+    CHECK_THROWS_AS(FrameAccumulator::subpixelOffset(-1, 100, 50), Error);
 }

@@ -4,7 +4,10 @@
 #include "support/golden.h"
 
 #include <catch2/catch.hpp>
+#include <sss/frame_accumulator.h>
 #include <sss/hybrid_compositor.h>
+#include <sss/image_compare.h>
+#include <sss/error.h>
 #include <sss/materials.h>
 #include <sss/procedural.h>
 
@@ -342,5 +345,50 @@ TEST_CASE("a camera-only change in a hybrid scene reruns neither scattering maps
     CHECK(scene.stats().runs("mesh-shadow-maps") == shadowMaps + 1);
     CHECK(mesh.stats().runs("light-buffer") == buffers + 1);
     CHECK(volume.stats().runs("light-volume") == lightVolumes);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("progressive anti-aliasing converges to a supersampled image, depth-correct in hybrid scenes",
+          "[gl][hybrid][aa]") {
+    test::GlTestScope gl;
+    // A Blinn-Phong sphere in front of a scattering volume: edges of the mesh over the volume
+    // and over the background. 16 jittered frames against a 4x4 supersampled render.
+    HybridCompositor scene;
+    scene.setLights({DirectionalLight{.direction = {-0.4f, -0.5f, -1.0f}}});
+    scene.addMesh(makeUvSphere(), glm::scale(glm::translate(glm::mat4(1.0f), {0.2f, 0.1f, 0.9f}), glm::vec3(0.3f)));
+    scene.addVolume(makeBlobsVolume(32), glm::mat4(1.0f), {.shading = VolumeShading::Scattering, .jitter = false})
+        .setTransferFunction(test::blobsTransferFunction());
+    constexpr int w = 64, h = 48, factor = 4;
+    Camera camera = frontCamera(3.0f);
+    RenderTarget big(w * factor, h * factor);
+    scene.render(camera, big);
+    const Image fine = big.readColor();
+    Image supersampled(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            glm::vec4 sum(0.0f);
+            for (int j = 0; j < factor; ++j)
+                for (int i = 0; i < factor; ++i) sum += fine.at(x * factor + i, y * factor + j);
+            supersampled.at(x, y) = sum / float(factor * factor);
+        }
+    RenderTarget frame(w, h);
+    scene.render(camera, frame);
+    const Image aliased = frame.readColor();
+    FrameAccumulator accumulator(w, h);
+    for (int i = 0; i < 16; ++i) {
+        camera.setSubpixelOffset(FrameAccumulator::subpixelOffset(i, w, h));
+        scene.render(camera, frame);
+        accumulator.add(frame);
+    }
+    CHECK(accumulator.frames() == 16);
+    const Image smooth = accumulator.result().readColor();
+    const double before = computeErrorMetrics(aliased, supersampled).relRmse;
+    const double after = computeErrorMetrics(smooth, supersampled).relRmse;
+    INFO("relRMSE against 4x4 supersampling: one frame " << before << ", 16 jittered frames " << after);
+    // Measured on llvmpipe: 7.9 % for one frame, 2.1 % for 16; the bound is half the former.
+    CHECK(after < 0.5 * before);
+    accumulator.reset();
+    CHECK(accumulator.frames() == 0);
+    CHECK_THROWS_AS(accumulator.add(RenderTarget(w + 1, h)), Error);
     gl.requireNoErrors();
 }
