@@ -250,6 +250,8 @@ private:
 
     // Pushes the UI's settings into the renderers; a bad value shows an error instead of throwing.
     void applyChanges() {
+        m_viewChanged |= m_sceneDirty || m_meshDirty || m_volumeDirty || m_lightsDirty || m_hybridDirty ||
+                         m_uploadedTf != m_tfEditor.transferFunction().revision();
         try {
             if (m_sceneDirty) {
                 rebuildScene();
@@ -300,14 +302,30 @@ private:
         }
         applyChanges();
 
-        // The scene.
+        // The scene. While nothing moves and the maps have converged, each frame adds one more
+        // sub-pixel-jittered frame to the anti-aliased mean (FrameAccumulator), up to --aa;
+        // then the picture is final and the scene is not drawn again.
         const Clock::time_point renderStart = Clock::now();
-        try {
-            m_compositor->render(m_camera, *m_target);
-        } catch (const sss::Error& e) {
-            // Bad settings must not end an interactive session; the message says what failed.
-            showMessage(e.what(), true);
-            m_target->clear(m_hybrid.background);
+        const glm::mat4 viewProjection = m_camera.projection(m_target->aspect()) * m_camera.view();
+        if (!m_accumulator || m_accumulator->result().width() != fb.x || m_accumulator->result().height() != fb.y)
+            m_accumulator.emplace(fb.x, fb.y);
+        if (m_viewChanged || viewProjection != m_lastViewProjection || !m_mapsConverged) m_accumulator->reset();
+        m_viewChanged = false;
+        m_lastViewProjection = viewProjection;
+        if (m_accumulator->frames() < m_args.antiAliasing) {
+            try {
+                m_camera.setSubpixelOffset(sss::FrameAccumulator::subpixelOffset(m_accumulator->frames(), fb.x, fb.y));
+                m_compositor->render(m_camera, *m_target);
+                m_camera.setSubpixelOffset({0.0f, 0.0f});
+                m_accumulator->add(*m_target);
+            } catch (const sss::Error& e) {
+                // Bad settings must not end an interactive session; the message says what failed.
+                m_camera.setSubpixelOffset({0.0f, 0.0f});
+                showMessage(e.what(), true);
+                m_target->clear(m_hybrid.background);
+                m_accumulator->reset();
+                m_accumulator->add(*m_target);
+            }
         }
         if (m_honestTimings) sss::finishGpuWork();
         m_renderMs = msSince(renderStart);
@@ -318,7 +336,7 @@ private:
 
         // The target holds linear radiance; the window shows its display image.
         if (!m_display) m_display.emplace();
-        m_display->encode(*m_target, m_displayTransform);
+        m_display->encode(m_accumulator->result(), m_displayTransform);
         m_gl->present(m_display->framebufferId(), fb.x, fb.y, fb.x, fb.y);
         ImGui::Render();
         m_uiVertices = ImGui::GetDrawData()->TotalVtxCount;
@@ -364,7 +382,7 @@ private:
                 const glm::ivec2 fb = m_context->framebufferSize();
                 m_gl->readBackBuffer(fb.x, fb.y).savePng(path);
             } else {
-                sss::toDisplay(m_target->readColor(), m_displayTransform).savePng(path);
+                sss::toDisplay(m_accumulator->result().readColor(), m_displayTransform).savePng(path);
             }
             std::printf("wrote %s\n", path.c_str());
             std::fflush(stdout);
@@ -765,6 +783,9 @@ private:
     std::optional<sss::HybridCompositor> m_compositor;
     std::optional<sss::RenderTarget> m_target;  // linear radiance
     std::optional<sss::DisplayEncoder> m_display;  // its display image, presented in the window
+    std::optional<sss::FrameAccumulator> m_accumulator;  // the anti-aliased mean of m_target's frames
+    glm::mat4 m_lastViewProjection{0.0f};
+    bool m_viewChanged = true;
     sss::DisplayTransform m_displayTransform;
     sss::Camera m_camera;
 

@@ -60,6 +60,8 @@ window:
   --no-vsync                do not wait for the display's refresh
   --no-ui                   hide the UI (toggle with F1)
 batch (scripts, tests):
+  --aa N                    anti-aliasing: while nothing moves, average N frames with sub-pixel
+                            camera offsets, one more per frame (default: 8; 1 = off)
   --frames N                render N frames, then exit
   --screenshot FILE.png     after the last frame save the scene image (without UI) and exit 0;
                             --frames defaults to 10
@@ -160,7 +162,10 @@ ViewerOptions parseArgs(int argc, char** argv) {
                 throw UsageError("--size: width and height must be in 1..16384, got \"" + v + "\"");
         } else if (opt == "--no-vsync") o.vsync = false;
         else if (opt == "--no-ui") o.hideUi = true;
-        else if (opt == "--frames") {
+        else if (opt == "--aa") {
+            o.antiAliasing = parseInt(opt, value());
+            if (o.antiAliasing < 1 || o.antiAliasing > 256) throw UsageError("--aa: must be in 1..256");
+        } else if (opt == "--frames") {
             o.frames = parseInt(opt, value());
             if (o.frames < 1) throw UsageError("--frames: must be >= 1");
             framesGiven = true;

@@ -48,6 +48,7 @@ struct ViewerOptions {
     std::string dumpState;                 ///< --dump-state FILE.json: state after every frame and at exit
     double timeout = 0.0;                  ///< --timeout S: fail if still open after S seconds (0: never)
     bool vsync = true;                     ///< --no-vsync
+    int antiAliasing = 8;                  ///< --aa N: jittered frames averaged while nothing moves (1: off)
 };
 
 /// Parses argv. Prints the usage and exits 0 for --help.
