@@ -44,7 +44,7 @@ uniform float gradientThreshold;   // |gradient| (per voxel) below which shading
 #if SHADING_SCATTERING
 uniform sampler3D lightVolumes[MAX_LIGHTS];   // one per light: (c, l) arriving at each point
 uniform mat3 worldToModelDirection;           // inverse of modelToWorld's linear part
-uniform float lightVolumeOffset;              // light-volume texels towards the light
+uniform float lightVolumeOffset;              // light-volume texels towards the light (see shade)
 // Hybrid scenes: meshes between a light and the volume cast hard shadows into it (shadow maps
 // of the meshes from each light; see src/hybrid/shared_lighting.h).
 uniform int meshShadows;
@@ -95,7 +95,7 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
 #endif
 
 #if SHADING_GRADIENT || SHADING_SCATTERING
-vec3 shade(vec3 p, vec3 tc, vec3 color, float opacity) {
+vec3 shade(vec3 p, vec3 tc, vec3 color) {
     vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
 #if SHADING_GRADIENT
     vec3 v = towardsViewer(worldPosition);
@@ -107,18 +107,26 @@ vec3 shade(vec3 p, vec3 tc, vec3 color, float opacity) {
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
 #if SHADING_SCATTERING
         // Diffuse light is what the light volume says arrives here: tinted by c, dimmed by l.
-        // Read the light volume a little towards the light: on an opaque or thin structure the
-        // light falls from lit to dark within one light-volume voxel, and a lookup at the sample
-        // itself interpolates across that step as the surface crosses the grid (rings).
-        vec3 towardsLight = worldToModelDirection * l * vec3(textureSize(lightVolumes[i], 0)) / (boxMax - boxMin);
+        // The light volume stores light at voxel centres; near an opaque or thin structure the
+        // light falls from lit to dark within one voxel, and interpolating across that step draws
+        // rings as the surface crosses the grid. So read it one light-volume texel towards the
+        // light, at q, and attenuate from q back to the sample here, through the data itself:
+        // L(p) = L(q) T(p, q), exact in the continuum, with T resolved at sub-voxel steps.
+        vec3 lightTexels = vec3(textureSize(lightVolumes[i], 0));
+        vec3 towardsLight = worldToModelDirection * l * lightTexels / (boxMax - boxMin);
         float towardsLength = length(towardsLight);
-        // Only nearly opaque samples need it: in translucent media the light does fall within
-        // the voxel, and the offset would only remove self-shadowing.
-        float o2 = opacity * opacity;
-        vec3 offset = towardsLength > 0.0 ? towardsLight / towardsLength * (lightVolumeOffset * o2 * o2) /
-                                                vec3(textureSize(lightVolumes[i], 0))
-                                          : vec3(0.0);
-        vec4 arriving = texture(lightVolumes[i], tc + offset);
+        vec3 reach = towardsLength > 0.0 ? towardsLight / towardsLength * lightVolumeOffset / lightTexels : vec3(0.0);
+        vec4 arriving = texture(lightVolumes[i], tc + reach);
+        // Sub-steps of at most half a data voxel (at most 8).
+        float reachVoxels = length(reach * vec3(volumeDims));
+        int subSteps = clamp(int(ceil(2.0 * reachVoxels)), 1, 8);
+        float subVoxels = reachVoxels / float(subSteps);
+        float transmitted = 1.0;
+        for (int k = 0; k < subSteps; ++k) {
+            float a = classify(texture(volumeTexture, tc + reach * ((float(k) + 0.5) / float(subSteps))).r).a;
+            transmitted *= 1.0 - correctOpacity(a, subVoxels, 1.0);
+        }
+        arriving.a *= transmitted;
         arriving.a *= meshVisibility(i, worldPosition);
         lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
 #if SHADING_GRADIENT
@@ -186,7 +194,7 @@ void main() {
             // Opacity correction: the TF opacity is defined per voxel length.
             float a = correctOpacity(tf.a, opacityExponent, 1.0);
 #if SHADING_GRADIENT || SHADING_SCATTERING
-            vec3 c = shade(p, tc, tf.rgb, tf.a);
+            vec3 c = shade(p, tc, tf.rgb);
 #else
             vec3 c = tf.rgb;
 #endif

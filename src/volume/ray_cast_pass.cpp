@@ -100,13 +100,14 @@ void RayCastPass::run(const RayCastInputs& in) const {
             in.eyeVolume->bind(units::kEyeVolume);
         }
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
-        // Up to half a light-volume texel towards the light, for nearly opaque samples (the
-        // shader scales it by opacity^4). Measured against the CPU reference (sss-bench
-        // --error-sweep volume, 400x226, step 0.5, llvmpipe), relRMSE at 0 / 0.5 / 0.75 / 1
-        // texel: opaque blobs 24.5 / 15.7 / 15.8 / 19.7 %, shell (ct-bone) 18.6 / 16.7 / 18.4 /
-        // 21.6 %, bonsai 10.9 / 10.5 / 10.3 / 10.1 %; the translucent blobs of the reference
-        // test stay at 1.6 %.
-        p.set("lightVolumeOffset", 0.5f);
+        // One light-volume texel towards the light, then attenuation through the data back to
+        // the sample (shaders/volume/ray_cast.frag, shade()). Measured against the CPU reference
+        // (sss-bench --error-sweep volume, llvmpipe), relRMSE for reaches of 0 / 1 / 1.5 / 2
+        // texels: shell 18.6 / 10.2 / 8.3 / 7.5 %, opaque blobs 24.5 / 13.7 / 11.6 / 10.8 %,
+        // bonsai 10.9 / 11.7 / 12.3 / 12.8 %, bonsai at scale 0.25 20.0 / 15.1 / 15.9 / 16.7 %,
+        // the reference test's translucent blobs 1.65 / 1.21 / 1.27 / 1.49 %. One texel is the
+        // cheapest and best where the light volume was already right.
+        p.set("lightVolumeOffset", 1.0f);
         for (size_t i = 0; i < in.lightVolumes.size(); ++i) {
             const int unit = units::kLightVolumes + static_cast<int>(i);
             p.set("lightVolumes[" + std::to_string(i) + "]", unit);
