@@ -117,9 +117,10 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
         float towardsLength = length(towardsLight);
         vec3 reach = towardsLength > 0.0 ? towardsLight / towardsLength * lightVolumeOffset / lightTexels : vec3(0.0);
         vec4 arriving = texture(lightVolumes[i], tc + reach);
-        // Sub-steps of at most half a data voxel (at most 8).
+        // Sub-steps of half a data voxel, at most 4 (a quarter-resolution light volume gets
+        // one-voxel steps).
         float reachVoxels = length(reach * vec3(volumeDims));
-        int subSteps = clamp(int(ceil(2.0 * reachVoxels)), 1, 8);
+        int subSteps = clamp(int(ceil(2.0 * reachVoxels)), 1, 4);
         float subVoxels = reachVoxels / float(subSteps);
         float transmitted = 1.0;
         for (int k = 0; k < subSteps; ++k) {
