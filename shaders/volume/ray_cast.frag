@@ -23,6 +23,7 @@ uniform float stepLength;             // model units
 uniform float opacityExponent;        // stepLength / reference length (one voxel)
 uniform float earlyTermination;       // stop when accumulated opacity reaches this
 uniform int jitterEnabled;
+uniform float jitterShift;            // added to every pixel's jitter: differs per anti-aliasing frame
 uniform int maxSteps;
 uniform sampler2D sceneDepth;         // depth of what the target already holds (opaque meshes)
 #if EMPTY_SPACE_SKIPPING
@@ -167,7 +168,7 @@ void main() {
     vec3 color = vec3(0.0);
     float alpha = 0.0;
     if (span.x < span.y) {
-        float tFirst = span.x + (jitterEnabled != 0 ? pixelJitter(gl_FragCoord.xy) : 0.5) * stepLength;
+        float tFirst = span.x + (jitterEnabled != 0 ? fract(pixelJitter(gl_FragCoord.xy) + jitterShift) : 0.5) * stepLength;
         // Sample i sits at tFirst + i * step: computed from i, not accumulated, so a skip lands
         // on exactly the positions the unskipped loop would reach.
         for (int i = 0; i < maxSteps; ++i) {

@@ -68,6 +68,13 @@ void RayCastPass::run(const RayCastInputs& in) const {
     p.set("opacityExponent", options.stepSize);
     p.set("earlyTermination", options.earlyTermination);
     p.set("jitterEnabled", options.jitter ? 1 : 0);
+    // Frames anti-aliased with sub-pixel offsets (FrameAccumulator) also get different ray starts,
+    // so their mean averages the step's wood grain out as well as the edges; without an offset
+    // the jitter is the same every frame (no flicker). The shift is a fixed scramble of the offset.
+    const glm::vec2 subpixel = in.camera.subpixelOffset();
+    const double scramble = 7548.776662 * std::abs(subpixel.x) + 5698.402910 * std::abs(subpixel.y) +
+                            (subpixel.x < 0.0f ? 0.5 : 0.0) + (subpixel.y < 0.0f ? 0.25 : 0.0);
+    p.set("jitterShift", static_cast<float>(scramble - std::floor(scramble)));
     p.set("maxSteps", maxSteps);
     if (m_shading != VolumeShading::EmissionAbsorption) {
         p.set("modelToWorld", model);
