@@ -10,6 +10,7 @@
 #include "sss/timing.h"
 #include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
+#include "volume/eye_pass.h"
 #include "volume/light_volume_pass.h"
 #include "volume/ray_cast_pass.h"
 #include "volume/renderer_access.h"
@@ -85,10 +86,7 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<LightVolumeInputs> lightVolumeInputs;     // what lightVolumes were built from
     float lightVolumeScaleInUse = 0.0f;                     // lower than asked after a fallback
     // Eye pass (optional): the voxels' scattered light, carried towards the viewer.
-    std::optional<detail::LightVolumePass> eyePass;
-    std::optional<gl::Program> litColourProgram;
-    std::size_t litColourLights = 0;                        // LIGHT_COUNT litColourProgram was built for
-    gl::Texture litColour, eyeVolume;
+    std::optional<detail::EyePass> eyePass;
     std::optional<std::tuple<LightVolumeInputs, glm::vec3, float, float>> eyeInputs;
     const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
     gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
@@ -126,8 +124,7 @@ struct VolumeScatteringRenderer::Impl {
                     throw;
                 // Free what was allocated before trying the smaller size.
                 lightVolumes.clear();
-                litColour = {};
-                eyeVolume = {};
+                if (eyePass) eyePass->release();
                 scale *= 0.5f;
                 const glm::ivec3 reduced = detail::lightVolumeDims(volume->dims, scale);
                 log(LogLevel::Warning, std::string(e.what()) + "; the light volume falls back to " +
@@ -148,43 +145,9 @@ struct VolumeScatteringRenderer::Impl {
                                             options.diffuse);
         if (eyeInputs == inputs) return;
         const auto start = std::chrono::steady_clock::now();
-        const glm::ivec3 dims = lightVolumes.front().size();
-        if (!litColourProgram || litColourLights != lights.size()) {
-            litColourProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}},
-                                                 {{"LIGHT_COUNT", std::to_string(lights.size())}});
-            litColourLights = lights.size();
-        }
-        if (!litColour || litColour.size() != dims) {
-            litColour = gl::Texture::create3D(GL_RGBA16F, dims, "eye pass: scattered light");
-        }
-        const gl::Program& p = *litColourProgram;
-        p.set("volumeTexture", 0);
-        p.set("transferFunction", 1);
-        p.set("transferFunctionEntries", static_cast<float>(transferFunctionTable.size().x));
-        p.set("valueScaleOffset", volume->valueScaleOffset);
-        p.set("litColour", 0);  // image unit
-        p.set("dims", dims);
-        p.set("boxMin", volume->box.min);
-        p.set("voxelSize", volume->box.size() / glm::vec3(dims));
-        p.set("modelToWorld", model);
-        p.set("ambientStrength", options.ambient + options.emission);
-        p.set("diffuseStrength", options.diffuse);
-        detail::setLightUniforms(p, lights);
-        for (size_t i = 0; i < lights.size(); ++i) {
-            p.set("lightVolumes[" + std::to_string(i) + "]", detail::units::kLightVolumes + static_cast<int>(i));
-            lightVolumes[i].bind(static_cast<GLuint>(detail::units::kLightVolumes + static_cast<int>(i)));
-        }
-        volume->texture.bind(0);
-        transferFunctionTable.bind(1);
-        litColour.bindImage(0, GL_WRITE_ONLY);
-        p.use();
-        glDispatchCompute(static_cast<GLuint>((dims.x + 3) / 4), static_cast<GLuint>((dims.y + 3) / 4),
-                          static_cast<GLuint>((dims.z + 3) / 4));
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-        glUseProgram(0);
-        if (!eyePass) eyePass.emplace(true);
-        eyePass->runEyePass(*volume, transferFunctionTable, litColour, camera.forward(), model,
-                            {lightVolumeScaleInUse, options.anisotropy}, eyeVolume);
+        if (!eyePass) eyePass.emplace();
+        eyePass->run({*volume, transferFunctionTable, lightVolumes, lights, model, camera.forward(),
+                      options.ambient + options.emission, options.diffuse, {lightVolumeScaleInUse, options.anisotropy}});
         if (options.finishEachPass) finishGpuWork();
         stats.record("eye-pass", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         eyeInputs = inputs;
@@ -263,7 +226,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .occupancy = r.occupancy->texture(),
                     .lightVolumes = r.lightVolumes,
                     .meshShadows = r.meshShadows,
-                    .eyeVolume = eyePass ? &r.eyeVolume : nullptr,
+                    .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
                     .model = r.model,
                     .lights = r.lights,
                     .options = r.options,
