@@ -11,12 +11,20 @@
 
 namespace sss::detail {
 
+struct BlinnPhongInputs {
+    const GpuMesh& mesh;
+    const glm::mat4& model;
+    const BlinnPhongMaterial& material;
+    const std::vector<Light>& lights;
+    const Camera& camera;
+    float aspect = 1.0f;
+    const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes
+};
+
 class BlinnPhongPass {
 public:
     BlinnPhongPass();
-    void run(const GpuMesh& mesh, const glm::mat4& model, const BlinnPhongMaterial& material,
-             const std::vector<Light>& lights, const Camera& camera, float aspect,
-             const SurfaceShadows* shadows = nullptr) const;
+    void run(const BlinnPhongInputs& in) const;
 
 private:
     gl::Program m_program;

@@ -163,9 +163,9 @@ struct MeshScatteringRenderer::Impl {
         sampling.diskRadius = options.sampleRadius > 0.0f ? options.sampleRadius : 3.0f / sampling.sigmaStar;
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
         timed("scattering-maps", [&] {
-            scatteringMaps->accumulate(*mesh, model, cameras, lights, lightBuffer->viewProjections(),
-                                       lightBuffer->positions(), lightBuffer->normals(), dipole, sampling,
-                                       shadows ? &*shadows : nullptr);
+            scatteringMaps->accumulate({*mesh, model, cameras, lights, lightBuffer->viewProjections(),
+                                        lightBuffer->positions(), lightBuffer->normals(), dipole, sampling,
+                                        shadows ? &*shadows : nullptr});
         });
     }
 };
@@ -226,8 +226,8 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         if (!r.blinnPhong) r.blinnPhong.emplace();
         r.timed("blinn-phong", [&] {
             target.bindForDrawing();
-            r.blinnPhong->run(*r.mesh, r.model, r.material, r.lights, camera, target.aspect(),
-                              r.shadows ? &*r.shadows : nullptr);
+            r.blinnPhong->run({*r.mesh, r.model, r.material, r.lights, camera, target.aspect(),
+                               r.shadows ? &*r.shadows : nullptr});
         });
         return;
     }

@@ -68,17 +68,15 @@ void ScatteringMapPass::reset(int resolution) {
     m_frames = 0;
 }
 
-void ScatteringMapPass::accumulate(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
-                                   const std::vector<Light>& lights, const std::vector<glm::mat4>& lightViewProjections,
-                                   const gl::Texture& lightPositions, const gl::Texture& lightNormals,
-                                   const DipoleConstants& dipole, const ScatteringSampling& sampling,
-                                   const SurfaceShadows* shadows) {
+void ScatteringMapPass::accumulate(const ScatteringMapPassInputs& in) {
+    const glm::mat4& model = in.model;
+    const std::vector<Light>& lights = in.lights;
     const glm::mat3 normalMatrix = glm::mat3(glm::transpose(glm::inverse(model)));
     for (const gl::Program* p : {&m_depthProgram, &m_program}) {
         p->set("model", model);
         p->set("normalMatrix", normalMatrix);
         for (int k = 0; k < m_cameras; ++k)
-            p->set("cameraViewProjection[" + std::to_string(k) + "]", cameras.viewProjection[static_cast<size_t>(k)]);
+            p->set("cameraViewProjection[" + std::to_string(k) + "]", in.cameras.viewProjection[static_cast<size_t>(k)]);
     }
     const int resolution = m_maps.size().x;
     m_framebuffer.bind();
@@ -96,7 +94,7 @@ void ScatteringMapPass::accumulate(const GpuMesh& mesh, const glm::mat4& model, 
         glDepthMask(GL_TRUE);
         glDepthFunc(GL_LESS);
         m_depthProgram.use();
-        mesh.draw();
+        in.mesh.draw();
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
 
@@ -105,22 +103,22 @@ void ScatteringMapPass::accumulate(const GpuMesh& mesh, const glm::mat4& model, 
     p.set("lightNormals", 1);
     setLightUniforms(p, lights);  // lightVector/lightRadiance, as lights.glsl lays them out
     for (size_t i = 0; i < lights.size(); ++i)
-        p.set("lightViewProjection[" + std::to_string(i) + "]", lightViewProjections[i]);
-    setDipoleUniforms(p, "dipole", dipole);
-    setSurfaceShadowUniforms(p, shadows, lights.size());
-    p.set("diskRadius", sampling.diskRadius);
-    p.set("sigmaStar", sampling.sigmaStar);
-    p.set("sigmaNear", sampling.sigmaNear);
-    p.set("samplesPerLight", sampling.samplesPerLight);
+        p.set("lightViewProjection[" + std::to_string(i) + "]", in.lightViewProjections[i]);
+    setDipoleUniforms(p, "dipole", in.dipole);
+    setSurfaceShadowUniforms(p, in.shadows, lights.size());
+    p.set("diskRadius", in.sampling.diskRadius);
+    p.set("sigmaStar", in.sampling.sigmaStar);
+    p.set("sigmaNear", in.sampling.sigmaNear);
+    p.set("samplesPerLight", in.sampling.samplesPerLight);
     p.set("frameSeed", static_cast<unsigned>(m_frames));
-    lightPositions.bind(0);
-    lightNormals.bind(1);
+    in.lightPositions.bind(0);
+    in.lightNormals.bind(1);
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     m_program.use();
-    mesh.draw();
+    in.mesh.draw();
     glDisable(GL_BLEND);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);

@@ -37,6 +37,20 @@ struct ScatteringSampling {
     int samplesPerLight = 1;   ///< proposals per light per frame
 };
 
+struct ScatteringMapPassInputs {
+    const GpuMesh& mesh;
+    const glm::mat4& model;
+    const ScatteringCameras& cameras;
+    const std::vector<Light>& lights;
+    /// The LightBufferPass's views, positions and normals for the same lights.
+    const std::vector<glm::mat4>& lightViewProjections;
+    const gl::Texture& lightPositions;
+    const gl::Texture& lightNormals;
+    const DipoleConstants& dipole;
+    const ScatteringSampling& sampling;
+    const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes
+};
+
 class ScatteringMapPass {
 public:
     explicit ScatteringMapPass(int cameras);
@@ -44,13 +58,8 @@ public:
 
     /// Empties the maps (next accumulate() starts from frame 0) at the given resolution.
     void reset(int resolution);
-    /// Adds one frame of estimates. `lightViewProjections`/`lightPositions`/`lightNormals` come
-    /// from the LightBufferPass for the same lights.
-    void accumulate(const GpuMesh& mesh, const glm::mat4& model, const ScatteringCameras& cameras,
-                    const std::vector<Light>& lights, const std::vector<glm::mat4>& lightViewProjections,
-                    const gl::Texture& lightPositions, const gl::Texture& lightNormals,
-                    const DipoleConstants& dipole, const ScatteringSampling& sampling,
-                    const SurfaceShadows* shadows = nullptr);
+    /// Adds one frame of estimates.
+    void accumulate(const ScatteringMapPassInputs& in);
 
     int frames() const { return m_frames; }
     const gl::Texture& maps() const { return m_maps; }
