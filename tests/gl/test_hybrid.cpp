@@ -3,8 +3,11 @@
 #include "support/scenes.h"
 #include "support/golden.h"
 
+#include "gl/gl.h"
+
 #include <catch2/catch.hpp>
 #include <sss/frame_accumulator.h>
+#include <sss/display.h>
 #include <sss/hybrid_compositor.h>
 #include <sss/image_compare.h>
 #include <sss/error.h>
@@ -390,5 +393,41 @@ TEST_CASE("progressive anti-aliasing converges to a supersampled image, depth-co
     accumulator.reset();
     CHECK(accumulator.frames() == 0);
     CHECK_THROWS_AS(accumulator.add(RenderTarget(w + 1, h)), Error);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("every renderer leaves the GL state it found (src/lighting/gl_state.h)", "[gl][hybrid][state]") {
+    test::GlTestScope gl;
+    auto check = [](const char* who) {
+        GLint program = -1, vertexArray = -1, depthFunc = 0;
+        GLboolean depthMask = GL_FALSE;
+        glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+        glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertexArray);
+        glGetIntegerv(GL_DEPTH_FUNC, &depthFunc);
+        glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);
+        INFO(who);
+        CHECK(program == 0);
+        CHECK(vertexArray == 0);
+        CHECK(glIsEnabled(GL_BLEND) == GL_FALSE);
+        CHECK(glIsEnabled(GL_CULL_FACE) == GL_FALSE);
+        CHECK(depthFunc == GL_LESS);
+        CHECK(depthMask == GL_TRUE);
+    };
+    RenderTarget target(64, 48);
+    HybridCompositor scene({.cornellBox = true});
+    scene.addMesh(makeTorus(), glm::mat4(1.0f), smallScattering());
+    scene.addMesh(makeUvSphere(), glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, 0.0f}));
+    scene.addVolume(makeBlobsVolume(24), glm::translate(glm::mat4(1.0f), {0.8f, 0.0f, 0.0f}),
+                    {.shading = VolumeShading::Scattering, .eyePass = true})
+        .setTransferFunction(test::blobsTransferFunction());
+    Camera camera = frontCamera(4.0f);
+    scene.render(camera, target);
+    check("hybrid scene");
+    FrameAccumulator accumulator(64, 48);
+    accumulator.add(target);
+    check("frame accumulator");
+    DisplayEncoder encoder;
+    encoder.encode(target);
+    check("display encoder");
     gl.requireNoErrors();
 }
