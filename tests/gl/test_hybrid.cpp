@@ -412,6 +412,9 @@ TEST_CASE("every renderer leaves the GL state it found (src/lighting/gl_state.h)
         CHECK(glIsEnabled(GL_CULL_FACE) == GL_FALSE);
         CHECK(depthFunc == GL_LESS);
         CHECK(depthMask == GL_TRUE);
+        GLboolean colorMask[4] = {GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE};
+        glGetBooleanv(GL_COLOR_WRITEMASK, colorMask);
+        CHECK((colorMask[0] && colorMask[1] && colorMask[2] && colorMask[3]));
     };
     RenderTarget target(64, 48);
     HybridCompositor scene({.cornellBox = true});
