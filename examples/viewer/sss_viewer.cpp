@@ -104,6 +104,8 @@ public:
         m_meshOptions.samples = args.samples;
         m_meshOptions.mapResolution = m_meshOptions.lightMapResolution = args.mapResolution;
         m_meshOptions.accumulationFrames = args.accumulation;
+        // Ambient light for the faces the light misses, as sss-render does: on in a Cornell box.
+        m_meshOptions.environment = glm::vec3(args.cornellBox ? 0.05f : 0.0f);
         m_meshOptions.millimetresPerUnit = args.scale;
         m_volumeScattering = args.volumeMode == "scattering" || args.volumeMode == "scattering-gradient";
         m_volumeHighlights = args.volumeMode == "scattering-gradient";
@@ -622,6 +624,8 @@ private:
         }
         m_meshDirty |= ImGui::SliderInt("frames accumulated", &m_meshOptions.accumulationFrames, 1, 64);
         m_meshDirty |= ImGui::SliderFloat("specular", &m_meshOptions.specular, 0.0f, 2.0f, "%.2f");
+        m_meshDirty |= ImGui::SliderFloat("environment", &m_meshOptions.environment.x, 0.0f, 0.5f, "%.3f");
+        m_meshOptions.environment = glm::vec3(m_meshOptions.environment.x);  // grey: one slider
         if (m_mapsConverged) {
             ImGui::TextColored(ImVec4(0.5f, 0.9f, 0.5f, 1.0f), "scattering maps converged");
         } else {
