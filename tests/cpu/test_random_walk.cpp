@@ -404,3 +404,52 @@ TEST_CASE("random walk: bad input is rejected with a message naming it", "[rando
     REQUIRE_SSS_ERROR(isotropicHalfSpaceReflectance(-0.5, 1.3, 0.0), kind, Contains("albedo"));
     REQUIRE_SSS_ERROR(isotropicHalfSpaceReflectance(0.5, 1.3, 0.0, 0.0), kind, Contains("coneHalfAngleDeg"));
 }
+
+// Not a test: a report (hidden; run with "[random-walk-report]", about a minute on one core).
+// For the Jensen presets (reduced coefficients, isotropic walk, eta of the preset) it prints per
+// channel the random walk's total diffuse reflectance next to the dipoles':
+//  - walk 0 deg: collimated normal incidence, per incident power (specular excluded), +- its
+//    standard error, and its single-scattering part;
+//  - walk diffuse: under uniform diffuse illumination, the cosine-weighted mean over incidence
+//    angles (Gauss-Legendre in cos^2 of the incidence angle, 4 nodes), per incident power;
+//  - classic: dipoleDiffuseReflectance(), Jensen's closed form, per power that ENTERED (it has
+//    no entry Fresnel term), so next to it the walk at 0 deg divided by 1 - F(0);
+//  - dirpole: the directional dipole's plane integral at normal incidence with its Fresnel
+//    factors, T(0) * integral S_d dA * integral T(mu) mu dw, what the renderers produce for a lit
+//    plane, per incident power.
+TEST_CASE("random walk: report of total diffuse reflectance, walk against the dipoles", "[.][random-walk-report]") {
+    SlabRandomWalkOptions options;
+    options.paths = 100000;
+    const Rule incidence = gaussLegendre(4, 0.0, 1.0);  // nodes in u = cos^2(theta_i)
+    std::printf("%-9s %2s %8s | %-17s %7s | %8s | %8s %8s | %8s\n", "preset", "ch", "albedo'", "walk 0 deg",
+                "single", "walk dif", "walk/T0", "classic", "dirpole");
+    for (const char* name : {"cream", "potato", "marble", "skimmilk", "ketchup", "skin1", "apple", "chicken1"}) {
+        const ScatteringMaterial m = materialPreset(name);
+        const DipoleConstants k = deriveDipoleConstants(m);
+        const SlabRandomWalkResult normal = simulateSlab(m, 0.0, options);
+        glm::dvec3 diffuseLit(0.0);
+        for (size_t i = 0; i < incidence.x.size(); ++i) {
+            const double theta = std::acos(std::sqrt(incidence.x[i]));
+            const SlabRandomWalkResult r = simulateSlab(m, theta * 180.0 / kPi, options);
+            for (int c = 0; c < 3; ++c) diffuseLit[c] += incidence.w[i] * r.channels[c].diffuse.value;
+        }
+        const glm::dvec3 classic = dipoleDiffuseReflectance(k);
+        // Plane integral of S_d on a log grid in r; the hemispherical Fresnel integral by midpoints.
+        glm::dvec3 plane(0.0);
+        const int n = 20000;
+        const double l0 = std::log(1e-7), l1 = std::log(1e4), dl = (l1 - l0) / n;
+        for (int i = 0; i < n; ++i) {
+            const double r = std::exp(l0 + (i + 0.5) * dl);
+            plane += evaluateSd(k, {0, 0, 0}, {0, 0, 1}, {0, 0, 1}, {r, 0, 0}, {0, 0, 1}) * (2.0 * kPi * r * r * dl);
+        }
+        double hemisphere = 0.0;
+        for (int i = 0; i < n; ++i) hemisphere += 2.0 * kPi * fresnelTransmittance(m.eta, (i + 0.5) / n) * (i + 0.5) / n / n;
+        const double t0 = fresnelTransmittance(m.eta, 1.0);
+        for (int c = 0; c < 3; ++c) {
+            const SlabChannelResult& w = normal.channels[c];
+            std::printf("%-9s %2s %8.5f | %.4f +- %.4f %7.4f | %8.4f | %8.4f %8.4f | %8.4f\n", name,
+                        c == 0 ? "R" : c == 1 ? "G" : "B", k.alphaPrime[c], w.diffuse.value, w.diffuse.standardError,
+                        w.single.value, diffuseLit[c], w.diffuse.value / t0, classic[c], t0 * plane[c] * hemisphere);
+        }
+    }
+}
