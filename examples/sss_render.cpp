@@ -88,19 +88,29 @@ shading:
   --eye-pass                add the second, view-dependent pass towards the viewer
 camera and light:
   --yaw DEG --pitch DEG     orbit angles around the scene centre (default: 30, 20)
-  --zoom F                  distance factor after framing the scene (default: 1)
+  --zoom F                  distance factor after framing the scene (default: 1; < 1 moves
+                            closer; scales the orthographic view too). The scene (the mesh's
+                            vertices, the volume's box, or the Cornell box) is framed tightly
+                            for the view direction and the image's aspect: it fills the image
+                            up to a 4 % margin on one axis and is centred on the other
   --fov DEG                 vertical field of view (default: 45)
   --ortho                   orthographic projection
   --light-dir X,Y,Z         direction the light travels (default: -1,-1,-1)
   --light-color R,G,B       light colour (default: 1,1,1)
   --light-intensity I       light intensity (default: 1)
   --point-light X,Y,Z       use a point light at this position instead
+  --mesh-size S             scale the mesh uniformly to a largest side of S scene units,
+                            centred on the origin, as sss-viewer does with S = 1 (default: the
+                            file's own units); --scale then says how many mm a unit is
   --mesh-offset X,Y,Z       move the mesh (scene units; default: 0,0,0)
   --volume-offset X,Y,Z     move the volume (its box is 1 unit on its longest side)
   --cornell-box             put the scene in a Cornell box (default light: a point light
-                            under its ceiling)
+                            under its ceiling; default view: straight in, yaw 0 and pitch 0)
   --help                    this text
 )";
+
+// Space left around the framed scene box: a fraction of the image's half-width/half-height.
+constexpr float kFramingMargin = 0.04f;
 
 struct Args {
     std::string mesh, volume, out = "sss-render.png", mode, tf = "ramp", dataDir, material = "potato";
@@ -122,6 +132,7 @@ struct Args {
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
     float lightIntensity = 1.0f;
     std::optional<glm::vec3> pointLight, environment;
+    std::optional<float> meshSize, yawGiven, pitchGiven;
     std::optional<std::pair<double, double>> tfRange;
     glm::vec3 meshOffset{0.0f}, volumeOffset{0.0f};
 };
@@ -197,15 +208,18 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--light-volume-scale") a.lightVolumeScale = parseFloat(opt, value());
         else if (opt == "--light-volume-fallback") a.lightVolumeFallback = parseLightVolumeFallback(opt, value());
         else if (opt == "--anisotropy") a.anisotropy = parseFloat(opt, value());
-        else if (opt == "--yaw") a.yaw = parseFloat(opt, value());
-        else if (opt == "--pitch") a.pitch = parseFloat(opt, value());
+        else if (opt == "--yaw") a.yaw = *(a.yawGiven = parseFloat(opt, value()));
+        else if (opt == "--pitch") a.pitch = *(a.pitchGiven = parseFloat(opt, value()));
         else if (opt == "--zoom") {
             a.zoom = parseFloat(opt, value());
             if (!(a.zoom > 0.0f)) throw UsageError("--zoom: must be > 0");
         } else if (opt == "--fov") a.fov = parseFloat(opt, value());
         else if (opt == "--ortho") a.ortho = true;
         else if (opt == "--cornell-box") a.cornellBox = true;
-        else if (opt == "--mesh-offset") a.meshOffset = parseVec3(opt, value());
+        else if (opt == "--mesh-size") {
+            a.meshSize = parseFloat(opt, value());
+            if (!(*a.meshSize > 0.0f && *a.meshSize <= 1e6f)) throw UsageError("--mesh-size: must be in (0, 1e6] scene units");
+        } else if (opt == "--mesh-offset") a.meshOffset = parseVec3(opt, value());
         else if (opt == "--volume-offset") a.volumeOffset = parseVec3(opt, value());
         else if (opt == "--light-dir") a.lightDir = parseVec3(opt, value()), a.lightGiven = true;
         else if (opt == "--light-color") a.lightColor = parseVec3(opt, value());
@@ -268,6 +282,13 @@ int run(const Args& a) {
     std::optional<sss::TransferFunction> tf;
     // (GL objects below are created only after every input is valid.)
     if (!a.mesh.empty()) mesh = loadSceneMesh(a.mesh, dataDir);
+    if (mesh && a.meshSize) {
+        const sss::Bounds b = mesh->bounds();
+        const glm::vec3 size = b.size();
+        const float largest = std::max({size.x, size.y, size.z, 1e-30f});
+        mesh = mesh->transformed(glm::scale(glm::mat4(1.0f), glm::vec3(*a.meshSize / largest)) *
+                                 glm::translate(glm::mat4(1.0f), -b.center()));
+    }
     const bool scattering = (a.mode == "sss" || a.mode == "hybrid") && !a.mesh.empty();
     const sss::ScatteringMaterial material = sss::materialPreset(a.material);
     if (!a.volume.empty()) {
@@ -322,6 +343,20 @@ int run(const Args& a) {
         }
     }
     const sss::Bounds sceneBounds = a.cornellBox ? sss::makeCornellBox(scene.bounds()).bounds : scene.bounds();
+    // What the camera frames: the Cornell box, else the mesh's vertices and the volume's box
+    // (the compositor's bounds() holds each mesh's bounding sphere, which is loose).
+    std::vector<glm::vec3> framed;
+    auto addBox = [&](const sss::Bounds& b, glm::vec3 offset) {
+        for (int i = 0; i < 8; ++i)
+            framed.push_back(offset + glm::vec3((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                                                (i & 4) ? b.max.z : b.min.z));
+    };
+    if (a.cornellBox) addBox(sceneBounds, glm::vec3(0.0f));
+    else {
+        if (mesh)
+            for (const glm::vec3& p : mesh->positions()) framed.push_back(p + a.meshOffset);
+        if (volume) addBox(volume->worldBounds(), a.volumeOffset);
+    }
     // In a Cornell box the default light hangs under the ceiling, as in the classic scene.
     sss::Light light = a.pointLight ? sss::Light(sss::PointLight{*a.pointLight, a.lightColor, a.lightIntensity})
                                     : sss::Light(sss::DirectionalLight{a.lightDir, a.lightColor, a.lightIntensity});
@@ -331,14 +366,19 @@ int run(const Args& a) {
     sss::validateLight(light, "--light");
     scene.setLights({light});
 
+    // The view direction first, then the scene framed tightly for it and the image's
+    // aspect (the subject fills the image); --zoom scales the distance from there.
     sss::Camera camera;
     camera.setFovY(a.fov);
-    camera.frame(sceneBounds);
-    camera.setYaw(a.cornellBox ? 0.0f : a.yaw);
-    camera.setPitch(a.cornellBox ? 0.0f : a.pitch);
-    camera.setDistance(camera.distance() * a.zoom);
-    camera.setOrthoHeight(2.0f * sceneBounds.radius() * 1.1f);
+    // A Cornell box is seen straight through its open side unless --yaw or --pitch say otherwise.
+    camera.setYaw(a.cornellBox ? a.yawGiven.value_or(0.0f) : a.yaw);
+    camera.setPitch(a.cornellBox ? a.pitchGiven.value_or(0.0f) : a.pitch);
     camera.setProjectionType(a.ortho ? sss::Projection::Orthographic : sss::Projection::Perspective);
+    camera.frameTight(framed, float(a.width) / float(a.height), kFramingMargin);
+    if (a.zoom != 1.0f) {
+        camera.zoom(a.zoom);
+        camera.setClipPlanes(camera.nearPlane() * std::min(a.zoom, 1.0f), camera.farPlane() * std::max(a.zoom, 1.0f));
+    }
 
     sss::GpuTimer timer(*context);
     std::vector<double> times;

@@ -9,6 +9,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <span>
+
 namespace sss {
 
 /// Projection kind of a Camera.
@@ -89,6 +91,24 @@ public:
     /// far = 2 * (distance + radius). Yaw and pitch are kept. A point-like box is treated as a
     /// sphere of radius 1e-3. @throws Error InvalidArgument if bounds is empty or not finite.
     void frame(const Bounds& bounds);
+    /// Frames bounds tightly for the current yaw, pitch, fovY and projection type and a
+    /// viewport of the given width/height ratio: the projection of the box's eight corners
+    /// fills the view up to margin (a fraction of the view's half-width and half-height, in
+    /// [0, 0.5]) on the axis where it is larger and is centred on the other. frame() fits the
+    /// bounding sphere in the vertical field of view, which leaves most of a wide viewport
+    /// empty; this fills it. The view direction is kept; the target becomes the point on the
+    /// view axis at the depth of the box's centre, so orbiting turns around the subject.
+    /// Perspective: the eye is where the frustum's side planes touch the box (the tighter
+    /// pair decides the distance). Orthographic: orthoHeight fits the projected box and the
+    /// distance is frame()'s. Near and far enclose the box with frame()'s margins. A
+    /// point-like or flat box is given a half-side of at least 1e-3.
+    /// @throws Error InvalidArgument if bounds is empty or not finite, aspect is not finite
+    ///         and > 0, or margin is outside [0, 0.5].
+    void frameTight(const Bounds& bounds, float aspect, float margin = 0.05f);
+    /// frameTight() for a set of points, e.g. a mesh's vertices: their projection, not their
+    /// box's, fills the view, which frames round or rotated subjects closer. The eye stays in
+    /// front of every point. @throws Error InvalidArgument as above, or if points is empty.
+    void frameTight(std::span<const glm::vec3> points, float aspect, float margin = 0.05f);
 
 private:
     glm::vec3 m_target{0.0f};

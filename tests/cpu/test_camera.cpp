@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
+#include <vector>
 
 using Catch::Contains;
 using sss::Camera;
@@ -158,6 +160,115 @@ TEST_CASE("Camera::frame fits the bounding sphere in the vertical fov", "[cpu]")
     CHECK(ndc(vp, tangent).y == Approx(1.0f));
 
     REQUIRE_SSS_ERROR(cam.frame(sss::Bounds{}), ErrorKind::InvalidArgument, Contains("Camera::frame") && Contains("empty"));
+}
+
+TEST_CASE("Camera::frameTight fills the view with the box's projection", "[cpu]") {
+    sss::Bounds b;
+    b.extend({-0.9f, 0.3f, -0.6f});
+    b.extend({0.6f, 1.9f, 0.6f});  // a bunny-like box, taller than deep
+    struct Case {
+        float yaw, pitch, aspect, margin;
+        sss::Projection projection;
+    };
+    for (const Case k : {Case{30, 20, 16.0f / 9.0f, 0.05f, sss::Projection::Perspective},
+                         Case{-120, -35, 0.5f, 0.0f, sss::Projection::Perspective},
+                         Case{0, 0, 1.0f, 0.1f, sss::Projection::Perspective},
+                         Case{30, 20, 16.0f / 9.0f, 0.05f, sss::Projection::Orthographic},
+                         Case{75, 60, 0.7f, 0.2f, sss::Projection::Orthographic}}) {
+        INFO("yaw " << k.yaw << ", pitch " << k.pitch << ", aspect " << k.aspect << ", margin " << k.margin);
+        Camera cam;
+        cam.orbit(k.yaw, k.pitch);
+        cam.setProjectionType(k.projection);
+        cam.frameTight(b, k.aspect, k.margin);
+        CHECK(cam.yaw() == Approx(k.yaw));
+        CHECK(cam.pitch() == Approx(k.pitch));
+        const glm::mat4 vp = cam.projection(k.aspect) * cam.view();
+        glm::vec2 lo(1e9f), hi(-1e9f);
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                                   (i & 4) ? b.max.z : b.min.z);
+            const glm::vec3 n = ndc(vp, corner);
+            CHECK(std::abs(n.z) < 1.0f);  // between near and far
+            lo = glm::min(lo, glm::vec2(n));
+            hi = glm::max(hi, glm::vec2(n));
+        }
+        const float limit = 1.0f - k.margin;
+        // Inside the view with the margin, touching it on both sides of one axis.
+        CHECK(lo.x >= -limit - 1e-4f);
+        CHECK(lo.y >= -limit - 1e-4f);
+        CHECK(hi.x <= limit + 1e-4f);
+        CHECK(hi.y <= limit + 1e-4f);
+        const bool fillsX = std::abs(hi.x - limit) < 1e-3f && std::abs(lo.x + limit) < 1e-3f;
+        const bool fillsY = std::abs(hi.y - limit) < 1e-3f && std::abs(lo.y + limit) < 1e-3f;
+        CHECK((fillsX || fillsY));
+        // Roughly centred on the other axis too (exactly in orthographic projection).
+        CHECK(std::abs(hi.x + lo.x) < 0.1f);
+        CHECK(std::abs(hi.y + lo.y) < 0.1f);
+    }
+
+    // A wide subject (a dragon-like box) in a wide view: the sphere fit of frame() leaves most
+    // of the image empty; frameTight() makes the box's projection over 1.5 times as large (here 1.85).
+    sss::Bounds wide;
+    wide.extend({-7.0f, 0.0f, -3.2f});
+    wide.extend({7.0f, 9.9f, 3.2f});
+    auto projectedArea = [&](const Camera& cam) {
+        const glm::mat4 vp = cam.projection(16.0f / 9.0f) * cam.view();
+        glm::vec2 lo(1e9f), hi(-1e9f);
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 n = ndc(vp, glm::vec3((i & 1) ? wide.max.x : wide.min.x, (i & 2) ? wide.max.y : wide.min.y,
+                                                  (i & 4) ? wide.max.z : wide.min.z));
+            lo = glm::min(lo, glm::vec2(n));
+            hi = glm::max(hi, glm::vec2(n));
+        }
+        return (hi.x - lo.x) * (hi.y - lo.y);
+    };
+    Camera loose, tight;
+    loose.orbit(30, 20);
+    tight.orbit(30, 20);
+    loose.frame(wide);
+    tight.frameTight(wide, 16.0f / 9.0f);
+    CHECK(projectedArea(tight) > 1.5f * projectedArea(loose));
+
+    // Points (a ring, like a torus's outline) rather than their box: the ring touches the view.
+    std::vector<glm::vec3> ring;
+    for (int i = 0; i < 64; ++i) {
+        const float t = glm::radians(360.0f * float(i) / 64.0f);
+        ring.push_back({std::cos(t), 0.3f * float(i % 2), std::sin(t)});
+    }
+    for (const sss::Projection projection : {sss::Projection::Perspective, sss::Projection::Orthographic}) {
+        Camera cam;
+        cam.orbit(30, 20);
+        cam.setProjectionType(projection);
+        cam.frameTight(std::span<const glm::vec3>(ring), 2.0f, 0.05f);
+        const glm::mat4 vp = cam.projection(2.0f) * cam.view();
+        glm::vec2 lo(1e9f), hi(-1e9f);
+        for (const glm::vec3& p : ring) {
+            const glm::vec3 n = ndc(vp, p);
+            CHECK(std::abs(n.z) < 1.0f);
+            lo = glm::min(lo, glm::vec2(n));
+            hi = glm::max(hi, glm::vec2(n));
+        }
+        CHECK(std::max({hi.x, hi.y, -lo.x, -lo.y}) == Approx(0.95f).margin(1e-3));
+        CHECK(std::min(hi.x - lo.x, hi.y - lo.y) > 0.5f);
+    }
+
+    Camera cam;
+    cam.frameTight(b, 1.0f);
+    REQUIRE_SSS_ERROR(cam.frameTight(std::span<const glm::vec3>(), 1.0f), ErrorKind::InvalidArgument,
+                      Contains("no points"));
+    const glm::vec3 line[2] = {{0, 0, -1}, {0, 0, 1}};  // along the default view axis
+    cam.frameTight(std::span<const glm::vec3>(line), 1.0f);
+    CHECK(cam.nearPlane() > 0.0f);
+    CHECK(glm::dot(line[1] - cam.position(), cam.forward()) > cam.nearPlane());
+    REQUIRE_SSS_ERROR(cam.frameTight(sss::Bounds{}, 1.0f), ErrorKind::InvalidArgument,
+                      Contains("Camera::frameTight") && Contains("empty"));
+    REQUIRE_SSS_ERROR(cam.frameTight(b, 0.0f), ErrorKind::InvalidArgument, Contains("aspect"));
+    REQUIRE_SSS_ERROR(cam.frameTight(b, 1.0f, 0.7f), ErrorKind::InvalidArgument, Contains("margin"));
+    sss::Bounds point;
+    point.extend({1, 2, 3});
+    cam.frameTight(point, 1.0f);  // a point-like box still gives a valid camera
+    CHECK(cam.nearPlane() > 0.0f);
+    CHECK(cam.nearPlane() < cam.distance());
 }
 
 TEST_CASE("Camera setters validate", "[cpu]") {
