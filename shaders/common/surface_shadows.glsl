@@ -38,15 +38,22 @@ float meshShadow(int light, vec3 p, vec3 n, vec3 towardsLight, int radius) {
     if (any(lessThan(window.xy, vec2(0.0))) || any(greaterThan(window.xy, vec2(1.0)))) return 1.0;
     window.z = clamp(window.z, 0.0, 1.0);
     ivec2 size = textureSize(meshShadowDepth, 0).xy;
-    ivec2 centre = ivec2(window.xy * vec2(size));
+    // Percentage-closer filtering with bilinear weights: each tap blends the four comparisons
+    // around it, so the shadow's edge is smooth rather than a staircase of texels.
+    vec2 texelPosition = window.xy * vec2(size) - 0.5;
+    ivec2 base = ivec2(floor(texelPosition));
+    vec2 t = texelPosition - vec2(base);
     float lit = 0.0;
     for (int dy = -radius; dy <= radius; ++dy)
         for (int dx = -radius; dx <= radius; ++dx) {
-            ivec3 texel = ivec3(clamp(centre + ivec2(dx, dy), ivec2(0), size - 1), light);
-            bool occluded = texelFetch(meshShadowDepth, texel, 0).r < window.z;
-            if (occluded && texelFetch(meshShadowIds, texel, 0).r == meshShadowSelf)
-                occluded = false;
-            lit += occluded ? 0.0 : 1.0;
+            vec4 corner;
+            for (int j = 0; j < 4; ++j) {
+                ivec3 texel = ivec3(clamp(base + ivec2(dx + (j & 1), dy + (j >> 1)), ivec2(0), size - 1), light);
+                bool occluded = texelFetch(meshShadowDepth, texel, 0).r < window.z &&
+                                texelFetch(meshShadowIds, texel, 0).r != meshShadowSelf;
+                corner[j] = occluded ? 0.0 : 1.0;
+            }
+            lit += mix(mix(corner[0], corner[1], t.x), mix(corner[2], corner[3], t.x), t.y);
         }
     float side = float(2 * radius + 1);
     return lit / (side * side);
