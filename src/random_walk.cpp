@@ -2,6 +2,8 @@
 // the exact H-function references it is validated against (see sss/random_walk.h).
 #include "sss/random_walk.h"
 
+#include "parallel.h"
+
 #include "sss/error.h"
 
 #include <algorithm>
@@ -286,34 +288,18 @@ SlabRandomWalkResult simulateSlab(const ScatteringMaterial& material, double inc
     if (w0 > 0.0) {  // else total reflection at entry (eta < 1, beyond the critical angle)
         const std::int64_t chunks = (options.paths + kChunkPaths - 1) / kChunkPaths;
         const std::int64_t units = 3 * chunks;
-        int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-        threads = static_cast<int>(std::clamp<std::int64_t>(threads, 1, units));
-        std::atomic<std::int64_t> next{0};
-        std::mutex mutex;
-        std::exception_ptr error;
-        auto worker = [&] {
-            try {
-                std::vector<Counts> local(3, Counts(options.angleBins, options.profileBins));
-                for (std::int64_t u = next++; u < units; u = next++) {
-                    const int channel = static_cast<int>(u % 3);
-                    const std::int64_t chunk = u / 3;
-                    Rng rng(options.seed, static_cast<std::uint64_t>(channel), static_cast<std::uint64_t>(chunk));
-                    const std::int64_t n = std::min(kChunkPaths, options.paths - chunk * kChunkPaths);
-                    for (std::int64_t p = 0; p < n; ++p) walk.path(media[channel], rng, local[channel]);
-                }
-                std::lock_guard lock(mutex);
+        detail::parallelFor(
+            options.threads, units, [&] { return std::vector<Counts>(3, Counts(options.angleBins, options.profileBins)); },
+            [&](std::vector<Counts>& local, std::int64_t u) {
+                const int channel = static_cast<int>(u % 3);
+                const std::int64_t chunk = u / 3;
+                Rng rng(options.seed, static_cast<std::uint64_t>(channel), static_cast<std::uint64_t>(chunk));
+                const std::int64_t n = std::min(kChunkPaths, options.paths - chunk * kChunkPaths);
+                for (std::int64_t p = 0; p < n; ++p) walk.path(media[channel], rng, local[channel]);
+            },
+            [&](const std::vector<Counts>& local) {
                 for (int c = 0; c < 3; ++c) counts[c].add(local[c]);
-            } catch (...) {
-                std::lock_guard lock(mutex);
-                if (!error) error = std::current_exception();
-                next = units;
-            }
-        };
-        std::vector<std::thread> pool;
-        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-        worker();
-        for (auto& t : pool) t.join();
-        if (error) std::rethrow_exception(error);
+            });
     }
 
     const double n = static_cast<double>(options.paths);

@@ -3,6 +3,7 @@
 #include "sss/mesh_reference.h"
 
 #include "mesh/bvh.h"
+#include "parallel.h"
 #include "sss/error.h"
 
 #include <glm/common.hpp>
@@ -265,28 +266,14 @@ public:
 
     MeshReferenceResult run() {
         std::vector<PixelResult> pixels(static_cast<size_t>(m_width) * m_height);
-        int threads = m_options.threads > 0 ? m_options.threads : static_cast<int>(std::thread::hardware_concurrency());
-        threads = std::clamp(threads, 1, m_height);
-        std::atomic<int> nextRow{0};
-        std::exception_ptr error;
-        std::mutex errorMutex;
-        auto worker = [&] {
-            try {
-                Scratch scratch;
-                for (int y = nextRow++; y < m_height; y = nextRow++)
-                    for (int x = 0; x < m_width; ++x)
-                        pixels[static_cast<size_t>(y) * m_width + x] = renderPixel(x, y, scratch);
-            } catch (...) {
-                std::lock_guard lock(errorMutex);
-                if (!error) error = std::current_exception();
-                nextRow = m_height;
-            }
-        };
-        std::vector<std::thread> pool;
-        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-        worker();
-        for (auto& t : pool) t.join();
-        if (error) std::rethrow_exception(error);
+        detail::parallelFor(
+            m_options.threads, m_height, [] { return Scratch{}; },
+            [&](Scratch& scratch, std::int64_t row) {
+                const int y = static_cast<int>(row);
+                for (int x = 0; x < m_width; ++x)
+                    pixels[static_cast<size_t>(y) * m_width + x] = renderPixel(x, y, scratch);
+            },
+            [](const Scratch&) {});
 
         MeshReferenceResult result;
         result.image = Image(m_width, m_height);

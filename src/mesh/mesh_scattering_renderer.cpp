@@ -244,8 +244,9 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.lookup.seamShrink = r.options.seamShrink * 2.0f * radius / texels;
     settings.specularStrength = r.options.specular;
     settings.shininess = r.options.shininess;
-    settings.environment = r.options.environment *
-                           glm::vec3(dipoleDiffuseReflectance(deriveDipoleConstants(r.scatteringMaterial)));
+    if (r.options.environment != glm::vec3(0.0f))  // derived per frame only when it is used
+        settings.environment = r.options.environment *
+                               glm::vec3(dipoleDiffuseReflectance(deriveDipoleConstants(r.scatteringMaterial)));
     // The vertices' radiosity follows the maps: once per accumulated frame.
     if (r.vertexRadiosityFrames != r.scatteringMaps->frames() || r.vertexRadiosityInputs != r.scatteringMapInputs ||
         r.vertexRadiosityLookup != settings.lookup) {

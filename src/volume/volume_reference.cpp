@@ -1,6 +1,7 @@
 #include "sss/volume_reference.h"
 
 #include "format.h"
+#include "parallel.h"
 
 #include "sss/error.h"
 #include "sss/image_compare.h"
@@ -418,31 +419,16 @@ Image VolumeReference::render(const Camera& camera, int width, int height) const
                         camera.projectionType() == Projection::Orthographic};
     Image image(width, height);
 
-    int threads = m_impl->options.threads;
-    if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    threads = std::min(threads, height);
-    std::atomic<int> nextRow{0};
-    std::exception_ptr failure;
-    std::mutex failureMutex;
-    auto work = [&] {
-        try {
-            for (int y = nextRow++; y < height; y = nextRow++) {
-                for (int x = 0; x < width; ++x) {
-                    const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, 1.0 - (y + 0.5) / height * 2.0);
-                    image.at(x, y) = glm::vec4(m_impl->tracePixel(inverseViewProjection, ndc, viewer));
-                }
+    detail::parallelFor(
+        m_impl->options.threads, height, [] { return 0; },
+        [&](int&, std::int64_t row) {
+            const int y = static_cast<int>(row);
+            for (int x = 0; x < width; ++x) {
+                const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, 1.0 - (y + 0.5) / height * 2.0);
+                image.at(x, y) = glm::vec4(m_impl->tracePixel(inverseViewProjection, ndc, viewer));
             }
-        } catch (...) {
-            const std::lock_guard<std::mutex> lock(failureMutex);
-            if (!failure) failure = std::current_exception();
-            nextRow = height;
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+        },
+        [](int) {});
     return image;
 }
 
