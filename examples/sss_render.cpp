@@ -147,13 +147,10 @@ std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
 
 Args parseArgs(int argc, char** argv) {
     Args a;
-    for (int i = 1; i < argc; ++i) {
-        const std::string opt = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(opt + ": missing value");
-            return argv[++i];
-        };
-        if (opt == "--help" || opt == "-h") {
+    for (OptionCursor args(argc, argv); args.next();) {
+        const std::string& opt = args.option();
+        auto value = [&args] { return args.value(); };
+        if (args.isHelp()) {
             std::cout << kUsage;
             std::exit(0);
         } else if (opt == "--mesh") a.mesh = value();

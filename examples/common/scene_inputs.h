@@ -22,6 +22,31 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// Walks argv option by option: `for (OptionCursor args(argc, argv); args.next();)`, then
+/// option() is the current word and value() takes the word after it as its argument.
+class OptionCursor {
+public:
+    OptionCursor(int argc, char** argv) : m_argc(argc), m_argv(argv) {}
+    bool next() {
+        if (++m_index >= m_argc) return false;
+        m_option = m_argv[m_index];
+        return true;
+    }
+    const std::string& option() const { return m_option; }
+    bool isHelp() const { return m_option == "--help" || m_option == "-h"; }
+    /// @throws UsageError "<option>: missing value" at the end of argv.
+    std::string value() {
+        if (m_index + 1 >= m_argc) throw UsageError(m_option + ": missing value");
+        return m_argv[++m_index];
+    }
+
+private:
+    int m_argc;
+    char** m_argv;
+    int m_index = 0;
+    std::string m_option;
+};
+
 float parseFloat(const std::string& option, const std::string& text);
 int parseInt(const std::string& option, const std::string& text);
 std::vector<std::string> split(const std::string& text, char separator);

@@ -14,6 +14,7 @@ namespace fs = std::filesystem;
 namespace viewer {
 namespace {
 
+using examples::OptionCursor;
 using examples::parseFloat;
 using examples::parseInt;
 using examples::parseLightVolumeFallback;
@@ -87,13 +88,10 @@ void requireRange(const std::string& option, int value, int lo, int hi) {
 ViewerOptions parseArgs(int argc, char** argv) {
     ViewerOptions o;
     bool framesGiven = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string opt = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(opt + ": missing value");
-            return argv[++i];
-        };
-        if (opt == "--help" || opt == "-h") {
+    for (OptionCursor args(argc, argv); args.next();) {
+        const std::string& opt = args.option();
+        auto value = [&args] { return args.value(); };
+        if (args.isHelp()) {
             std::cout << kUsage;
             std::exit(0);
         } else if (opt == "--mesh") o.mesh = value();
