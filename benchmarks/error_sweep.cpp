@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <chrono>
+#include <functional>
 #include <cstdio>
 #include <iostream>
 
@@ -28,6 +29,22 @@ sss::Image renderOnce(BenchmarkContext& bench, const std::function<void(sss::Ren
     return target.readColor();
 }
 
+// A CPU reference image: read from --reference-cache DIR/name if it is there, else rendered
+// (timed on stderr) and kept there.
+sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render) {
+    const std::filesystem::path cached = o.referenceCache / name;
+    std::error_code ec;
+    if (!o.referenceCache.empty() && std::filesystem::is_regular_file(cached, ec)) return sss::Image::loadExr(cached);
+    const auto start = std::chrono::steady_clock::now();
+    sss::Image reference = render();
+    std::cerr << "sss-bench: " << name << " rendered in " << secondsSince(start) << " s\n";
+    if (!o.referenceCache.empty()) {
+        std::filesystem::create_directories(o.referenceCache);
+        reference.saveExr(cached);
+    }
+    return reference;
+}
+
 // The meshes users render: bunny, Buddha and dragon at 400x226 (marble, default options, no
 // specular, linear), converged maps against a converged CPU reference. Concave models are where
 // the combine pass's visibility test fails, which the sphere cannot show.
@@ -43,23 +60,12 @@ void realMeshRows(BenchmarkContext& bench) {
         const sss::DirectionalLight key = keyLight(camera);
         const std::string name = "mesh-reference-" + model + "-marble-" + std::to_string(kWidth) + "x" +
                                  std::to_string(kHeight) + ".exr";
-        sss::Image reference(1, 1);
-        const std::filesystem::path cached = o.referenceCache / name;
-        std::error_code ec;
-        if (!o.referenceCache.empty() && std::filesystem::is_regular_file(cached, ec)) {
-            reference = sss::Image::loadExr(cached);
-        } else {
-            const auto start = std::chrono::steady_clock::now();
+        const sss::Image reference = cachedReference(o, name, [&] {
             sss::MeshReferenceOptions ro;
             ro.targetRelativeError = 0.02;
             ro.absoluteError = 1e-4;
-            reference = sss::renderMeshReference(*mesh, glm::mat4(1.0f), marble, {key}, camera, kWidth, kHeight, ro).image;
-            std::cerr << "sss-bench: " << model << " reference in " << secondsSince(start) << " s\n";
-            if (!o.referenceCache.empty()) {
-                std::filesystem::create_directories(o.referenceCache);
-                reference.saveExr(cached);
-            }
-        }
+            return sss::renderMeshReference(*mesh, glm::mat4(1.0f), marble, {key}, camera, kWidth, kHeight, ro).image;
+        });
         for (int cameras : {8, 16}) {
             sss::MeshRenderOptions mo;
             mo.shading = sss::MeshShading::Scattering;
@@ -242,24 +248,13 @@ void lightVolumeArtefactRows(BenchmarkContext& bench) {
         const sss::Camera camera = framedCamera(volume.worldBounds());
         const sss::DirectionalLight light{.direction = c.lightDirection};
         const std::string refName = c.name.substr(0, c.name.find("-lv"));
-        const std::filesystem::path cached = o.referenceCache / ("volume-reference-" + refName + "-" +
-                                                                 std::to_string(kWidth) + "x" + std::to_string(kHeight) + ".exr");
-        sss::Image reference(1, 1);
-        std::error_code ec;
-        if (!o.referenceCache.empty() && std::filesystem::is_regular_file(cached, ec)) {
-            reference = sss::Image::loadExr(cached);
-        } else {
-            const auto start = std::chrono::steady_clock::now();
-            sss::VolumeReferenceOptions ro;
-            ro.shading = sss::ReferenceShading::Scattering;
-            ro.background = glm::dvec4(background);
-            reference = sss::renderVolumeReference(volume, c.tf, 256, glm::mat4(1.0f), {light}, camera, kWidth, kHeight, ro);
-            std::cerr << "sss-bench: " << refName << " volume reference in " << secondsSince(start) << " s\n";
-            if (!o.referenceCache.empty()) {
-                std::filesystem::create_directories(o.referenceCache);
-                reference.saveExr(cached);
-            }
-        }
+        const sss::Image reference = cachedReference(
+            o, "volume-reference-" + refName + "-" + std::to_string(kWidth) + "x" + std::to_string(kHeight) + ".exr", [&] {
+                sss::VolumeReferenceOptions ro;
+                ro.shading = sss::ReferenceShading::Scattering;
+                ro.background = glm::dvec4(background);
+                return sss::renderVolumeReference(volume, c.tf, 256, glm::mat4(1.0f), {light}, camera, kWidth, kHeight, ro);
+            });
         sss::VolumeRenderOptions vo;
         vo.shading = sss::VolumeShading::Scattering;
         vo.stepSize = 0.5f;
