@@ -34,6 +34,7 @@ struct Options {
     std::filesystem::path imageDir; // if set, the verified image of each row is saved there
     std::vector<std::string> tables;      // --table: "baseline", "5.3", "5.4", "5.5"; empty = baseline
     std::optional<std::string> errorSweep;  // --error-sweep: "mesh" or "volume"
+    std::optional<std::string> accuracy;    // --accuracy: "slab"
     std::optional<std::filesystem::path> plotPath;  // default: the JSON path with .png
     std::filesystem::path referenceCache;  // --reference-cache: CPU references kept as EXR (empty: none)
 };

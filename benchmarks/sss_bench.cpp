@@ -1,6 +1,7 @@
 // sss-bench: times libsss renderers the way the thesis did (chapter 5) and writes JSON + Markdown.
 // Exit codes: 0 success, 1 a measurement failed (error, empty image), 2 bad command line.
 
+#include "accuracy.h"
 #include "bench.h"
 #include "plot.h"
 
@@ -31,6 +32,11 @@ options:
                       5.4 (volume scattering), 5.5 (hybrid scenes)
   --error-sweep S     time against error for S = mesh or volume, against the CPU reference;
                       records with sweep, the swept parameters, ms and rel_rmse, and a plot
+  --accuracy A        accuracy against physical ground truth, A = slab: presets x channels x
+                      incidence 0/45/75 degrees, the random walk against the dipole, the
+                      calibrated profile and a GPU render (JSON records with material, channel,
+                      incidence_deg, random_walk, random_walk_stderr, dipole, calibrated, gpu,
+                      rel_error_gpu), Markdown and a plot
   --plot FILE         where the sweep's PNG plot goes (default: the JSON path with .png)
   --reference-cache DIR
                       keep the sweeps' CPU references there as OpenEXR and reuse them when the
@@ -145,6 +151,11 @@ std::optional<Options> parseArgs(int argc, char** argv) {
             if (which != "mesh" && which != "volume")
                 throw UsageError{"--error-sweep: expected mesh or volume, got \"" + which + "\""};
             o.errorSweep = which;
+        } else if (arg == "--accuracy") {
+            const std::string which = value();
+            if (which != "slab")
+                throw UsageError{"--accuracy: expected slab, got \"" + which + "\""};
+            o.accuracy = which;
         } else if (arg == "--plot") {
             o.plotPath = value();
         } else if (arg == "--reference-cache") {
@@ -201,6 +212,29 @@ int main(int argc, char** argv) {
                   << options->width << "x" << options->height << ", " << options->warmup << " warm-up + "
                   << options->runs << " runs\n";
 
+        if (options->accuracy) {
+            AccuracyOptions a;
+            a.quick = options->quick;
+            a.renderer = bench.glInfo().renderer;
+            const AccuracyReport report = runSlabAccuracy(a);
+            const nlohmann::ordered_json json = {{"accuracy", *options->accuracy},
+                                                 {"renderer", bench.glInfo().renderer},
+                                                 {"date", bench.startedAt()},
+                                                 {"quick", options->quick},
+                                                 {"note", options->note},
+                                                 {"records", report.json}};
+            std::cout << report.markdown;
+            if (options->jsonPath) writeFile(*options->jsonPath, json.dump(2) + "\n");
+            if (options->markdownPath) writeFile(*options->markdownPath, report.markdown);
+            const std::filesystem::path plotPath =
+                options->plotPath ? *options->plotPath
+                                  : (options->jsonPath ? std::filesystem::path(*options->jsonPath).replace_extension(".png")
+                                                       : std::filesystem::path("accuracy.png"));
+            if (plotPath.has_parent_path()) std::filesystem::create_directories(plotPath.parent_path());
+            savePlot(report.plot, plotPath);
+            std::cerr << "sss-bench: wrote " << plotPath.string() << "\n";
+            return 0;
+        }
         std::optional<PlotSpec> plot;
         if (options->errorSweep) {
             plot = runErrorSweep(bench, *options->errorSweep);

@@ -60,6 +60,9 @@ shading:
                             drawn in blinn-phong and cuts the volume's rays.
   --material NAME           translucent material for --mode sss (default: potato); see --list-materials
   --list-materials          print the material presets and exit
+  --profile NAME            subsurface profile: calibrated (the directional dipole rescaled to a
+                            random walk, plus single scattering) or dipole (the paper's, as the
+                            thesis) (default: calibrated)
   --cameras K               scattering maps, 1..32 (default: 8)
   --samples N               samples per pixel and frame, 1..4096 (default: 24)
   --map-resolution R        scattering-map and light-buffer side in texels (default: 512)
@@ -117,6 +120,7 @@ struct Args {
     int cameras = 8, samples = 24, mapResolution = 512, frames = 8;
     double scale = 1000.0;
     bool specular = true, listMaterials = false;
+    sss::ScatteringProfile profile = sss::MeshRenderOptions{}.profile;
     std::optional<glm::ivec3> dims;
     std::optional<sss::VoxelType> type;
     std::optional<glm::vec3> spacing;
@@ -169,6 +173,12 @@ Args parseArgs(int argc, char** argv) {
         }
         else if (opt == "--material") a.material = value();
         else if (opt == "--list-materials") a.listMaterials = true;
+        else if (opt == "--profile") {
+            const std::string v = value();
+            const auto profile = sss::parseScatteringProfile(v);
+            if (!profile) throw UsageError("--profile: expected calibrated or dipole, got \"" + v + "\"");
+            a.profile = *profile;
+        }
         else if (opt == "--cameras") a.cameras = parseInt(opt, value());
         else if (opt == "--samples") a.samples = parseInt(opt, value());
         else if (opt == "--map-resolution") a.mapResolution = parseInt(opt, value());
@@ -297,6 +307,7 @@ int run(const Args& a) {
     sss::MeshRenderOptions meshOptions;
     meshOptions.shading = scattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
     meshOptions.cameras = a.cameras;
+    meshOptions.profile = a.profile;
     meshOptions.samples = a.samples;
     meshOptions.mapResolution = meshOptions.lightMapResolution = a.mapResolution;
     meshOptions.accumulationFrames = a.frames;

@@ -101,6 +101,7 @@ public:
         m_showUi = !args.hideUi;
         m_meshOptions.shading = args.meshScattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
         m_meshOptions.cameras = args.cameras;
+        m_meshOptions.profile = args.profile;
         m_meshOptions.samples = args.samples;
         m_meshOptions.mapResolution = m_meshOptions.lightMapResolution = args.mapResolution;
         m_meshOptions.accumulationFrames = args.accumulation;
@@ -578,6 +579,13 @@ private:
             m_meshDirty |= ImGui::SliderFloat("shininess", &m_blinnPhong.shininess, 1.0f, 200.0f, "%.0f");
             return;
         }
+        bool calibrated = m_meshOptions.profile == sss::ScatteringProfile::Calibrated;
+        if (ImGui::Checkbox("calibrated profile", &calibrated)) {
+            m_meshOptions.profile = calibrated ? sss::ScatteringProfile::Calibrated : sss::ScatteringProfile::Dipole;
+            m_meshDirty = true;
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("on: the dipole rescaled to a random walk, plus single scattering\noff: the paper's directional dipole");
         const std::vector<std::string> names = sss::materialPresetNames();
         const char* current = m_materialIndex >= 0 ? names[static_cast<std::size_t>(m_materialIndex)].c_str()
                                                     : "(custom)";

@@ -42,6 +42,7 @@ scene:
   --volume-mode scattering|scattering-gradient|gradient|emission-absorption
                             volume shading (default: scattering)
   --material NAME           translucent material (default: marble; see sss-render --list-materials)
+  --profile NAME            subsurface profile, calibrated or dipole (default: calibrated)
   --scale MM                millimetres per scene unit (default: 40; the scene is 1-2 units wide)
   --cameras K               scattering maps, 1..32 (default: 8)
   --samples N               samples per texel and frame, 1..4096 (default: 24)
@@ -105,6 +106,12 @@ ViewerOptions parseArgs(int argc, char** argv) {
         } else if (opt == "--data-dir") o.dataDir = value();
         else if (opt == "--tf") o.tf = value();
         else if (opt == "--material") o.material = value();
+        else if (opt == "--profile") {
+            const std::string v = value();
+            const auto profile = sss::parseScatteringProfile(v);
+            if (!profile) throw UsageError("--profile: expected calibrated or dipole, got \"" + v + "\"");
+            o.profile = *profile;
+        }
         else if (opt == "--scale") {
             o.scale = parseFloat(opt, value());
             if (!(o.scale > 0.0) || !std::isfinite(o.scale)) throw UsageError("--scale: must be > 0");

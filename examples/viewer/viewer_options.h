@@ -5,6 +5,7 @@
 
 #include <sss/display.h>
 #include <sss/mesh.h>
+#include <sss/mesh_scattering_renderer.h>
 #include <sss/volume.h>
 
 #include <glm/vec3.hpp>
@@ -30,6 +31,7 @@ struct ViewerOptions {
     std::string dataDir;                   ///< --data-dir DIR
     std::string tf;                        ///< --tf NAME|FILE.json (default: guessed from the volume's name)
     std::string material = "marble";       ///< --material NAME
+    sss::ScatteringProfile profile = sss::MeshRenderOptions{}.profile;  ///< --profile calibrated|dipole
     double scale = 40.0;                   ///< --scale MM: millimetres per scene unit (the scene is ~1-2 units)
     bool meshScattering = true;            ///< --mesh-mode sss|blinn-phong
     std::string volumeMode = "scattering"; ///< --volume-mode

@@ -14,9 +14,38 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
+#include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace sss {
+
+/// Which subsurface-scattering profile the renderers (GPU and CPU reference) use.
+enum class ScatteringProfile {
+    /// Physically calibrated (the default): the directional dipole's spatial and directional
+    /// shape, with each channel rescaled so that its multiple-scattering reflectance equals the
+    /// random walk's (profileCalibrationScale()), plus the single-scattering term the dipole
+    /// omits (evaluateSingleScattering()). Measured against the random walk in sss-bench
+    /// --accuracy slab.
+    Calibrated,
+    /// The paper's directional dipole alone (Frisvad et al. 2014, as Dal Corso et al. 2017 use
+    /// it): no rescaling, no single scattering. Reproduces the thesis; 22-37 % brighter than the
+    /// random walk, and wrong by far at low albedo (ketchup G and B).
+    Dipole,
+};
+
+/// The calibrated profile's factor is tabulated at these many entry cosines,
+/// profileIncidenceNode(i) = 1 - 0.19 i (1 down to 0.05), and interpolated linearly between them.
+inline constexpr int kProfileIncidenceNodes = 6;
+/// Entry cosine of node i of the calibration, 1 - 0.19 i.
+constexpr double profileIncidenceNode(int i) { return 1.0 - 0.19 * i; }
+
+/// "calibrated" or "dipole".
+std::string_view toString(ScatteringProfile profile);
+/// Parses "calibrated" or "dipole" (exact, lower case); nullopt otherwise.
+std::optional<ScatteringProfile> parseScatteringProfile(std::string_view name);
 
 /// A homogeneous scattering medium, coefficients per RGB channel in mm^-1.
 /// Measured data sets (Jensen 2001, Narasimhan 2006) give only the reduced scattering
@@ -61,6 +90,19 @@ struct DipoleConstants {
     double cPhiInv = 0.0;        ///< C_phi(1 / eta), which enters only the normalisation
     double normalization = 0.0;  ///< 1 / (4 C_phi(1/eta)) / (4 pi^2)
     double millimetresPerUnit = 1.0;  ///< the length unit of the constants, in mm
+    ScatteringProfile profile = ScatteringProfile::Dipole;  ///< the profile these constants describe
+    /// Per-channel factor on S_d (1 after deriveDipoleConstants()): renderers fold in a
+    /// correction for the part of the profile their sampling disk cuts off.
+    glm::dvec3 profileScale{1.0};
+    /// Per-channel factor on S_d at the entry cosines profileIncidenceNode(i), interpolated
+    /// linearly in w_i . n_i (clamped to [0.05, 1]): 1 for the dipole; for the calibrated profile
+    /// profileCalibrationScale(alpha', eta, node) per channel.
+    std::array<glm::dvec3, kProfileIncidenceNodes> incidenceScale{
+        glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0)};
+    /// Single-scattering albedo sigma_s / sigma_t (UNREDUCED), per channel.
+    glm::dvec3 albedo{0.0};
+    double g = 0.0;                 ///< Henyey-Greenstein mean cosine of the single-scattering term
+    double singleScattering = 0.0;  ///< weight of the single-scattering term: 1 calibrated, 0 dipole
 };
 
 /// 2 C_1(eta), the first Fresnel moment times two (d'Eon and Irving 2011 polynomial fits, branch
@@ -72,10 +114,75 @@ double fresnelMoment3C2(double eta);
 
 /// Validates `material` and derives its constants. Lengths are expressed in a unit of
 /// `millimetresPerUnit` mm: coefficients become sigma_mm * millimetresPerUnit, so positions can
-/// be passed in scene units directly (1 = millimetres, the default).
+/// be passed in scene units directly (1 = millimetres, the default). `profile` sets
+/// profileScale and singleScattering (the dipole's fields are the same for both).
 /// @throws Error InvalidArgument for an invalid material or a millimetresPerUnit that is not
 ///         finite and > 0.
-DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double millimetresPerUnit = 1.0);
+DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double millimetresPerUnit = 1.0,
+                                      ScatteringProfile profile = ScatteringProfile::Dipole);
+
+/// The calibrated profile's factor for one channel of reduced albedo `reducedAlbedo` in [0, 1],
+/// relative index `eta` and entry cosine `cosIncidence`: the exact multiple-scattering diffuse
+/// reflectance of an isotropic half-space (isotropicHalfSpaceReflectance(), which the random walk
+/// reproduces within its standard error) divided by the directional dipole's (T(mu_i) times its
+/// plane integral times the hemispherical integral of T). Tabulated by sss-calibrate
+/// (src/mesh/profile_calibration_table.inc: 13 eta from 1 to 2.5, 37 albedos dense towards 1, the
+/// 6 entry cosines of profileIncidenceNode()); linear in eta, log-linear in s = sqrt(1 - alpha'),
+/// linear in the entry cosine (clamped to [0.05, 1]). eta below 1 uses the eta = 1 row, above
+/// 2.5 the 2.5 row; alpha' below 2.5e-5 the last column.
+/// @throws Error InvalidArgument for an albedo outside [0, 1], or an eta or cosIncidence that is
+///         not finite.
+double profileCalibrationScale(double reducedAlbedo, double eta, double cosIncidence = 1.0);
+
+/// Integral of S_d over the plane z = 0 around an entry point at the origin with normal +z,
+/// lit from w_i = (sin theta, 0, cos theta) at cos theta = `cosIncidence` in (0, 1], out to
+/// distance `maxRadius` (default: infinity), per channel, without Fresnel factors (includes
+/// profileScale). Log-spaced midpoint rule in r (and in the azimuth off normal incidence):
+/// relative error below 1e-4 on the presets. In units of the constants' length unit^0 (S_d dA).
+/// @throws Error InvalidArgument for cosIncidence outside (0, 1] or maxRadius not > 0.
+glm::dvec3 dipolePlaneIntegral(const DipoleConstants& constants, double cosIncidence,
+                               double maxRadius = std::numeric_limits<double>::infinity());
+
+/// Hemispherical integral of the exit transmittance, integral T(eta, mu) mu dw (sr), by the
+/// midpoint rule in mu (1e-8 relative). The radiance leaving at mu per unit plane-integrated
+/// S_d is T(mu), so this turns a plane integral into a reflectance.
+double fresnelHemisphereIntegral(double eta);
+
+/// Single scattering of a locally flat, semi-infinite medium (the term the dipole omits): the
+/// radiance leaving at x towards w_o per unit irradiance on the surface from direction w_i
+/// (both outside, unit, n the outward unit normal), per channel, in sr^-1:
+///   albedo T(eta, w_i.n) T(eta, w_o.n) p(cos theta') / (eta^2 (mu_i' + mu_o'))
+/// with mu' the refracted cosines inside and p the Henyey-Greenstein phase function between the
+/// refracted propagation directions; times constants.singleScattering (0 for the dipole).
+/// Exact for a half-space with a smooth boundary (checked against the random walk's single
+/// tally); zero when either direction is below the surface.
+glm::dvec3 evaluateSingleScattering(const DipoleConstants& constants, const glm::dvec3& n, const glm::dvec3& wi,
+                                    const glm::dvec3& wo);
+
+/// Total diffuse reflectance of the profile for a semi-infinite medium lit by a collimated beam at
+/// cos theta = `cosIncidence`, per unit incident power: T(mu_i) dipolePlaneIntegral() times
+/// fresnelHemisphereIntegral(), plus the single-scattering term integrated over the exit
+/// hemisphere. Energy conservation asks for <= 1.
+glm::dvec3 profileDiffuseReflectance(const DipoleConstants& constants, double cosIncidence);
+
+/// Radiance leaving a half-space of the profile's medium towards the unit direction `wo`
+/// (normal +z) per unit irradiance on the surface from a collimated beam at cos theta =
+/// `cosIncidence` (w_i = (sin theta, 0, cos theta)), per channel, in sr^-1: T(mu_i) times
+/// dipolePlaneIntegral() times T(mu_o), plus evaluateSingleScattering(). This is what a renderer
+/// of the profile gives at the middle of a wide, thick, evenly lit slab, and what the slab random
+/// walk's radiance estimates physically (sss-bench --accuracy slab).
+glm::dvec3 profileSlabRadiance(const DipoleConstants& constants, double cosIncidence, const glm::dvec3& wo);
+
+/// profileSlabRadiance() averaged over the exit cone theta_o <= `coneHalfAngleDeg` around the
+/// normal with weight cos(theta_o): the quantity the slab random walk's coneRadiance and
+/// isotropicHalfSpaceReflectance() give. Quadrature: 8 rings (uniform in cos^2) x 16 azimuths.
+/// @throws Error InvalidArgument for a cone half-angle outside (0, 90].
+glm::dvec3 profileSlabConeRadiance(const DipoleConstants& constants, double cosIncidence, double coneHalfAngleDeg);
+
+/// profileDiffuseReflectance() under uniform diffuse light: its cosine-weighted mean over the
+/// incidence directions (4-node Gauss-Legendre in cos^2 theta). What a uniform environment of
+/// unit radiance gives as exitant radiance, for a Lambertian view of the profile.
+glm::dvec3 profileDiffuseReflectanceUniform(const DipoleConstants& constants);
 
 /// Total diffuse reflectance R_d of a semi-infinite medium under uniform illumination, per
 /// channel: the classic dipole's closed form (Jensen et al. 2001), with the constants' boundary

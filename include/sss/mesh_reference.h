@@ -29,10 +29,12 @@
 /// outward normals neither flip happens for any point that contributes (a face turned away from
 /// the viewer is hidden, one turned away from the light is in shadow).
 ///
-/// Radiance (linear RGB, no gamma, no specular, no single scattering):
+/// Radiance (linear RGB, no gamma, no specular; S_d and the single-scattering term S1 are those
+/// of MeshReferenceOptions::profile, S1 = 0 for the paper's dipole):
 ///   L_o = T(eta, n_o . w_o) * sum over lights l of
 ///         integral over the surface A of T(eta, n_i . w_i) S_d(x_i, n_i, w_i; x_o, n_o)
 ///                                       E_l(x_i) max(n_i . w_i, 0) V_l(x_i) dA_i
+///       + sum over lights l of S1(n_o, w_l, w_o) E_l(x_o) max(n_o . w_l, 0) V_l(x_o)
 /// with T = fresnelTransmittance(), S_d = evaluateSd() (per channel, unit^-2) and
 ///  - directional light: w_i = -normalize(direction), E = color * intensity;
 ///  - point light: w_i = normalize(position - x_i), E = color * intensity / |position - x_i|^2;
@@ -95,6 +97,9 @@ struct MeshReferenceOptions {
     int threads = 0;
     /// Seed of the per-pixel random streams (default: 1).
     uint64_t seed = 1;
+    /// The subsurface profile, as MeshRenderOptions::profile (default: Calibrated). The
+    /// calibrated profile's single scattering is added per pixel, exactly (shadow ray per light).
+    ScatteringProfile profile = ScatteringProfile::Calibrated;
 };
 
 /// What renderMeshReference() returns.

@@ -44,6 +44,10 @@ struct BlinnPhongMaterial {
 struct MeshRenderOptions {
     MeshShading shading = MeshShading::BlinnPhong;
     // Scattering (MeshShading::Scattering):
+    /// The subsurface profile (default: Calibrated, the one measured closest to a random walk;
+    /// Dipole reproduces the thesis). Calibrated also corrects for the part of the profile the
+    /// sampling disk cuts off (exactly for a flat surface lit head-on) and adds single scattering.
+    ScatteringProfile profile = ScatteringProfile::Calibrated;
     int cameras = 8;               ///< K scattering maps, 1..32 (default: 8)
     int samples = 24;              ///< N proposals per light per frame, 1..4096 (default: 24)
     int mapResolution = 512;       ///< scattering-map side in texels, 16..8192 (default: 512)
@@ -52,7 +56,8 @@ struct MeshRenderOptions {
     /// ScatteringScale).
     double millimetresPerUnit = 1000.0;
     /// Radius of the sampling disk in scene units; 0 chooses 3 / sigma*, where the acceptance
-    /// probability exp(-sigma* r) has fallen to 5 % (default: 0).
+    /// probability exp(-sigma* r) has fallen to 5 %, widened for the calibrated profile until the
+    /// disk holds 99.9 % of every channel's plane integral (default: 0).
     float sampleRadius = 0.0f;
     /// Spreads the samples: sigma* = min(sigma_tr) / spread, >= 0.1 (default: 1).
     float spread = 1.0f;

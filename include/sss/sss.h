@@ -22,6 +22,7 @@
 #include "sss/mesh_reference.h"
 #include "sss/mesh_scattering_renderer.h"
 #include "sss/procedural.h"
+#include "sss/random_walk.h"
 #include "sss/render_target.h"
 #include "sss/stats.h"
 #include "sss/timing.h"

@@ -32,6 +32,10 @@
 #endif
 #endif
 
+// Entry cosines at which the calibrated profile's factor is given: mu = 1 - 0.19 i
+// (sss::profileIncidenceNode), interpolated linearly between.
+const int DIRPOLE_INCIDENCE_NODES = 6;
+
 // Material constants, derived once on the CPU in double (sss::deriveDipoleConstants) and
 // uploaded as uniforms, e.g. `uniform DirpoleParams dirpole;` set member by member
 // ("dirpole.sigmaTr", ...) from the DipoleConstants fields of the same names, cast to float.
@@ -46,6 +50,12 @@ struct DirpoleParams {
     real cE;              // C_E(eta) = (1 - 3 C_2(eta)) / 2
     real A;               // (1 - C_E) / (2 C_phi)
     real normalization;   // 1 / (4 C_phi(1/eta)) / (4 pi^2)
+    // The profile on top of the dipole (sss::ScatteringProfile): 1, 0 for the paper's dipole.
+    real3 profileScale;   // per-channel factor on S_d (the renderer's cut-tail correction)
+    real3 incidenceScale[DIRPOLE_INCIDENCE_NODES];  // calibration per channel at the entry cosines
+    real3 albedo;         // single-scattering albedo sigma_s / sigma_t (unreduced)
+    real g;               // Henyey-Greenstein mean cosine of the single-scattering term
+    real singleScattering;  // weight of the single-scattering term (1 or 0)
 };
 
 // Source distances never drop below this fraction of D (see the guards above). The test
@@ -128,6 +138,14 @@ real dirpoleSanitize(real v) {
     return max(v, 0.0);
 }
 
+// The profile's per-channel factor for light entering at cosine mu = w_i . n_i.
+real3 dirpoleIncidenceScale(DirpoleParams p, real mu) {
+    real x = clamp((1.0 - mu) / 0.19, 0.0, 5.0);
+    int i = int(min(floor(x), 4.0));
+    real t = x - real(i);
+    return p.incidenceScale[i] * (1.0 - t) + p.incidenceScale[i + 1] * t;
+}
+
 // S_d for RGB (length^-2, no Fresnel factors). Normals and w_i must be unit vectors.
 real3 dirpoleSd(DirpoleParams p, real3 xi, real3 ni, real3 wi, real3 xo, real3 no) {
     real3 x = xo - xi;
@@ -138,7 +156,8 @@ real3 dirpoleSd(DirpoleParams p, real3 xi, real3 ni, real3 wi, real3 xo, real3 n
     real green = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.y, p.D.y, p.de.y, p.sigmaT.y, p.A, p.cPhi, p.cE);
     real blue = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.z, p.D.z, p.de.z, p.sigmaT.z, p.A, p.cPhi, p.cE);
     return real3(dirpoleSanitize(red * p.normalization), dirpoleSanitize(green * p.normalization),
-                 dirpoleSanitize(blue * p.normalization));
+                 dirpoleSanitize(blue * p.normalization)) *
+           (p.profileScale * dirpoleIncidenceScale(p, dot(wi, ni)));
 }
 
 // Exact dielectric Fresnel transmittance T = 1 - F_r for light crossing a boundary of relative
@@ -160,4 +179,29 @@ real dirpoleFresnelT(real eta, real cosTheta) {
 real3 dirpoleBssrdf(DirpoleParams p, real3 xi, real3 ni, real3 wi, real3 xo, real3 no, real3 wo) {
     return dirpoleSd(p, xi, ni, wi, xo, no) *
            (dirpoleFresnelT(p.eta, dot(wi, ni)) * dirpoleFresnelT(p.eta, dot(wo, no)));
+}
+
+// Henyey-Greenstein phase function (per steradian) at the cosine of the scattering angle.
+real dirpolePhaseHG(real g, real cosTheta) {
+    real d = 1.0 + g * g - 2.0 * g * cosTheta;
+    return (1.0 - g * g) / (4.0 * 3.14159265358979 * d * sqrt(d));
+}
+
+// Single scattering of a locally flat half-space (sss::evaluateSingleScattering): radiance
+// towards w_o per unit irradiance on the surface from w_i (both outside, unit; n the outward
+// unit normal). The refracted beam meets the exit ray at every depth z, with attenuation
+// exp(-sigma_t z (1/mu_i' + 1/mu_o')), so integrating over z leaves 1 / (mu_i' + mu_o');
+// leaving the medium divides radiance by eta^2.
+real3 dirpoleSingleScattering(DirpoleParams p, real3 n, real3 wi, real3 wo) {
+    real cosI = dot(wi, n);
+    real cosO = dot(wo, n);
+    if (!(p.singleScattering > 0.0) || !(cosI > 0.0) || !(cosO > 0.0)) return real3(0.0);
+    real3 down = dirpoleRefract(wi, n, p.eta);  // propagation of the refracted beam
+    real3 up = -dirpoleRefract(wo, n, p.eta);   // propagation of the light that leaves towards w_o
+    real muI = -dot(down, n);
+    real muO = dot(up, n);
+    if (!(muI > 0.0) || !(muO > 0.0)) return real3(0.0);
+    real t = dirpoleFresnelT(p.eta, cosI) * dirpoleFresnelT(p.eta, cosO);
+    real f = p.singleScattering * t * dirpolePhaseHG(p.g, dot(down, up)) / (p.eta * p.eta * (muI + muO));
+    return p.albedo * f;
 }

@@ -1,6 +1,7 @@
 // Combine (Dal Corso et al. 2017, pass 3): look the visible point up in every scattering map
-// like a shadow map, average the layers that see it, apply the exit Fresnel factor, add an
-// optional specular highlight; writes linear radiance.
+// like a shadow map, average the layers that see it, apply the exit Fresnel factor, add the
+// calibrated profile's single scattering and an optional specular highlight; writes linear
+// radiance.
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
@@ -18,6 +19,35 @@ uniform float eta;
 uniform float specularStrength;
 uniform float shininess;
 uniform vec3 environment;    // a uniform environment's radiance times the total diffuse reflectance
+uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0: none)
+uniform sampler2DArray lightPositions;          // the light buffer: what each light sees
+uniform mat4 lightViewProjection[MAX_LIGHTS];  // world -> light-buffer clip space
+uniform float lightTexelWorld;                 // a light-buffer texel's size at the object, world units
+
+// Whether light l reaches x directly, judged like a shadow map against the light buffer: lit
+// where the surface the light sees at x's texel is x itself (3x3 taps, a fraction). The bias
+// allows a texel's worth of depth change on slopes up to 60 degrees to the light.
+float selfVisibility(int l, vec3 x, vec3 toLight) {
+    vec4 clip = lightViewProjection[l] * vec4(x, 1.0);
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    ivec2 size = textureSize(lightPositions, 0).xy;
+    ivec2 centre = ivec2(floor(uv * vec2(size)));
+    bool point = lightVector[l].w != 0.0;
+    float bias = 3.0 * lightTexelWorld;
+    float lit = 0.0;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 t = clamp(centre + ivec2(dx, dy), ivec2(0), size - 1);
+            vec4 seen = texelFetch(lightPositions, ivec3(t, l), 0);
+            if (seen.w < 0.5) { lit += 1.0; continue; }  // nothing there: no occluder
+            // How much nearer the light the seen surface is than x.
+            float nearer = point ? distance(x, lightVector[l].xyz) - distance(seen.xyz, lightVector[l].xyz)
+                                 : dot(seen.xyz - x, toLight);
+            lit += nearer < bias ? 1.0 : 0.0;
+        }
+    }
+    return lit / 9.0;
+}
 
 layout(location = 0) out vec4 fragColor;
 
@@ -34,6 +64,18 @@ void main() {
     // The maps hold the integral of T_in S_d E over the lit surface (S_d is per steradian), so the
     // radiance leaving towards the eye is that times the exit transmittance.
     vec3 color = exitT * radiosity + environment;
+    if (dipole.singleScattering > 0.0) {
+        for (int i = 0; i < lightCount; ++i) {
+            vec3 radiance;
+            vec3 l = lightDirectionAt(i, worldPosition, radiance);
+            float nDotL = dot(nWorld, l);
+            if (nDotL <= 0.0) continue;
+            float visible = selfVisibility(i, worldPosition, l);
+            if (visible <= 0.0) continue;
+            radiance *= visible * volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
+            color += radiance * nDotL * dirpoleSingleScattering(dipole, nWorld, l, wo);
+        }
+    }
     if (specularStrength > 0.0) {
         for (int i = 0; i < lightCount; ++i) {
             vec3 radiance;

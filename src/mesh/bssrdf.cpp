@@ -5,10 +5,15 @@
 
 #include "sss/error.h"
 
+#include "mesh/profile_calibration_table.inc"
+
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <iterator>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -70,7 +75,53 @@ double fresnelMoment3C2(double eta) {
            27.0181 * n4 + 1.91826 * n5;
 }
 
-DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double millimetresPerUnit) {
+std::string_view toString(ScatteringProfile profile) {
+    return profile == ScatteringProfile::Dipole ? "dipole" : "calibrated";
+}
+
+std::optional<ScatteringProfile> parseScatteringProfile(std::string_view name) {
+    if (name == "calibrated") return ScatteringProfile::Calibrated;
+    if (name == "dipole") return ScatteringProfile::Dipole;
+    return std::nullopt;
+}
+
+double profileCalibrationScale(double reducedAlbedo, double eta, double cosIncidence) {
+    if (!std::isfinite(reducedAlbedo) || reducedAlbedo < 0.0 || reducedAlbedo > 1.0)
+        throw Error(ErrorKind::InvalidArgument,
+                    "profileCalibrationScale: reduced albedo must be in [0, 1], got " + num(reducedAlbedo));
+    if (!std::isfinite(eta))
+        throw Error(ErrorKind::InvalidArgument, "profileCalibrationScale: eta must be finite, got " + num(eta));
+    if (!std::isfinite(cosIncidence))
+        throw Error(ErrorKind::InvalidArgument,
+                    "profileCalibrationScale: cosIncidence must be finite, got " + num(cosIncidence));
+    using namespace calibration;
+    constexpr int nEta = static_cast<int>(std::size(kEta));
+    constexpr int nS = static_cast<int>(std::size(kS));
+    // Interval and weight of x on a sorted grid, held at both ends.
+    auto locate = [](const double* grid, int n, double x, int& i, double& t) {
+        i = 0;
+        while (i < n - 2 && x > grid[i + 1]) ++i;
+        t = std::clamp((x - grid[i]) / (grid[i + 1] - grid[i]), 0.0, 1.0);
+    };
+    int ie = 0, is = 0;
+    double te = 0.0, ts = 0.0;
+    locate(kEta, nEta, eta, ie, te);
+    locate(kS, nS, std::sqrt(1.0 - reducedAlbedo), is, ts);
+    const double x = std::clamp((1.0 - cosIncidence) / 0.19, 0.0, static_cast<double>(kProfileIncidenceNodes - 1));
+    const int im = std::min(static_cast<int>(x), kProfileIncidenceNodes - 2);
+    const double tm = x - im;
+    // The factor falls by orders of magnitude as alpha' drops: interpolate its logarithm in s.
+    auto alongS = [&](int e, int m) {
+        const double a = kScale[e][is][m], b = kScale[e][is + 1][m];
+        if (a > 0.0 && b > 0.0) return a * std::pow(b / a, ts);
+        return (1.0 - ts) * a + ts * b;
+    };
+    auto atEta = [&](int e) { return (1.0 - tm) * alongS(e, im) + tm * alongS(e, im + 1); };
+    return std::max(0.0, (1.0 - te) * atEta(ie) + te * atEta(ie + 1));
+}
+
+DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double millimetresPerUnit,
+                                      ScatteringProfile profile) {
     material.validate();
     if (!std::isfinite(millimetresPerUnit) || millimetresPerUnit <= 0.0)
         throw Error(ErrorKind::InvalidArgument,
@@ -97,6 +148,19 @@ DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double
     c.A = (1.0 - c.cE) / (2.0 * c.cPhi);
     c.cPhiInv = cPhiOf(1.0 / c.eta);
     c.normalization = 1.0 / (4.0 * c.cPhiInv) / (4.0 * std::numbers::pi * std::numbers::pi);
+
+    c.profile = profile;
+    c.albedo = glm::dvec3(0.0);
+    for (int i = 0; i < 3; ++i)
+        if (c.sigmaT[i] > 0.0) c.albedo[i] = sigmaS[i] / c.sigmaT[i];
+    c.g = material.g;
+    if (profile == ScatteringProfile::Calibrated) {
+        for (int m = 0; m < kProfileIncidenceNodes; ++m)
+            for (int i = 0; i < 3; ++i)
+                c.incidenceScale[static_cast<size_t>(m)][i] =
+                    profileCalibrationScale(std::clamp(c.alphaPrime[i], 0.0, 1.0), c.eta, profileIncidenceNode(m));
+        c.singleScattering = 1.0;
+    }
     return c;
 }
 
@@ -107,6 +171,114 @@ glm::dvec3 dipoleDiffuseReflectance(const DipoleConstants& c) {
         r[i] = 0.5 * c.alphaPrime[i] * (1.0 + std::exp(-4.0 / 3.0 * c.A * s)) * std::exp(-s);
     }
     return r;
+}
+
+glm::dvec3 dipolePlaneIntegral(const DipoleConstants& c, double cosIncidence, double maxRadius) {
+    if (!(cosIncidence > 0.0) || cosIncidence > 1.0)
+        throw Error(ErrorKind::InvalidArgument, "dipolePlaneIntegral: cosIncidence must be in (0, 1], got " + num(cosIncidence));
+    if (!(maxRadius > 0.0))
+        throw Error(ErrorKind::InvalidArgument, "dipolePlaneIntegral: maxRadius must be > 0, got " + num(maxRadius));
+    // The kernel lives between a small fraction of the shortest mean free path and many
+    // transport lengths of the longest; sigma_tr = 0 (no absorption) has no finite tail, so the
+    // grid stops at 1e4 reduced mean free paths there.
+    double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double mfp = 1.0 / c.sigmaTPrime[i];
+        shortest = std::min(shortest, mfp);
+        longest = std::max(longest, c.sigmaTr[i] > 0.0 ? std::min(60.0 / c.sigmaTr[i], 1e4 * mfp) : 1e4 * mfp);
+    }
+    const double r0 = 1e-7 * shortest, r1 = std::min(longest, maxRadius);
+    if (!(r1 > r0)) return glm::dvec3(0.0);
+    const double sinI = std::sqrt(std::max(0.0, 1.0 - cosIncidence * cosIncidence));
+    const glm::dvec3 wi{sinI, 0.0, cosIncidence}, n{0.0, 0.0, 1.0};
+    const bool symmetric = sinI < 1e-12;
+    const int radial = 4000, azimuthal = symmetric ? 1 : 48;
+    const double l0 = std::log(r0), dl = (std::log(r1) - l0) / radial;
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < radial; ++i) {
+        const double r = std::exp(l0 + (i + 0.5) * dl);
+        for (int j = 0; j < azimuthal; ++j) {
+            // The kernel is mirror-symmetric about the plane of incidence: phi in [0, pi], twice.
+            const double phi = std::numbers::pi * (j + 0.5) / azimuthal;
+            const glm::dvec3 xo{r * std::cos(phi), r * std::sin(phi), 0.0};
+            sum += evaluateSd(c, glm::dvec3(0.0), n, wi, xo, n) * (r * r * dl * 2.0 * std::numbers::pi / azimuthal);
+        }
+    }
+    return sum;
+}
+
+double fresnelHemisphereIntegral(double eta) {
+    const int n = 100000;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double mu = (i + 0.5) / n;
+        sum += fresnelTransmittance(eta, mu) * mu;
+    }
+    return 2.0 * std::numbers::pi * sum / n;
+}
+
+glm::dvec3 profileDiffuseReflectance(const DipoleConstants& c, double cosIncidence) {
+    const glm::dvec3 multiple = fresnelTransmittance(c.eta, cosIncidence) * dipolePlaneIntegral(c, cosIncidence) *
+                                fresnelHemisphereIntegral(c.eta);
+    glm::dvec3 single(0.0);
+    if (c.singleScattering > 0.0) {
+        // Midpoints in mu_o and the azimuth (the phase function depends on both).
+        const double sinI = std::sqrt(std::max(0.0, 1.0 - cosIncidence * cosIncidence));
+        const glm::dvec3 wi{sinI, 0.0, cosIncidence}, n{0.0, 0.0, 1.0};
+        const int nMu = 256, nPhi = 64;
+        for (int i = 0; i < nMu; ++i) {
+            const double mu = (i + 0.5) / nMu, s = std::sqrt(1.0 - mu * mu);
+            for (int j = 0; j < nPhi; ++j) {
+                const double phi = std::numbers::pi * (j + 0.5) / nPhi;
+                const glm::dvec3 wo{s * std::cos(phi), s * std::sin(phi), mu};
+                single += evaluateSingleScattering(c, n, wi, wo) * (mu * (1.0 / nMu) * (2.0 * std::numbers::pi / nPhi));
+            }
+        }
+    }
+    return multiple + single;
+}
+
+glm::dvec3 profileSlabRadiance(const DipoleConstants& c, double cosIncidence, const glm::dvec3& wo) {
+    const glm::dvec3 n{0.0, 0.0, 1.0};
+    const double sinI = std::sqrt(std::max(0.0, 1.0 - cosIncidence * cosIncidence));
+    const glm::dvec3 wi{sinI, 0.0, cosIncidence};
+    const double mu = glm::dot(glm::normalize(wo), n);
+    return fresnelTransmittance(c.eta, cosIncidence) * dipolePlaneIntegral(c, cosIncidence) *
+               fresnelTransmittance(c.eta, mu) +
+           evaluateSingleScattering(c, n, wi, wo);
+}
+
+glm::dvec3 profileSlabConeRadiance(const DipoleConstants& c, double cosIncidence, double coneHalfAngleDeg) {
+    if (!(coneHalfAngleDeg > 0.0) || coneHalfAngleDeg > 90.0)
+        throw Error(ErrorKind::InvalidArgument,
+                    "profileSlabConeRadiance: coneHalfAngleDeg must be in (0, 90], got " + num(coneHalfAngleDeg));
+    const glm::dvec3 n{0.0, 0.0, 1.0};
+    const double sinI = std::sqrt(std::max(0.0, 1.0 - cosIncidence * cosIncidence));
+    const glm::dvec3 wi{sinI, 0.0, cosIncidence};
+    const glm::dvec3 plane = fresnelTransmittance(c.eta, cosIncidence) * dipolePlaneIntegral(c, cosIncidence);
+    const double muMin = std::cos(coneHalfAngleDeg * std::numbers::pi / 180.0);
+    const int rings = 8, azimuths = 16;
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < rings; ++i) {
+        // Uniform in mu^2: equal projected solid angle per ring.
+        const double u = muMin * muMin + (1.0 - muMin * muMin) * (i + 0.5) / rings;
+        const double mu = std::sqrt(u), s = std::sqrt(1.0 - u);
+        for (int j = 0; j < azimuths; ++j) {
+            const double phi = 2.0 * std::numbers::pi * (j + 0.5) / azimuths;
+            const glm::dvec3 wo{s * std::cos(phi), s * std::sin(phi), mu};
+            sum += plane * fresnelTransmittance(c.eta, mu) + evaluateSingleScattering(c, n, wi, wo);
+        }
+    }
+    return sum / double(rings * azimuths);
+}
+
+glm::dvec3 profileDiffuseReflectanceUniform(const DipoleConstants& c) {
+    // Uniform radiance: irradiance weight 2 mu dmu = d(mu^2), so Gauss-Legendre in u = mu^2.
+    constexpr double x[] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
+    constexpr double w[] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < 4; ++i) sum += w[i] * profileDiffuseReflectance(c, std::sqrt(x[i]));
+    return sum;
 }
 
 }  // namespace sss

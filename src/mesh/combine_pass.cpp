@@ -2,6 +2,8 @@
 
 #include "lighting/camera_uniforms.h"
 #include "lighting/light_uniforms.h"
+#include "lighting/texture_units.h"
+#include "mesh/dipole_uniforms.h"
 
 #include <glm/matrix.hpp>
 
@@ -24,6 +26,14 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     p.set("specularStrength", s.specularStrength);
     p.set("shininess", s.shininess);
     p.set("environment", s.environment);
+    setDipoleUniforms(p, "dipole", s.dipole);
+    // The light buffer frames the object's bounding sphere: 2 radii over its resolution.
+    const auto [centre, radius] = worldSphere(in.mesh.bounds, in.model);
+    p.set("lightTexelWorld", 2.0f * radius / static_cast<float>(in.lightBuffer.positions().size().x));
+    p.set("lightPositions", units::kPassInputs + 2);
+    for (size_t i = 0; i < in.lightBuffer.viewProjections().size(); ++i)
+        p.set("lightViewProjection[" + std::to_string(i) + "]", in.lightBuffer.viewProjections()[i]);
+    in.lightBuffer.positions().bind(units::kPassInputs + 2);
     setLightUniforms(p, in.lights);
     setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.radiosity().id());

@@ -6,6 +6,8 @@
 #include "gl/program.h"
 #include "lighting/shadows.h"
 #include "mesh/gpu_mesh.h"
+#include "mesh/light_buffer_pass.h"
+#include "sss/bssrdf.h"
 #include "mesh/scattering_map_pass.h"
 #include "mesh/vertex_radiosity_pass.h"
 #include "sss/camera.h"
@@ -21,6 +23,7 @@ struct CombineSettings {
     float specularStrength = 1.0f;
     float shininess = 40.0f;
     glm::vec3 environment{0.0f};  ///< the environment's radiance times R_d: added as is
+    DipoleConstants dipole;       ///< the profile; its single-scattering term is added per pixel
 };
 
 struct CombineInputs {
@@ -32,7 +35,8 @@ struct CombineInputs {
     const std::vector<Light>& lights;
     const Camera& camera;
     float aspect = 1.0f;
-    const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes (specular highlight only)
+    const LightBufferPass& lightBuffer;       ///< self-shadowing of the single-scattering term
+    const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes (specular and single scattering)
 };
 
 class CombinePass {

@@ -12,6 +12,12 @@ void setDipoleUniforms(const gl::Program& p, const std::string& name, const Dipo
     p.set(name + ".cE", static_cast<float>(c.cE));
     p.set(name + ".A", static_cast<float>(c.A));
     p.set(name + ".normalization", static_cast<float>(c.normalization));
+    p.set(name + ".profileScale", glm::vec3(c.profileScale));
+    for (int i = 0; i < kProfileIncidenceNodes; ++i)
+        p.set(name + ".incidenceScale[" + std::to_string(i) + "]", glm::vec3(c.incidenceScale[static_cast<size_t>(i)]));
+    p.set(name + ".albedo", glm::vec3(c.albedo));
+    p.set(name + ".g", static_cast<float>(c.g));
+    p.set(name + ".singleScattering", static_cast<float>(c.singleScattering));
 }
 
 }  // namespace sss::detail

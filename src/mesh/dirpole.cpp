@@ -33,6 +33,11 @@ dirpole_cpp::DirpoleParams toParams(const DipoleConstants& c) {
     p.cE = c.cE;
     p.A = c.A;
     p.normalization = c.normalization;
+    p.profileScale = c.profileScale;
+    for (int i = 0; i < kProfileIncidenceNodes; ++i) p.incidenceScale[i] = c.incidenceScale[static_cast<size_t>(i)];
+    p.albedo = c.albedo;
+    p.g = c.g;
+    p.singleScattering = c.singleScattering;
     return p;
 }
 
@@ -68,6 +73,11 @@ glm::dvec3 evaluateBssrdf(const DipoleConstants& constants, const glm::dvec3& xi
     checkPoint(xo, "xo");
     return dirpole_cpp::dirpoleBssrdf(toParams(constants), xi, unit(ni, "ni"), unit(wi, "wi"), xo, unit(no, "no"),
                                       unit(wo, "wo"));
+}
+
+glm::dvec3 evaluateSingleScattering(const DipoleConstants& constants, const glm::dvec3& n, const glm::dvec3& wi,
+                                    const glm::dvec3& wo) {
+    return dirpole_cpp::dirpoleSingleScattering(toParams(constants), unit(n, "n"), unit(wi, "wi"), unit(wo, "wo"));
 }
 
 }  // namespace sss

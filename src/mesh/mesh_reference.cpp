@@ -212,7 +212,7 @@ public:
         if (!std::isfinite(m_sceneSize)) invalid("the model matrix makes mesh positions non-finite");
         m_offset = 1e-7 * m_sceneSize;
 
-        m_constants = deriveDipoleConstants(material, options.millimetresPerUnit);
+        m_constants = deriveDipoleConstants(material, options.millimetresPerUnit, options.profile);
 
         for (size_t i = 0; i < lights.size(); ++i) {
             validateLight(lights[i], "renderMeshReference: lights[" + std::to_string(i) + "]");
@@ -479,6 +479,7 @@ private:
             result.standardError[c] = exitT * se;
             if (se > std::max(target * std::abs(mean), absolute)) result.converged = false;
         }
+        result.mean += singleScattering(xo, no, wo, hitTri);
         return result;
     }
 
@@ -533,6 +534,31 @@ private:
             f += sd * irradiance * (entryT * cosI);
         }
         return f / pdf;
+    }
+
+    // The profile's single scattering at x_o (exact, no variance): per light its irradiance on
+    // the surface, if a shadow ray reaches the light, times evaluateSingleScattering().
+    glm::dvec3 singleScattering(const glm::dvec3& xo, const glm::dvec3& no, const glm::dvec3& wo,
+                                const TriInfo& tri) const {
+        glm::dvec3 sum(0.0);
+        if (!(m_constants.singleScattering > 0.0)) return sum;
+        for (const LightInfo& l : m_lights) {
+            glm::dvec3 wi = l.vector;
+            glm::dvec3 irradiance = l.radiance;
+            if (l.point) {
+                const glm::dvec3 d = l.vector - xo;
+                const double d2 = glm::dot(d, d);
+                if (!(d2 > 0.0)) continue;
+                wi = d / std::sqrt(d2);
+                irradiance /= d2;
+            }
+            const double cosI = glm::dot(no, wi);
+            if (!(cosI > 0.0)) continue;
+            const double side = glm::dot(tri.ng, wi) < 0.0 ? -1.0 : 1.0;
+            if (!reachesLight(xo + (side * m_offset) * tri.ng, l, wi)) continue;
+            sum += irradiance * cosI * evaluateSingleScattering(m_constants, no, wi, wo);
+        }
+        return sum;
     }
 
     // Shadow ray: is light `l` (unit direction towards it `wi`) unoccluded from `origin`?

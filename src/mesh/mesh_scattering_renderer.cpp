@@ -39,6 +39,7 @@ struct ScatteringMapInputs {
     int cameras = 0, samples = 0, resolution = 0;
     double millimetresPerUnit = 0.0;
     float sampleRadius = 0.0f, spread = 0.0f;
+    ScatteringProfile profile = ScatteringProfile::Calibrated;
     std::uint64_t shadowRevision = 0;  // hybrid scenes: meshes and volumes between lights and mesh
     bool operator==(const ScatteringMapInputs&) const = default;
 };
@@ -106,6 +107,48 @@ struct MeshScatteringRenderer::Impl {
     std::optional<LightBufferInputs> lightBufferInputs;
     std::optional<ScatteringMapInputs> scatteringMapInputs;
     std::optional<detail::SurfaceShadows> shadows;  // set by HybridCompositor
+    // Derived with the maps' inputs (the profile's plane integrals are too slow for every frame).
+    DipoleConstants dipole;
+    detail::ScatteringSampling sampling;
+    glm::dvec3 environmentReflectance{0.0};
+
+    // The profile's constants and the disk sampling for the current inputs.
+    void deriveProfile() {
+        dipole = deriveDipoleConstants(scatteringMaterial, options.millimetresPerUnit, options.profile);
+        // The widest channel (smallest sigma_tr) sets the spread; sigma_tr = 0 (no absorption)
+        // falls back to the reduced extinction, the next shortest length scale.
+        double sigma = std::min({dipole.sigmaTr.x, dipole.sigmaTr.y, dipole.sigmaTr.z});
+        if (!(sigma > 0.0)) sigma = std::min({dipole.sigmaTPrime.x, dipole.sigmaTPrime.y, dipole.sigmaTPrime.z});
+        sampling.sigmaStar = static_cast<float>(sigma / options.spread);
+        // The near field falls off over a few diffusion lengths D = 1 / (3 sigma_t'), but the light
+        // buffer cannot resolve distances below about a texel: take whichever is wider.
+        const auto [centre, worldRadius] = detail::worldSphere(mesh->bounds, model);
+        const double texel = 2.0 * worldRadius / options.lightMapResolution;
+        const double sigmaT = std::min({dipole.sigmaTPrime.x, dipole.sigmaTPrime.y, dipole.sigmaTPrime.z});
+        sampling.sigmaNear = static_cast<float>(std::max(static_cast<double>(sampling.sigmaStar), std::min(sigmaT, 1.0 / texel)));
+        sampling.diskRadius = options.sampleRadius > 0.0f ? options.sampleRadius : 3.0f / sampling.sigmaStar;
+        if (options.profile == ScatteringProfile::Calibrated) {
+            // 3 / sigma* keeps only 95.9 % of ketchup R's profile (head-on): widen the default disk
+            // until every channel keeps 99.9 % (the exponential sampling barely changes), then scale
+            // each channel by what it still misses, exact for a flat surface lit head-on.
+            const glm::dvec3 whole = dipolePlaneIntegral(dipole, 1.0);
+            auto keptShare = [&](double radius) {
+                const glm::dvec3 kept = dipolePlaneIntegral(dipole, 1.0, radius);
+                double share = 1.0;
+                for (int c = 0; c < 3; ++c)
+                    if (whole[c] > 0.0) share = std::min(share, kept[c] / whole[c]);
+                return share;
+            };
+            if (options.sampleRadius <= 0.0f)
+                for (int i = 0; i < 12 && keptShare(sampling.diskRadius) < 0.999; ++i) sampling.diskRadius *= 1.25f;
+            const glm::dvec3 kept = dipolePlaneIntegral(dipole, 1.0, sampling.diskRadius);
+            for (int c = 0; c < 3; ++c)
+                if (kept[c] > 0.0) dipole.profileScale[c] *= whole[c] / kept[c];
+        }
+        environmentReflectance = options.profile == ScatteringProfile::Calibrated
+                                     ? profileDiffuseReflectanceUniform(dipole)
+                                     : dipoleDiffuseReflectance(dipole);
+    }
 
     template <typename Work>
     void timed(const char* pass, Work&& work) {
@@ -124,6 +167,7 @@ struct MeshScatteringRenderer::Impl {
                 options.millimetresPerUnit,
                 options.sampleRadius,
                 options.spread,
+                options.profile,
                 shadows ? shadows->revision() : 0};
     }
 
@@ -145,22 +189,9 @@ struct MeshScatteringRenderer::Impl {
             scatteringMaps->reset(options.mapResolution);
             cameras = detail::makeScatteringCameras(options.cameras, mesh->bounds);
             scatteringMapInputs = inputs;
+            deriveProfile();
         }
         if (scatteringMaps->frames() >= options.accumulationFrames) return;
-        const DipoleConstants dipole = deriveDipoleConstants(scatteringMaterial, options.millimetresPerUnit);
-        detail::ScatteringSampling sampling;
-        // The widest channel (smallest sigma_tr) sets the spread; sigma_tr = 0 (no absorption)
-        // falls back to the reduced extinction, the next shortest length scale.
-        double sigma = std::min({dipole.sigmaTr.x, dipole.sigmaTr.y, dipole.sigmaTr.z});
-        if (!(sigma > 0.0)) sigma = std::min({dipole.sigmaTPrime.x, dipole.sigmaTPrime.y, dipole.sigmaTPrime.z});
-        sampling.sigmaStar = static_cast<float>(sigma / options.spread);
-        // The near field falls off over a few diffusion lengths D = 1 / (3 sigma_t'), but the light
-        // buffer cannot resolve distances below about a texel: take whichever is wider.
-        const auto [centre, worldRadius] = detail::worldSphere(mesh->bounds, model);
-        const double texel = 2.0 * worldRadius / options.lightMapResolution;
-        const double sigmaT = std::min({dipole.sigmaTPrime.x, dipole.sigmaTPrime.y, dipole.sigmaTPrime.z});
-        sampling.sigmaNear = static_cast<float>(std::max(static_cast<double>(sampling.sigmaStar), std::min(sigmaT, 1.0 / texel)));
-        sampling.diskRadius = options.sampleRadius > 0.0f ? options.sampleRadius : 3.0f / sampling.sigmaStar;
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
         timed("scattering-maps", [&] {
             scatteringMaps->accumulate({*mesh, model, cameras, lights, lightBuffer->viewProjections(),
@@ -244,9 +275,8 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.lookup.seamShrink = r.options.seamShrink * 2.0f * radius / texels;
     settings.specularStrength = r.options.specular;
     settings.shininess = r.options.shininess;
-    if (r.options.environment != glm::vec3(0.0f))  // derived per frame only when it is used
-        settings.environment = r.options.environment *
-                               glm::vec3(dipoleDiffuseReflectance(deriveDipoleConstants(r.scatteringMaterial)));
+    settings.environment = r.options.environment * glm::vec3(r.environmentReflectance);
+    settings.dipole = r.dipole;
     // The vertices' radiosity follows the maps: once per accumulated frame.
     if (r.vertexRadiosityFrames != r.scatteringMaps->frames() || r.vertexRadiosityInputs != r.scatteringMapInputs ||
         r.vertexRadiosityLookup != settings.lookup) {
@@ -258,7 +288,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     r.timed("combine", [&] {
         target.bindForDrawing();
         r.combine->run({*r.mesh, r.model, r.cameras, *r.scatteringMaps, *r.vertexRadiosity, r.lights, camera,
-                        target.aspect(), r.shadows ? &*r.shadows : nullptr},
+                        target.aspect(), *r.lightBuffer, r.shadows ? &*r.shadows : nullptr},
                        settings);
     });
 }

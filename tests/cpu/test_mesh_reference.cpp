@@ -239,6 +239,7 @@ TEST_CASE("mesh reference: a lit plane matches the radial integral of S_d", "[cp
     options.millimetresPerUnit = 1.0;
     options.targetRelativeError = 0.005;
     options.threads = 2;
+    options.profile = ScatteringProfile::Dipole;  // the quadrature below is the paper's dipole
     const MeshReferenceResult result =
         renderMeshReference(slab, model, potato, {sun}, orthoDown(8.0f, 10.0f), 4, 4, options);
     const glm::dvec3 expected = 2.0 * planeIntegral(deriveDipoleConstants(potato, 1.0), 300.0);
@@ -266,6 +267,7 @@ TEST_CASE("mesh reference: back-lit slabs, thin translucent and thick opaque", "
     options.millimetresPerUnit = 1.0;
     options.targetRelativeError = 0.01;
     options.threads = 2;
+    options.profile = ScatteringProfile::Dipole;  // the quadrature below is the paper's dipole
     const float thin = 5.0f;
     const Mesh thinSlab = makeGridBox({300.0f, 300.0f, thin}, 48, 2);
     const glm::mat4 thinModel = glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -thin / 2});

@@ -9,6 +9,7 @@
 #include <sss/mesh_scattering_renderer.h>
 #include <sss/procedural.h>
 
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -115,6 +116,62 @@ TEST_CASE("GPU subsurface scattering error falls as N and K grow", "[gl][mesh][r
         const double e = compare(what, renderGpu(scene, o), ref);
         CHECK(e < previous);
         previous = e;
+    }
+    gl.requireNoErrors();
+}
+
+namespace {
+
+// The renderer's radiance at the middle of a wide, thick slab seen head-on, per unit irradiance
+// (light at `incidenceDeg` in the x-z plane), averaged over the central quarter of a 64 x 64 view.
+glm::dvec3 renderSlabCentre(const ScatteringMaterial& material, double incidenceDeg, ScatteringProfile profile) {
+    MeshRenderOptions o = comparable();
+    o.millimetresPerUnit = 100.0;  // 20 x 20 x 10 cm: many transport lengths of every preset
+    o.profile = profile;
+    MeshScatteringRenderer renderer(o);
+    renderer.setMesh(makeSlab({2.0f, 2.0f, 1.0f}));
+    renderer.setScatteringMaterial(material);
+    const double theta = incidenceDeg * 3.14159265358979 / 180.0;
+    renderer.setLights({DirectionalLight{
+        .direction = glm::vec3(static_cast<float>(-std::sin(theta)), 0.0f, static_cast<float>(-std::cos(theta)))}});
+    Camera camera;
+    camera.setProjectionType(Projection::Orthographic);
+    camera.setOrthoHeight(0.5f);
+    camera.setDistance(3.0f);
+    RenderTarget target(64, 64);
+    do {
+        target.clear({0, 0, 0, 0});
+        renderer.render(camera, target);
+    } while (!renderer.converged());
+    const Image image = target.readColor();
+    glm::dvec3 sum(0.0);
+    for (int y = 16; y < 48; ++y)
+        for (int x = 16; x < 48; ++x) sum += glm::dvec3(image.at(x, y));
+    return sum / (32.0 * 32.0 * std::cos(theta));
+}
+
+}  // namespace
+
+TEST_CASE("GPU slab radiance matches the CPU evaluation of the same profile", "[gl][mesh][reference][profile]") {
+    // The renderer against profileSlabRadiance() of its own profile (head-on view, exit along the
+    // normal): the maps' Monte Carlo and the light buffer's discretisation are all that differ.
+    // Calibrated: the cut tail of the sampling disk is corrected for exactly, so the GPU must
+    // match the full plane integral. Measured on llvmpipe (Mesa 22.3): at most 0.11 % off in
+    // every channel (potato, ketchup, marble; 0 and 45 degrees); the bound is 0.5 %.
+    test::GlTestScope gl;
+    for (const char* name : {"potato", "ketchup", "marble"}) {
+        const ScatteringMaterial m = materialPreset(name);
+        const DipoleConstants c = deriveDipoleConstants(m, 100.0, ScatteringProfile::Calibrated);
+        for (double incidence : {0.0, 45.0}) {
+            const glm::dvec3 gpu = renderSlabCentre(m, incidence, ScatteringProfile::Calibrated);
+            const glm::dvec3 cpu = profileSlabRadiance(c, std::cos(incidence * 3.14159265358979 / 180.0), {0.0, 0.0, 1.0});
+            for (int ch = 0; ch < 3; ++ch) {
+                std::printf("[slab] %s %g deg ch %d: gpu %.5f cpu %.5f (%+.2f %%)\n", name, incidence, ch, gpu[ch], cpu[ch],
+                            100.0 * (gpu[ch] / cpu[ch] - 1.0));
+                INFO(name << " " << incidence << " deg, channel " << ch << ": gpu " << gpu[ch] << " cpu " << cpu[ch]);
+                CHECK(gpu[ch] == Approx(cpu[ch]).epsilon(0.005));
+            }
+        }
     }
     gl.requireNoErrors();
 }
