@@ -235,11 +235,14 @@ HalfSpaceReflectance isotropicHalfSpaceReflectance(double albedo, double eta, do
 ///      E_in(p) = E(x) * T(eta, n(x) . w_l) * cos_out / cos_in * exp(-sigma_t |p - x|) * V(x),
 ///    where x is the surface point where the beam that reaches p entered, n(x) its normal and
 ///    V(x) = 1 when a shadow ray from x (just off the surface) to the light meets no triangle.
-///    x is found by fixed-point iteration: d = refract(-w_l, n) with n first the last normal
-///    the path met (the camera's at the start); x = the first hit of the ray from p along -d;
-///    d is recomputed from n(x) (and w_l from x, for a point light); repeated until d no longer
-///    changes or the same triangle is hit twice, 4 ray queries at most. The geometry (x on the
-///    ray from p along -d) is the last traced one; T and cos_out / cos_in are those at x.
+///    x is found by fixed-point iteration: d = refract(-w_l, n) with n first the normal at the
+///    light's previous entry point on this path (at the start, or after an internal
+///    reflection, the normal met there); x = the first hit of the ray from p along -d; d is
+///    recomputed from n(x) (and w_l from x, for a point light); repeated until d changes by less
+///    than 1e-9 or the triangle hit is the one of the previous guess, 4 ray queries at most. The
+///    geometry (x on the ray from p along -d) is the last traced one; T and cos_out / cos_in are
+///    those at x. (On a flat face one query suffices; with interpolated normals the direction
+///    used may differ from the converged one by the change of the normal within a triangle.)
 ///    Exact for a planar boundary and a directional light (the "large box" test reproduces the
 ///    slab); on a curved boundary it neglects the focusing or spreading of the refracted beam
 ///    (its Jacobian, caustics), any other entry point whose refracted ray also reaches p, and
@@ -263,9 +266,12 @@ HalfSpaceReflectance isotropicHalfSpaceReflectance(double albedo, double eta, do
 /// transform of the cells the triangles touch minus a cell diagonal): a free path shorter than
 /// the bound at its start cannot reach the boundary, so its ray query is skipped (this changes
 /// nothing in the result: with neeRoulette off the image is bit-identical with and without the
-/// grid); and the next-event estimation at p is made only with probability
-/// q = exp(-sigma_t * bound(p)) and divided by q (Russian roulette: exp(-sigma_t |p - x|) <= q, so
-/// the weighted terms never exceed the unweighted ones near the surface).
+/// grid). And Russian roulette on the next-event estimation at p, in two stages: it is made with
+/// probability q1 = exp(-sigma_t * bound(p)); once the first query has found the distance t to
+/// the entry point (t >= bound), each light's beam is followed on (fixed point, shadow ray) with
+/// probability q2 = exp(-sigma_t t) / q1; the term is divided by q1 q2 = exp(-sigma_t t), so it
+/// is never larger than the same term at the surface (no spikes), and deep collisions, whose
+/// beams are attenuated to nothing, cost a grid lookup instead of several ray queries.
 ///
 /// Open meshes: a path only ends at the boundary when it crosses a triangle; through a hole
 /// the medium goes on outside until the path leaves the mesh's bounding box (it then ends,
