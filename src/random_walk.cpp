@@ -3,6 +3,7 @@
 #include "sss/random_walk.h"
 
 #include "parallel.h"
+#include "walk_sampling.h"
 
 #include "sss/error.h"
 
@@ -22,7 +23,6 @@ namespace sss {
 namespace {
 
 constexpr std::int64_t kChunkPaths = 16384;  // paths per random stream (fixed: determinism)
-constexpr double kIsotropicG = 1e-3;         // |g| below this is sampled as isotropic
 
 template <typename T>
 std::string num(T v) {
@@ -58,65 +58,21 @@ void validateIncidence(const std::string& where, double incidenceDeg) {
 
 double radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
 
-// Exact unpolarised Fresnel reflectance for light crossing from index n1 into n2, ratio =
-// n1 / n2, meeting the interface at cosI in [0, 1] to the normal. Sets cosT to the refracted
-// cosine (0 under total internal reflection, where F = 1).
-double fresnel(double ratio, double cosI, double& cosT) {
-    cosI = std::clamp(cosI, 0.0, 1.0);
-    const double sin2T = ratio * ratio * (1.0 - cosI * cosI);
-    if (sin2T >= 1.0) {
-        cosT = 0.0;
-        return 1.0;
-    }
-    cosT = std::sqrt(1.0 - sin2T);
-    if (ratio == 1.0) return 0.0;
-    const double rs = (ratio * cosI - cosT) / (ratio * cosI + cosT);
-    const double rp = (cosI - ratio * cosT) / (cosI + ratio * cosT);
-    return 0.5 * (rs * rs + rp * rp);
-}
+double fresnel(double ratio, double cosI, double& cosT) { return detail::fresnelReflectance(ratio, cosI, cosT); }
 
 // ---- random numbers ---------------------------------------------------------------------------
 
-std::uint64_t splitmix64(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-// The murmur3 64-bit finaliser: hashes (seed, channel, chunk) into a stream seed.
-std::uint64_t mix64(std::uint64_t z) {
-    z = (z ^ (z >> 33)) * 0xff51afd7ed558ccdull;
-    z = (z ^ (z >> 33)) * 0xc4ceb9fe1a85ec53ull;
-    return z ^ (z >> 33);
-}
-
-// xoshiro256++ (Blackman and Vigna), seeded from splitmix64 as its authors recommend.
-class Rng {
+// One stream per (seed, channel, chunk).
+class Rng : public detail::Xoshiro256 {
 public:
-    Rng(std::uint64_t seed, std::uint64_t channel, std::uint64_t chunk) {
-        std::uint64_t h = mix64(seed + 0x9e3779b97f4a7c15ull);
-        h = mix64(h ^ (channel + 0x632be59bd9b4e019ull));
-        h = mix64(h ^ (chunk + 0x85157af5ull));
-        for (auto& s : m_s) s = splitmix64(h);
-    }
-    std::uint64_t next() {
-        const std::uint64_t result = rotl(m_s[0] + m_s[3], 23) + m_s[0];
-        const std::uint64_t t = m_s[1] << 17;
-        m_s[2] ^= m_s[0];
-        m_s[3] ^= m_s[1];
-        m_s[1] ^= m_s[2];
-        m_s[0] ^= m_s[3];
-        m_s[2] ^= t;
-        m_s[3] = rotl(m_s[3], 45);
-        return result;
-    }
-    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
-    double openUniform() { return (static_cast<double>(next() >> 11) + 0.5) * 0x1.0p-53; }  // (0, 1)
+    Rng(std::uint64_t seed, std::uint64_t channel, std::uint64_t chunk) : Xoshiro256(key(seed, channel, chunk)) {}
 
 private:
-    static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-    std::uint64_t m_s[4];
+    static std::uint64_t key(std::uint64_t seed, std::uint64_t channel, std::uint64_t chunk) {
+        std::uint64_t h = detail::mix64(seed + 0x9e3779b97f4a7c15ull);
+        h = detail::mix64(h ^ (channel + 0x632be59bd9b4e019ull));
+        return detail::mix64(h ^ (chunk + 0x85157af5ull));
+    }
 };
 
 // ---- the walk ---------------------------------------------------------------------------------
@@ -125,32 +81,7 @@ struct Dir {
     double x, y, z;
 };
 
-// Henyey-Greenstein: a new unit direction at angle theta to `d` with cos(theta) drawn from HG(g)
-// (positive g = forward), uniform azimuth.
-Dir scatter(const Dir& d, double g, Rng& rng) {
-    const double u1 = rng.uniform();
-    const double u2 = rng.uniform();
-    double cosT;
-    if (std::abs(g) < kIsotropicG) {
-        cosT = 1.0 - 2.0 * u1;
-    } else {
-        const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u1);
-        cosT = (1.0 + g * g - s * s) / (2.0 * g);
-    }
-    cosT = std::clamp(cosT, -1.0, 1.0);
-    const double sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
-    const double phi = 2.0 * std::numbers::pi * u2;
-    const double cp = std::cos(phi) * sinT, sp = std::sin(phi) * sinT;
-    // Orthonormal basis around d (Duff et al. 2017).
-    const double sign = std::copysign(1.0, d.z);
-    const double a = -1.0 / (sign + d.z);
-    const double b = d.x * d.y * a;
-    const Dir t{1.0 + sign * d.x * d.x * a, sign * b, -sign * d.x};
-    const Dir bt{b, sign + d.y * d.y * a, -d.y};
-    Dir n{cp * t.x + sp * bt.x + cosT * d.x, cp * t.y + sp * bt.y + cosT * d.y, cp * t.z + sp * bt.z + cosT * d.z};
-    const double len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-    return {n.x / len, n.y / len, n.z / len};
-}
+Dir scatter(const Dir& d, double g, Rng& rng) { return detail::scatterHenyeyGreenstein(d, g, rng); }
 
 // Integer tallies of one channel (order-independent sums: thread-count independent results).
 struct Counts {
