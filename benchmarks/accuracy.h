@@ -6,12 +6,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <string>
 
 struct AccuracyOptions {
     bool quick = false;    ///< fewer materials and paths (ctest)
     bool gpu = true;       ///< render the GPU column (needs a current GL context)
     std::string renderer;  ///< GL renderer name, for the report
+    int width = 96, height = 72;  ///< mesh images
+    int pathsPerPixel = 1024;     ///< mesh random walk, per pixel and channel
+    std::filesystem::path imageDir;  ///< if set, the mesh images go there (PNG, display-encoded)
 };
 
 struct AccuracyReport {
@@ -22,3 +26,8 @@ struct AccuracyReport {
 
 /// Presets x channels x incidence 0/45/75 degrees: random walk, dipole, calibrated, GPU.
 AccuracyReport runSlabAccuracy(const AccuracyOptions& options);
+
+class BenchmarkContext;
+/// GPU renders with both profiles against the mesh random walk (renderMeshRandomWalk): the
+/// bunny front-lit and back-lit (skin1, 3 cm) and a thin potato slab lit from behind.
+AccuracyReport runMeshAccuracy(BenchmarkContext& bench, const AccuracyOptions& options);

@@ -29,6 +29,7 @@ struct Options {
     int runs = 10;
     int width = kThesisWidth;
     int height = kThesisHeight;
+    bool sizeGiven = false;  // --size was given
     std::vector<std::string> only;  // model names to run; empty = all
     std::string note;               // free text about the machine, copied into the reports
     std::filesystem::path imageDir; // if set, the verified image of each row is saved there

@@ -32,11 +32,13 @@ options:
                       5.4 (volume scattering), 5.5 (hybrid scenes)
   --error-sweep S     time against error for S = mesh or volume, against the CPU reference;
                       records with sweep, the swept parameters, ms and rel_rmse, and a plot
-  --accuracy A        accuracy against physical ground truth, A = slab: presets x channels x
+  --accuracy A        accuracy against physical ground truth. A = slab: presets x channels x
                       incidence 0/45/75 degrees, the random walk against the dipole, the
                       calibrated profile and a GPU render (JSON records with material, channel,
                       incidence_deg, random_walk, random_walk_stderr, dipole, calibrated, gpu,
-                      rel_error_gpu), Markdown and a plot
+                      rel_error_gpu). A = mesh: GPU images with both profiles against the mesh
+                      random walk (records with scene, profile, rel_rmse); --size sets the image
+                      (default 96x72), --images DIR keeps them. Markdown and a plot as well
   --plot FILE         where the sweep's PNG plot goes (default: the JSON path with .png)
   --reference-cache DIR
                       keep the sweeps' CPU references there as OpenEXR and reuse them when the
@@ -153,8 +155,8 @@ std::optional<Options> parseArgs(int argc, char** argv) {
             o.errorSweep = which;
         } else if (arg == "--accuracy") {
             const std::string which = value();
-            if (which != "slab")
-                throw UsageError{"--accuracy: expected slab, got \"" + which + "\""};
+            if (which != "slab" && which != "mesh")
+                throw UsageError{"--accuracy: expected slab or mesh, got \"" + which + "\""};
             o.accuracy = which;
         } else if (arg == "--plot") {
             o.plotPath = value();
@@ -165,6 +167,7 @@ std::optional<Options> parseArgs(int argc, char** argv) {
         }
     }
 
+    o.sizeGiven = size.has_value();
     // Quick mode only changes defaults; explicit options still win.
     o.runs = runs.value_or(o.quick ? 3 : 10);
     o.warmup = warmup.value_or(o.quick ? 1 : 3);
@@ -216,7 +219,12 @@ int main(int argc, char** argv) {
             AccuracyOptions a;
             a.quick = options->quick;
             a.renderer = bench.glInfo().renderer;
-            const AccuracyReport report = runSlabAccuracy(a);
+            a.imageDir = options->imageDir;
+            if (options->sizeGiven) {
+                a.width = options->width;
+                a.height = options->height;
+            }
+            const AccuracyReport report = *options->accuracy == "slab" ? runSlabAccuracy(a) : runMeshAccuracy(bench, a);
             const nlohmann::ordered_json json = {{"accuracy", *options->accuracy},
                                                  {"renderer", bench.glInfo().renderer},
                                                  {"date", bench.startedAt()},

@@ -26,14 +26,16 @@ uniform float lightTexelWorld;                 // a light-buffer texel's size at
 
 // Whether light l reaches x directly, judged like a shadow map against the light buffer: lit
 // where the surface the light sees at x's texel is x itself (3x3 taps, a fraction). The bias
-// allows a texel's worth of depth change on slopes up to 60 degrees to the light.
-float selfVisibility(int l, vec3 x, vec3 toLight) {
+// grows with the slope: one texel across, a surface tilted by theta to the light moves
+// tan(theta) texels along it, and the taps reach 1.5 texels away.
+float selfVisibility(int l, vec3 x, vec3 n, vec3 toLight) {
     vec4 clip = lightViewProjection[l] * vec4(x, 1.0);
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     ivec2 size = textureSize(lightPositions, 0).xy;
     ivec2 centre = ivec2(floor(uv * vec2(size)));
     bool point = lightVector[l].w != 0.0;
-    float bias = 3.0 * lightTexelWorld;
+    float cosTheta = max(dot(n, toLight), 0.05);
+    float bias = lightTexelWorld * (2.0 + 1.5 * sqrt(1.0 - cosTheta * cosTheta) / cosTheta);
     float lit = 0.0;
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
@@ -70,7 +72,7 @@ void main() {
             vec3 l = lightDirectionAt(i, worldPosition, radiance);
             float nDotL = dot(nWorld, l);
             if (nDotL <= 0.0) continue;
-            float visible = selfVisibility(i, worldPosition, l);
+            float visible = selfVisibility(i, worldPosition, nWorld, l);
             if (visible <= 0.0) continue;
             radiance *= visible * volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
             color += radiance * nDotL * dirpoleSingleScattering(dipole, nWorld, l, wo);

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 using namespace sss;
@@ -162,7 +163,11 @@ TEST_CASE("GPU slab radiance matches the CPU evaluation of the same profile", "[
     for (const char* name : {"potato", "ketchup", "marble"}) {
         const ScatteringMaterial m = materialPreset(name);
         const DipoleConstants c = deriveDipoleConstants(m, 100.0, ScatteringProfile::Calibrated);
-        for (double incidence : {0.0, 45.0}) {
+        // 75 degrees for ketchup: its G and B are nearly all single scattering, which the combine
+        // pass self-shadows against the light buffer, hardest at grazing light.
+        const bool grazing = std::string(name) == "ketchup";
+        for (double incidence : {0.0, 45.0, 75.0}) {
+            if (incidence > 60.0 && !grazing) continue;
             const glm::dvec3 gpu = renderSlabCentre(m, incidence, ScatteringProfile::Calibrated);
             const glm::dvec3 cpu = profileSlabRadiance(c, std::cos(incidence * 3.14159265358979 / 180.0), {0.0, 0.0, 1.0});
             for (int ch = 0; ch < 3; ++ch) {
