@@ -88,6 +88,9 @@ shading:
                             when the light volume does not fit the GPU: halve its resolution
                             until it fits, with a warning, or fail (default: reduce)
   --anisotropy G            Henyey-Greenstein g for the scattering cone, (-1,1) (default: 0.5)
+  --volume-model M          paper (Ropinski: ambient + diffuse x light-volume colour) or physical
+                            (single scattering: TF colour as albedo x phase function x light;
+                            about 4 pi dimmer, raise --light-intensity or --exposure) (default: paper)
   --eye-pass                add the second, view-dependent pass towards the viewer
 camera and light:
   --yaw DEG --pitch DEG     orbit angles around the scene centre (default: 30, 20)
@@ -128,6 +131,7 @@ struct Args {
     glm::vec3 background{0.010f, 0.010f, 0.0137f};  // linear; displays as sRGB (0.1, 0.1, 0.12)
     glm::vec3 color{0.8f, 0.75f, 0.7f};
     float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
+    sss::VolumeModel volumeModel = sss::VolumeRenderOptions{}.model;
     bool eyePass = false;
     sss::DisplayTransform display;
     sss::LightVolumeFallback lightVolumeFallback = sss::LightVolumeFallback::Reduce;
@@ -215,6 +219,12 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--light-volume-scale") a.lightVolumeScale = parseFloat(opt, value());
         else if (opt == "--light-volume-fallback") a.lightVolumeFallback = parseLightVolumeFallback(opt, value());
         else if (opt == "--anisotropy") a.anisotropy = parseFloat(opt, value());
+        else if (opt == "--volume-model") {
+            const std::string v = value();
+            const auto model = sss::parseVolumeModel(v);
+            if (!model) throw UsageError("--volume-model: expected paper or physical, got \"" + v + "\"");
+            a.volumeModel = *model;
+        }
         else if (opt == "--yaw") a.yaw = *(a.yawGiven = parseFloat(opt, value()));
         else if (opt == "--pitch") a.pitch = *(a.pitchGiven = parseFloat(opt, value()));
         else if (opt == "--zoom") {
@@ -325,6 +335,7 @@ int run(const Args& a) {
         .lightVolumeScale = a.lightVolumeScale,
         .lightVolumeFallback = a.lightVolumeFallback,
         .anisotropy = a.anisotropy,
+        .model = a.volumeModel,
         .eyePass = a.eyePass};
     const sss::HybridOptions sceneOptions{.background = glm::vec4(a.background, 1.0f), .cornellBox = a.cornellBox};
     if (mesh) sss::validate(meshOptions), sss::validate(meshMaterial);

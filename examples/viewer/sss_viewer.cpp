@@ -670,6 +670,13 @@ private:
             if (inUse > 0.0f && inUse < m_volumeOptions.lightVolumeScale)
                 ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "does not fit the GPU: using %.3g", inUse);
             m_volumeDirty |= ImGui::SliderFloat("anisotropy g", &m_volumeOptions.anisotropy, -0.9f, 0.9f, "%.2f");
+            bool physical = m_volumeOptions.model == sss::VolumeModel::Physical;
+            if (ImGui::Checkbox("physical single scattering", &physical)) {
+                m_volumeOptions.model = physical ? sss::VolumeModel::Physical : sss::VolumeModel::Paper;
+                m_volumeDirty = true;
+            }
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("on: TF colour as albedo x phase function x light (about 4 pi dimmer)\noff: the paper's ambient + diffuse x light-volume colour");
         }
         m_volumeDirty |= ImGui::SliderFloat("ambient", &m_volumeOptions.ambient, 0.0f, 1.0f, "%.2f");
         m_volumeDirty |= ImGui::SliderFloat("diffuse", &m_volumeOptions.diffuse, 0.0f, 2.0f, "%.2f");

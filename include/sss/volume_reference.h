@@ -72,6 +72,7 @@
 #include "sss/light.h"
 #include "sss/transfer_function.h"
 #include "sss/volume.h"
+#include "sss/volume_scattering_renderer.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -104,6 +105,12 @@ struct VolumeReferenceOptions {
     double earlyTermination = 1.0;
     double ambient = 0.25;             ///< k_a, finite and >= 0
     double diffuse = 0.85;             ///< k_d, finite and >= 0
+    /// Scattering modes: the paper's model (above) or physical single scattering, where
+    ///   C(p) = C_tf * sum over lights of E * l(p) * p_HG(anisotropy, -w_l . v)
+    /// (no ambient, no chromaticity c; w_l towards the light, v towards the viewer) (default:
+    /// Paper, as VolumeRenderOptions::model).
+    VolumeModel model = VolumeModel::Paper;
+    double anisotropy = 0.5;           ///< Henyey-Greenstein g of the physical model, in (-1, 1)
     glm::dvec3 specular{0.3};          ///< k_s, finite and >= 0
     double shininess = 32.0;           ///< Blinn-Phong exponent, finite and > 0
     double gradientThreshold = 0.02;   ///< |g| (value per voxel) of full shading, finite and > 0

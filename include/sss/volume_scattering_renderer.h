@@ -26,6 +26,8 @@
 #include <glm/mat4x4.hpp>
 
 #include <memory>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 namespace sss {
@@ -35,6 +37,26 @@ struct VolumeRendererAccess;  // hybrid-scene hooks (src/hybrid/shared_lighting.
 }
 
 enum class VolumeShading { EmissionAbsorption, Gradient, Scattering, ScatteringGradient };
+
+/// What a lit sample scatters towards the viewer in the light-volume modes (Scattering,
+/// ScatteringGradient).
+enum class VolumeModel {
+    /// The paper's (Ropinski et al. 2010): C_tf (ambient + diffuse E c l), an ambient term as
+    /// emission, a constant diffuse factor and the light volume's chromaticity c (default).
+    Paper,
+    /// Physical single scattering: C_tf (the single-scattering albedo) E l p_HG(anisotropy,
+    /// cos theta), the Henyey-Greenstein phase function (per steradian) between the light's
+    /// direction of travel and the direction to the viewer; no ambient, no emission, no
+    /// chromaticity, no eye pass. What renderVolumePathTraced() computes in its single-scattering
+    /// mode. About 4 pi dimmer than the paper's model at diffuse 1 (the phase function is per
+    /// steradian): raise the light or the exposure.
+    Physical,
+};
+
+/// "paper" or "physical".
+std::string_view toString(VolumeModel model);
+/// Parses "paper" or "physical"; nullopt otherwise.
+std::optional<VolumeModel> parseVolumeModel(std::string_view name);
 
 /// What the renderer does when a light volume does not fit the GPU at the requested
 /// resolution (a side over GL_MAX_3D_TEXTURE_SIZE, the memory budget, or GL_OUT_OF_MEMORY).
@@ -80,6 +102,8 @@ struct VolumeRenderOptions {
     /// holds half of the phase function's energy; g <= 0 gives the widest cone, 60 degrees
     /// (default: 0.5, about 47 degrees).
     float anisotropy = 0.5f;
+    /// The paper's shading or physical single scattering (default: Paper; see VolumeModel).
+    VolumeModel model = VolumeModel::Paper;
     /// The optional second pass towards the viewer: the light each voxel scatters is propagated
     /// from the far side towards the eye with the same cone blur, and each sample gains
     /// diffuse * eyePassStrength * TF colour * that blurred light from behind it (forward

@@ -35,6 +35,8 @@ uniform int brickVoxels;
 uniform mat4 modelToWorld;
 uniform float ambientStrength;
 uniform float diffuseStrength;
+uniform int physicalModel;          // 1: physical single scattering (sss::VolumeModel::Physical)
+uniform float phaseG;               // its Henyey-Greenstein mean cosine
 #endif
 #if SHADING_GRADIENT
 uniform mat3 normalToWorld;
@@ -130,7 +132,17 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
         }
         arriving.a *= transmitted;
         arriving.a *= meshVisibility(i, worldPosition);
-        lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
+        if (physicalModel != 0) {
+            // Single scattering: albedo (TF colour) x phase function between the light's travel
+            // direction -l and the way to the viewer x the light that arrives (grey extinction:
+            // no chromaticity).
+            float cosTheta = dot(-l, towardsViewer(worldPosition));
+            float d = 1.0 + phaseG * phaseG - 2.0 * phaseG * cosTheta;
+            float phase = (1.0 - phaseG * phaseG) / (12.5663706 * d * sqrt(d));
+            lit += color * radiance * (arriving.a * phase);
+        } else {
+            lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
+        }
 #if SHADING_GRADIENT
         vec3 h = normalize(l + v);
         float nDotL = dot(surface.n, l);
@@ -144,7 +156,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     }
 #if SHADING_SCATTERING
 #if EYE_PASS
-    lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;
+    if (physicalModel == 0) lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;
 #endif
     return lit;
 #else

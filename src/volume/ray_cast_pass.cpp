@@ -79,13 +79,17 @@ void RayCastPass::run(const RayCastInputs& in) const {
     if (m_shading != VolumeShading::EmissionAbsorption) {
         p.set("modelToWorld", model);
         // Emission adds to the ambient term: both are light-independent fractions of the TF colour.
-        p.set("ambientStrength", options.ambient + options.emission);
+        // The physical model has neither (single scattering only).
+        const bool physical = options.model == VolumeModel::Physical && usesLightVolume(m_shading);
+        p.set("ambientStrength", physical ? 0.0f : options.ambient + options.emission);
         p.set("diffuseStrength", options.diffuse);
+        p.set("physicalModel", physical ? 1 : 0);
+        p.set("phaseG", options.anisotropy);
+        setCameraUniforms(p, in.camera);
         setLightUniforms(p, lights);
     }
     if (usesGradient(m_shading)) {
         p.set("normalToWorld", glm::mat3(glm::transpose(glm::inverse(model))));
-        setCameraUniforms(p, in.camera);
         p.set("specularColor", options.specular);
         p.set("shininess", options.shininess);
         p.set("gradientThreshold", options.gradientThreshold);

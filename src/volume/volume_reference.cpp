@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numbers>
 #include <exception>
 #include <limits>
 #include <mutex>
@@ -63,6 +64,7 @@ void validate(const VolumeReferenceOptions& o) {
         fail("earlyTermination", "in (0, 1]", str(o.earlyTermination));
     if (!std::isfinite(o.ambient) || !(o.ambient >= 0.0)) fail("ambient", "finite and >= 0", str(o.ambient));
     if (!std::isfinite(o.diffuse) || !(o.diffuse >= 0.0)) fail("diffuse", "finite and >= 0", str(o.diffuse));
+    if (!(o.anisotropy > -1.0 && o.anisotropy < 1.0)) fail("anisotropy", "in (-1, 1)", str(o.anisotropy));
     const glm::dvec3 s = o.specular;
     if (!finite(s) || !(s.x >= 0.0 && s.y >= 0.0 && s.z >= 0.0))
         fail("specular", "finite and >= 0", str(s));
@@ -261,7 +263,10 @@ struct VolumeReference::Impl {
             v = viewer.towards(worldP);
             surface = gradientNormal(tc, v);
         }
-        glm::dvec3 lit = options.ambient * color;
+        const bool physical = options.model == VolumeModel::Physical &&
+                              (mode == ReferenceShading::Scattering || mode == ReferenceShading::ScatteringGradient);
+        if (physical && !gradient) v = viewer.towards(worldP);
+        glm::dvec3 lit = physical ? glm::dvec3(0.0) : options.ambient * color;
         for (const PreparedLight& light : lights) {
             glm::dvec3 radiance;
             const glm::dvec3 l = towardsLight(light, worldP, radiance);
@@ -274,7 +279,14 @@ struct VolumeReference::Impl {
                 continue;
             }
             const ReferenceLightSample arriving = incident(p, light);
-            lit += options.diffuse * color * arriving.radiance * arriving.chromaticity * arriving.transmittance;
+            if (physical) {
+                const double g = options.anisotropy;
+                const double d = 1.0 + g * g + 2.0 * g * glm::dot(l, v);  // cos theta = -l . v
+                const double phase = (1.0 - g * g) / (4.0 * std::numbers::pi * d * std::sqrt(d));
+                lit += color * arriving.radiance * (arriving.transmittance * phase);
+            } else {
+                lit += options.diffuse * color * arriving.radiance * arriving.chromaticity * arriving.transmittance;
+            }
             if (mode == ReferenceShading::ScatteringGradient && glm::dot(surface.n, l) > 0.0) {
                 const glm::dvec3 h = glm::normalize(l + v);
                 lit += surface.strength * arriving.transmittance * radiance * options.specular *

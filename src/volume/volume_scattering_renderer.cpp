@@ -44,6 +44,14 @@ struct LightVolumeInputs {
 
 }  // namespace
 
+std::string_view toString(VolumeModel model) { return model == VolumeModel::Physical ? "physical" : "paper"; }
+
+std::optional<VolumeModel> parseVolumeModel(std::string_view name) {
+    if (name == "paper") return VolumeModel::Paper;
+    if (name == "physical") return VolumeModel::Physical;
+    return std::nullopt;
+}
+
 void validate(const VolumeRenderOptions& o) {
     auto fail = [](const std::string& field, const std::string& rule, auto value) {
         throw Error(ErrorKind::InvalidArgument,
@@ -210,7 +218,9 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (!m_impl->volume)
         throw Error(ErrorKind::InvalidArgument, "VolumeScatteringRenderer::render: no volume set (call setVolume first)");
     // Programs are compiled lazily, once per shading mode in use.
-    const bool eyePass = m_impl->options.eyePass && detail::usesLightVolume(m_impl->options.shading);
+    // The eye pass is the paper's second-order term; the physical model leaves it out.
+    const bool eyePass = m_impl->options.eyePass && detail::usesLightVolume(m_impl->options.shading) &&
+                         m_impl->options.model == VolumeModel::Paper;
     if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size()))
         m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping, m_impl->lights.size(),
                                 eyePass);
