@@ -83,6 +83,8 @@ shading:
   --early-termination A     stop rays at this opacity, (0,1] (default: 0.99)
   --no-jitter               no per-pixel ray offset
   --no-skipping             no empty-space skipping (same image, slower)
+  --no-gradient-volume      gradient modes compute gradients per sample instead of reading a
+                            gradient volume computed once (8 bytes per voxel)
   --light-volume-scale S    light-volume resolution relative to the data, (0,1] (default: 1)
   --light-volume-fallback reduce|fail
                             when the light volume does not fit the GPU: halve its resolution
@@ -135,6 +137,7 @@ struct Args {
     bool eyePass = false;
     sss::DisplayTransform display;
     sss::LightVolumeFallback lightVolumeFallback = sss::LightVolumeFallback::Reduce;
+    bool gradientVolume = true;
     bool jitter = true, skipping = true, ortho = false, listTf = false, cornellBox = false, lightGiven = false;
     float yaw = 30.0f, pitch = 20.0f, zoom = 1.0f, fov = 45.0f;
     glm::vec3 lightDir{-1.0f, -1.0f, -1.0f}, lightColor{1.0f};
@@ -215,6 +218,7 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--early-termination") a.earlyTermination = parseFloat(opt, value());
         else if (opt == "--no-jitter") a.jitter = false;
         else if (opt == "--no-skipping") a.skipping = false;
+        else if (opt == "--no-gradient-volume") a.gradientVolume = false;
         else if (opt == "--eye-pass") a.eyePass = true;
         else if (opt == "--light-volume-scale") a.lightVolumeScale = parseFloat(opt, value());
         else if (opt == "--light-volume-fallback") a.lightVolumeFallback = parseLightVolumeFallback(opt, value());
@@ -332,6 +336,7 @@ int run(const Args& a) {
         .earlyTermination = a.earlyTermination,
         .jitter = a.jitter,
         .emptySpaceSkipping = a.skipping,
+        .gradientVolume = a.gradientVolume,
         .lightVolumeScale = a.lightVolumeScale,
         .lightVolumeFallback = a.lightVolumeFallback,
         .anisotropy = a.anisotropy,

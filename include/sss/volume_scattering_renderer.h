@@ -25,6 +25,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -93,6 +94,12 @@ struct VolumeRenderOptions {
     /// Gradient magnitude (value change per voxel, 0..1 scale) at which shading is fully on;
     /// weaker gradients fade to the unshaded colour (default: 0.02).
     float gradientThreshold = 0.02f;
+    /// Gradient modes read the gradient from a volume computed once per data set (central
+    /// differences per voxel, RGBA16_SNORM, 8 bytes per voxel: 128 MiB for 256^3; the same
+    /// gradient the on-the-fly path computes, from one texel instead of six). If it does not fit
+    /// the GPU (limits or memory budget), a warning says so and the gradients are computed on the
+    /// fly (default: on).
+    bool gradientVolume = true;
     // Light volume (Scattering, ScatteringGradient):
     /// Light-volume resolution relative to the data, in (0, 1] (default: 1, as the thesis).
     float lightVolumeScale = 1.0f;
@@ -146,6 +153,9 @@ public:
     /// options().lightVolumeScale unless LightVolumeFallback::Reduce had to lower it (0 before
     /// the first build).
     float lightVolumeScaleInUse() const;
+    /// Bytes of GPU memory the gradient volume holds (0 when there is none: gradient modes
+    /// unused, VolumeRenderOptions::gradientVolume off, or it did not fit).
+    std::size_t gradientVolumeBytes() const;
 
     const RenderStats& stats() const;
 

@@ -79,13 +79,22 @@ struct SurfaceNormal {
     float strength;  // 0..1: fades shading out where the gradient is too weak to define n
 };
 
+#if GRADIENT_VOLUME
+uniform sampler3D gradientVolume;  // per-voxel central differences (volume/gradient.comp)
+#endif
+
 SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
     // Central differences, one voxel apart on each axis; gradient in value units per voxel.
+#if GRADIENT_VOLUME
+    // Precomputed: the trilinear interpolation of per-voxel differences is the same gradient.
+    vec3 g = texture(gradientVolume, tc).xyz * (0.5 * valueScaleOffset.x);
+#else
     vec3 h = 1.0 / vec3(volumeDims);
     vec3 g = vec3(texture(volumeTexture, tc + vec3(h.x, 0, 0)).r - texture(volumeTexture, tc - vec3(h.x, 0, 0)).r,
                   texture(volumeTexture, tc + vec3(0, h.y, 0)).r - texture(volumeTexture, tc - vec3(0, h.y, 0)).r,
                   texture(volumeTexture, tc + vec3(0, 0, h.z)).r - texture(volumeTexture, tc - vec3(0, 0, h.z)).r) *
              0.5 * valueScaleOffset.x;
+#endif
     // Surfaces face from high to low values; scale the model-space gradient by the box so
     // anisotropic boxes get correct normals.
     vec3 outward = normalToWorld * (-g * vec3(volumeDims) / (boxMax - boxMin));

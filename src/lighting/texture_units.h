@@ -18,6 +18,7 @@ inline constexpr int kVolumeShadows = 16;  // 16..31: volumeShadowLight[kMaxVolu
 inline constexpr int kLightVolumes = 4;   // 4..11: lightVolumes[MAX_LIGHTS]
 inline constexpr int kMeshShadowDepth = 12;
 inline constexpr int kEyeVolume = 13;
+inline constexpr int kGradientVolume = 14;
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

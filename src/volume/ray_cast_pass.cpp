@@ -14,28 +14,31 @@
 
 namespace sss::detail {
 
-namespace {
-
 bool usesGradient(VolumeShading s) { return s == VolumeShading::Gradient || s == VolumeShading::ScatteringGradient; }
-
-}  // namespace
 
 bool usesLightVolume(VolumeShading s) {
     return s == VolumeShading::Scattering || s == VolumeShading::ScatteringGradient;
 }
 
-RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass)
+bool usesEyePass(const VolumeRenderOptions& o) {
+    return o.eyePass && usesLightVolume(o.shading) && o.model == VolumeModel::Paper;
+}
+
+RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass,
+                         bool gradientVolume)
     : m_shading(shading),
       m_emptySpaceSkipping(emptySpaceSkipping),
       m_lightCount(lightCount),
       m_eyePass(eyePass),
+      m_gradientVolume(gradientVolume),
       m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
                                   {{"SHADING_GRADIENT", usesGradient(shading) ? "1" : "0"},
                                    {"SHADING_SCATTERING", usesLightVolume(shading) ? "1" : "0"},
                                    {"EMPTY_SPACE_SKIPPING", emptySpaceSkipping ? "1" : "0"},
                                    {"LIGHT_COUNT", std::to_string(lightCount)},
-                                   {"EYE_PASS", eyePass ? "1" : "0"}})),
+                                   {"EYE_PASS", eyePass ? "1" : "0"},
+                                   {"GRADIENT_VOLUME", gradientVolume ? "1" : "0"}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const RayCastInputs& in) const {
@@ -93,6 +96,10 @@ void RayCastPass::run(const RayCastInputs& in) const {
         p.set("specularColor", options.specular);
         p.set("shininess", options.shininess);
         p.set("gradientThreshold", options.gradientThreshold);
+        if (m_gradientVolume && in.gradientVolume) {
+            p.set("gradientVolume", units::kGradientVolume);
+            in.gradientVolume->bind(units::kGradientVolume);
+        }
     }
     if (usesLightVolume(m_shading)) {
         const bool shadowed = meshShadows && meshShadows->worldToClip.size() >= lights.size();

@@ -17,6 +17,10 @@ namespace sss::detail {
 
 /// Scattering modes sample light volumes.
 bool usesLightVolume(VolumeShading shading);
+/// Gradient and ScatteringGradient shade with the data's gradient.
+bool usesGradient(VolumeShading shading);
+/// Whether the eye pass runs for these options (the paper's model in a light-volume mode).
+bool usesEyePass(const VolumeRenderOptions& options);
 
 /// What one ray-cast draw reads. References stay owned by the renderer.
 struct RayCastInputs {
@@ -27,6 +31,7 @@ struct RayCastInputs {
     const std::vector<gl::Texture>& lightVolumes;  ///< one per light in the scattering modes
     const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights
     const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
+    const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const glm::mat4& model;
     const std::vector<Light>& lights;
     const VolumeRenderOptions& options;
@@ -36,12 +41,13 @@ struct RayCastInputs {
 
 class RayCastPass {
 public:
-    RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass);
-    /// Whether this pass was built for these options and lights (programs are per variant).
-    bool matches(const VolumeRenderOptions& o, std::size_t lightCount) const {
-        const bool eyePass = o.eyePass && usesLightVolume(o.shading);
+    RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass,
+                bool gradientVolume);
+    /// Whether this pass was built for these options, lights and gradient source (programs are
+    /// per variant).
+    bool matches(const VolumeRenderOptions& o, std::size_t lightCount, bool gradientVolume) const {
         return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping && lightCount == m_lightCount &&
-               eyePass == m_eyePass;
+               usesEyePass(o) == m_eyePass && gradientVolume == m_gradientVolume;
     }
     /// Draws into the bound target.
     void run(const RayCastInputs& in) const;
@@ -51,6 +57,7 @@ private:
     bool m_emptySpaceSkipping;
     std::size_t m_lightCount;
     bool m_eyePass;
+    bool m_gradientVolume;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
 };

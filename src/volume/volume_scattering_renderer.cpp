@@ -9,6 +9,7 @@
 #include "sss/log.h"
 #include "sss/timing.h"
 #include "volume/empty_space.h"
+#include "volume/gradient_volume_pass.h"
 #include "volume/gpu_volume.h"
 #include "volume/eye_pass.h"
 #include "volume/light_volume_pass.h"
@@ -95,6 +96,30 @@ struct VolumeScatteringRenderer::Impl {
     float lightVolumeScaleInUse = 0.0f;                     // lower than asked after a fallback
     // Eye pass (optional): the voxels' scattered light, carried towards the viewer.
     std::optional<detail::EyePass> eyePass;
+    std::optional<detail::GradientVolumePass> gradientPass;
+    std::optional<gl::Texture> gradientVolume;  // for the current data, built on first use
+    bool gradientVolumeFailed = false;          // did not fit: gradients on the fly for this data
+
+    // Whether the ray caster reads precomputed gradients; builds them once per data set.
+    bool updateGradientVolume() {
+        if (!detail::usesGradient(options.shading) || !options.gradientVolume) return false;
+        if (gradientVolume) return true;
+        if (gradientVolumeFailed) return false;
+        try {
+            if (!gradientPass) gradientPass.emplace();
+            const auto start = std::chrono::steady_clock::now();
+            gradientVolume = gradientPass->run(*volume);
+            if (options.finishEachPass) finishGpuWork();
+            stats.record("gradient-volume",
+                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            return true;
+        } catch (const Error& e) {
+            if (e.kind() != ErrorKind::GpuLimit) throw;
+            gradientVolumeFailed = true;
+            log(LogLevel::Warning, std::string(e.what()) + "; gradients are computed on the fly instead");
+            return false;
+        }
+    }
     std::optional<std::tuple<LightVolumeInputs, glm::vec3, float, float>> eyeInputs;
     const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
     gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
@@ -185,6 +210,8 @@ VolumeScatteringRenderer& VolumeScatteringRenderer::operator=(VolumeScatteringRe
 
 void VolumeScatteringRenderer::setVolume(const Volume& volume, const glm::mat4& model) {
     m_impl->volume = detail::GpuVolume::upload(volume);
+    m_impl->gradientVolume.reset();  // recomputed for the new data when a gradient mode needs it
+    m_impl->gradientVolumeFailed = false;
     m_impl->occupancy.emplace(volume);
     m_impl->uploadTransferFunction();  // also derives the occupancy for the current TF
     ++m_impl->volumeGeneration;
@@ -213,17 +240,20 @@ void VolumeScatteringRenderer::setOptions(const VolumeRenderOptions& options) {
 const VolumeRenderOptions& VolumeScatteringRenderer::options() const { return m_impl->options; }
 const RenderStats& VolumeScatteringRenderer::stats() const { return m_impl->stats; }
 float VolumeScatteringRenderer::lightVolumeScaleInUse() const { return m_impl->lightVolumeScaleInUse; }
+std::size_t VolumeScatteringRenderer::gradientVolumeBytes() const {
+    return m_impl->gradientVolume ? m_impl->gradientVolume->bytes() : 0;
+}
 
 void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target) {
     if (!m_impl->volume)
         throw Error(ErrorKind::InvalidArgument, "VolumeScatteringRenderer::render: no volume set (call setVolume first)");
     // Programs are compiled lazily, once per shading mode in use.
     // The eye pass is the paper's second-order term; the physical model leaves it out.
-    const bool eyePass = m_impl->options.eyePass && detail::usesLightVolume(m_impl->options.shading) &&
-                         m_impl->options.model == VolumeModel::Paper;
-    if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size()))
+    const bool eyePass = detail::usesEyePass(m_impl->options);
+    const bool gradients = m_impl->updateGradientVolume();
+    if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size(), gradients))
         m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping, m_impl->lights.size(),
-                                eyePass);
+                                eyePass, gradients);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
     const auto start = std::chrono::steady_clock::now();
@@ -237,6 +267,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .lightVolumes = r.lightVolumes,
                     .meshShadows = r.meshShadows,
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
+                    .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .model = r.model,
                     .lights = r.lights,
                     .options = r.options,

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 #include <sss/error.h>
 #include <sss/gpu_memory.h>
+#include <sss/image_compare.h>
 #include <sss/log.h>
 #include <sss/procedural.h>
 #include <sss/render_target.h>
@@ -148,5 +149,34 @@ TEST_CASE("a light volume that does not fit falls back to a lower resolution, or
     setGpuMemoryBudget(gpuMemoryInUse() + 1024u * 1024u);
     REQUIRE_SSS_ERROR(render(strict), ErrorKind::GpuLimit,
                       Contains("light volume") && Contains("64x64x64 RGBA16F") && Contains("budget"));
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a gradient volume that does not fit falls back to on-the-fly gradients with a warning", "[gl][limits]") {
+    test::GlTestScope gl;
+    const Volume volume = makeBlobsVolume(64);  // gradient volume: 2 MiB
+    const Camera camera = test::orbitCamera(volume.worldBounds(), 30.0f, 20.0f);
+    auto render = [&](VolumeScatteringRenderer& r) {
+        r.setVolume(volume);
+        r.setTransferFunction(test::blobsTransferFunction());
+        RenderTarget target(64, 36);
+        target.clear({0, 0, 0, 1});
+        r.render(camera, target);
+        return target.readColor();
+    };
+    VolumeScatteringRenderer onTheFly({.shading = VolumeShading::Gradient, .gradientVolume = false});
+    const Image expected = render(onTheFly);
+    LogCapture log;
+    Image fallback(1, 1);
+    VolumeScatteringRenderer renderer({.shading = VolumeShading::Gradient});
+    {
+        // The volume itself (256 KiB) fits, its gradients do not.
+        BudgetScope budget(gpuMemoryInUse() + 1024 * 1024);
+        fallback = render(renderer);
+    }
+    CHECK(renderer.gradientVolumeBytes() == 0u);
+    REQUIRE(log.warnings.size() == 1u);
+    CHECK_THAT(log.warnings[0], Contains("gradient volume") && Contains("computed on the fly"));
+    CHECK(computeErrorMetrics(fallback, expected).relRmse == 0.0);
     gl.requireNoErrors();
 }
