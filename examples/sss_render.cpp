@@ -60,6 +60,9 @@ shading:
                             drawn in blinn-phong and cuts the volume's rays.
   --material NAME           translucent material for --mode sss (default: potato); see --list-materials
   --list-materials          print the material presets and exit
+  --combine WHERE           per-pixel (the K maps looked up at every pixel) or per-vertex (resolved
+                            once per vertex after each map update: fixed frames cost about a
+                            Blinn-Phong frame) (default: per-pixel)
   --profile NAME            subsurface profile: calibrated (the directional dipole rescaled to a
                             random walk, plus single scattering) or dipole (the paper's, as the
                             thesis) (default: calibrated)
@@ -126,6 +129,7 @@ struct Args {
     double scale = 1000.0;
     bool specular = true, listMaterials = false;
     sss::ScatteringProfile profile = sss::MeshRenderOptions{}.profile;
+    sss::MeshCombine combine = sss::MeshRenderOptions{}.combine;
     std::optional<glm::ivec3> dims;
     std::optional<sss::VoxelType> type;
     std::optional<glm::vec3> spacing;
@@ -180,7 +184,12 @@ Args parseArgs(int argc, char** argv) {
         }
         else if (opt == "--material") a.material = value();
         else if (opt == "--list-materials") a.listMaterials = true;
-        else if (opt == "--profile") {
+        else if (opt == "--combine") {
+            const std::string v = value();
+            if (v == "per-pixel") a.combine = sss::MeshCombine::PerPixel;
+            else if (v == "per-vertex") a.combine = sss::MeshCombine::PerVertex;
+            else throw UsageError("--combine: expected per-pixel or per-vertex, got \"" + v + "\"");
+        } else if (opt == "--profile") {
             const std::string v = value();
             const auto profile = sss::parseScatteringProfile(v);
             if (!profile) throw UsageError("--profile: expected calibrated or dipole, got \"" + v + "\"");
@@ -322,6 +331,7 @@ int run(const Args& a) {
     meshOptions.shading = scattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
     meshOptions.cameras = a.cameras;
     meshOptions.profile = a.profile;
+    meshOptions.combine = a.combine;
     meshOptions.samples = a.samples;
     meshOptions.mapResolution = meshOptions.lightMapResolution = a.mapResolution;
     meshOptions.accumulationFrames = a.frames;

@@ -41,6 +41,19 @@ struct BlinnPhongMaterial {
     glm::vec3 ambient{0.05f};               ///< ambient light times albedo (default: 0.05)
 };
 
+/// Where the combine pass reads the scattered light (MeshRenderOptions::combine).
+enum class MeshCombine {
+    /// Every pixel looks its surface point up in the K scattering maps (Dal Corso et al.; 9
+    /// depth taps + 1 map tap per layer per pixel, every frame).
+    PerPixel,
+    /// Cached: the maps are resolved once per vertex after each map update (the vertex-radiosity
+    /// pass, which the per-pixel path already runs for points no layer sees), and every frame
+    /// interpolates those values: a fixed frame costs about a Blinn-Phong frame. Detail finer
+    /// than the mesh's vertices is lost; the exit Fresnel factor, single scattering and the
+    /// highlight stay per pixel.
+    PerVertex,
+};
+
 struct MeshRenderOptions {
     MeshShading shading = MeshShading::BlinnPhong;
     // Scattering (MeshShading::Scattering):
@@ -48,6 +61,8 @@ struct MeshRenderOptions {
     /// Dipole reproduces the thesis). Calibrated also corrects for the part of the profile the
     /// sampling disk cuts off (exactly for a flat surface lit head-on) and adds single scattering.
     ScatteringProfile profile = ScatteringProfile::Calibrated;
+    /// Per-pixel map lookups (the paper's) or the cached per-vertex combine (default: PerPixel).
+    MeshCombine combine = MeshCombine::PerPixel;
     int cameras = 8;               ///< K scattering maps, 1..32 (default: 8)
     int samples = 24;              ///< N proposals per light per frame, 1..4096 (default: 24)
     int mapResolution = 512;       ///< scattering-map side in texels, 16..8192 (default: 512)

@@ -19,45 +19,52 @@ uniform float eta;
 uniform float specularStrength;
 uniform float shininess;
 uniform vec3 environment;    // a uniform environment's radiance times the total diffuse reflectance
+uniform int perVertexRadiosity;  // 1: sss::MeshCombine::PerVertex (no map lookups)
 uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0: none)
 uniform sampler2DArray lightPositions;          // the light buffer: what each light sees
 uniform mat4 lightViewProjection[MAX_LIGHTS];  // world -> light-buffer clip space
 uniform float lightTexelWorld;                 // a light-buffer texel's size at the object, world units
 
 // Whether light l reaches x directly, judged like a shadow map against the light buffer: lit
-// where the surface the light sees at x's texel is x itself (3x3 taps, a fraction). The bias
-// grows with the slope: one texel across, a surface tilted by theta to the light moves
-// tan(theta) texels along it, and the taps reach 1.5 texels away.
+// where the surface the light sees near x's texel is x itself; the 2x2 texels around x, blended
+// bilinearly (a fraction, smooth across texels). The bias grows with the slope: one texel
+// across, a surface tilted by theta to the light moves tan(theta) texels along it.
 float selfVisibility(int l, vec3 x, vec3 n, vec3 toLight) {
     vec4 clip = lightViewProjection[l] * vec4(x, 1.0);
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     ivec2 size = textureSize(lightPositions, 0).xy;
-    ivec2 centre = ivec2(floor(uv * vec2(size)));
+    vec2 texel = uv * vec2(size) - 0.5;
+    ivec2 base = ivec2(floor(texel));
+    vec2 f = texel - vec2(base);
     bool point = lightVector[l].w != 0.0;
     float cosTheta = max(dot(n, toLight), 0.05);
     float bias = lightTexelWorld * (2.0 + 1.5 * sqrt(1.0 - cosTheta * cosTheta) / cosTheta);
     float lit = 0.0;
-    for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-            ivec2 t = clamp(centre + ivec2(dx, dy), ivec2(0), size - 1);
-            vec4 seen = texelFetch(lightPositions, ivec3(t, l), 0);
-            if (seen.w < 0.5) { lit += 1.0; continue; }  // nothing there: no occluder
-            // How much nearer the light the seen surface is than x.
-            float nearer = point ? distance(x, lightVector[l].xyz) - distance(seen.xyz, lightVector[l].xyz)
-                                 : dot(seen.xyz - x, toLight);
-            lit += nearer < bias ? 1.0 : 0.0;
-        }
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 t = clamp(base + o, ivec2(0), size - 1);
+        vec4 seen = texelFetch(lightPositions, ivec3(t, l), 0);
+        // How much nearer the light the seen surface is than x (nothing there: no occluder).
+        float nearer = seen.w < 0.5 ? -1.0
+                       : point ? distance(x, lightVector[l].xyz) - distance(seen.xyz, lightVector[l].xyz)
+                               : dot(seen.xyz - x, toLight);
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        lit += nearer < bias ? w : 0.0;
     }
-    return lit / 9.0;
+    return lit;
 }
 
 layout(location = 0) out vec4 fragColor;
 
 void main() {
-    MapLookup maps = lookUpScatteringMaps(modelPosition, normalize(modelNormal));
-    // A point no layer sees (deep concavities) takes the radiosity interpolated from its
-    // triangle's vertices, which the vertex pass filled in from the surface around them.
-    vec3 radiosity = maps.weight > 0.0 ? maps.radiosity : vertexRadiosity;
+    // Cached combine: the vertices' radiosity only. Otherwise the maps, and a point no layer sees
+    // (deep concavities) takes the radiosity interpolated from its triangle's vertices, which the
+    // vertex pass filled in from the surface around them.
+    vec3 radiosity = vertexRadiosity;
+    if (perVertexRadiosity == 0) {
+        MapLookup maps = lookUpScatteringMaps(modelPosition, normalize(modelNormal));
+        if (maps.weight > 0.0) radiosity = maps.radiosity;
+    }
 
     vec3 nWorld = normalize(worldNormal);
     if (!gl_FrontFacing) nWorld = -nWorld;

@@ -26,6 +26,7 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     p.set("specularStrength", s.specularStrength);
     p.set("shininess", s.shininess);
     p.set("environment", s.environment);
+    p.set("perVertexRadiosity", s.perVertex ? 1 : 0);
     setDipoleUniforms(p, "dipole", s.dipole);
     // The light buffer frames the object's bounding sphere: 2 radii over its resolution.
     const auto [centre, radius] = worldSphere(in.mesh.bounds, in.model);

@@ -24,6 +24,7 @@ struct CombineSettings {
     float shininess = 40.0f;
     glm::vec3 environment{0.0f};  ///< the environment's radiance times R_d: added as is
     DipoleConstants dipole;       ///< the profile; its single-scattering term is added per pixel
+    bool perVertex = false;       ///< MeshCombine::PerVertex: no map lookups, the vertices' radiosity
 };
 
 struct CombineInputs {

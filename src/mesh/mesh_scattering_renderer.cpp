@@ -277,6 +277,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.shininess = r.options.shininess;
     settings.environment = r.options.environment * glm::vec3(r.environmentReflectance);
     settings.dipole = r.dipole;
+    settings.perVertex = r.options.combine == MeshCombine::PerVertex;
     // The vertices' radiosity follows the maps: once per accumulated frame.
     if (r.vertexRadiosityFrames != r.scatteringMaps->frames() || r.vertexRadiosityInputs != r.scatteringMapInputs ||
         r.vertexRadiosityLookup != settings.lookup) {
