@@ -109,6 +109,7 @@ TEST_CASE("volume path tracer: single scattering is the reference's Scattering m
         // standard errors are right (a 2 % bias at the measured ~1 % relative error would
         // double it).
         double z2 = 0.0, maxZ = 0.0, err2 = 0.0, ref2 = 0.0, est2 = 0.0;
+        glm::dvec3 sumDiff(0.0), sumVar(0.0);  // per channel, pooled over the pixels
         int n = 0;
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
@@ -127,6 +128,8 @@ TEST_CASE("volume path tracer: single scattering is the reference's Scattering m
                     ref2 += double(r[c]) * r[c];
                     est2 += 16.0 * kPi * kPi * double(e[c]) * e[c];
                     REQUIRE(e[c] > 0.0f);
+                    sumDiff[c] += diff;
+                    sumVar[c] += 16.0 * kPi * kPi * double(e[c]) * e[c];
                     const double z = diff / (4.0 * kPi * e[c]);
                     z2 += z * z;
                     maxZ = std::max(maxZ, std::abs(z));
@@ -138,12 +141,19 @@ TEST_CASE("volume path tracer: single scattering is the reference's Scattering m
                        << ", estimate " << pt.relativeRmseEstimate);
         CHECK(n > 250);
         CHECK(maxZ < 4.5);
-        CHECK(z2 / n > 0.75);
-        CHECK(z2 / n < 1.3);
-        // The image's relRmse against the reference is what the standard errors predict (measured
-        // ratio ~1.0 at relRmse ~0.012).
-        CHECK(relRmse < 1.25 * std::sqrt(est2 / ref2));
-        CHECK(pt.relativeRmseEstimate < 0.03);
+        // The three channels of a pixel share paths, so mean z^2 scatters more than for n
+        // independent values: measured 0.82 to 1.44 over 7 seeds.
+        CHECK(z2 / n > 0.6);
+        CHECK(z2 / n < 1.7);
+        // Pooled over the pixels (independent), per channel: a bias of 1 % is ~4 standard errors.
+        for (int c = 0; c < 3; ++c) {
+            INFO("channel " << c << ": pooled z " << sumDiff[c] / std::sqrt(sumVar[c]));
+            CHECK(std::abs(sumDiff[c]) < 4.0 * std::sqrt(sumVar[c]));
+        }
+        // The image's relRmse against the reference is what the standard errors predict
+        // (relRmse 0.022 to 0.032 over 8 seeds, within 0.85 to 1.2 of the prediction).
+        CHECK(relRmse < 1.4 * std::sqrt(est2 / ref2));
+        CHECK(pt.relativeRmseEstimate < 0.04);
     }
 }
 
@@ -450,7 +460,7 @@ TEST_CASE("volume path tracer: report of the cost on a bucky-like volume", "[.][
     const int width = 80, height = 45;
     camera.frameTight(volume.worldBounds(), float(width) / float(height));
     for (auto mode : {VolumeScatteringMode::SingleScattering, VolumeScatteringMode::MultipleScattering})
-        for (int grid : {1, 16}) {
+        for (int grid : {1, 4, 16, 32}) {
             VolumePathTracerOptions o;
             o.mode = mode;
             o.samplesPerPixel = 64;
@@ -462,6 +472,8 @@ TEST_CASE("volume path tracer: report of the cost on a bucky-like volume", "[.][
                       << grid << ": " << seconds << " s, " << r.paths << " paths (" << r.coveredPixels
                       << " covered pixels x " << o.samplesPerPixel << "), " << double(r.paths) / seconds / 1e6
                       << " M paths/s, relative standard error " << r.relativeRmseEstimate << ", collisions/path "
-                      << r.meanCollisionsPerPath << ", lookups/path " << r.meanLookupsPerPath << "\n";
+                      << r.meanCollisionsPerPath << ", lookups/path " << r.meanLookupsPerPath
+                      << "; for 1 % relative error: "
+                      << seconds * (r.relativeRmseEstimate / 0.01) * (r.relativeRmseEstimate / 0.01) << " s\n";
         }
 }
