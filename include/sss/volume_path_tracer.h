@@ -2,8 +2,8 @@
 /// @file
 /// Physical ground truth for light scattering in volumes: a Monte Carlo path tracer, in double
 /// precision, for the volume of sss/volume_reference.h treated as a participating medium
-/// (single and multiple scattering, no diffusion or light-volume approximation). The
-/// reference's "Scattering" model and the GPU's light volume are measured against it.
+/// (single and multiple scattering, no diffusion or light-volume approximation): what the
+/// reference's "Scattering" model and the GPU's light volume approximate, to measure them by.
 ///
 /// THE MODEL (renderVolumePathTraced()):
 ///
@@ -80,7 +80,8 @@
 /// had a real collision, an unbiased estimate of 1 - T(camera ray), the reference's converged
 /// alpha A. With a background B, each path's value is X + (1 - hit) B.rgb and its alpha
 /// hit + (1 - hit) B.a, so the pixel estimates L + T B.rgb, A + (1 - A) B.a, the reference's
-/// "over" composite. Pixels whose ray misses the box are B exactly (no paths).
+/// "over" composite. Without jitterPixels, pixels whose centre ray misses the box are B
+/// exactly (no paths); with it every pixel takes its paths (a ray that misses counts as B).
 ///
 /// Statistics. Per pixel, samplesPerPixel independent paths; the pixel is the mean of their
 /// values and its standard error sqrt(sample variance / samplesPerPixel): about 68 % of renders
@@ -145,7 +146,8 @@ struct VolumePathTracerResult {
     /// sqrt(sum of squared standard errors / sum of squared means) over the rgb of the pixels
     /// that took paths: the expected relRmse of `image` against the exact one (0 if all black).
     double relativeRmseEstimate = 0.0;
-    /// Pixels whose ray meets the box (they take samplesPerPixel paths each; the others none).
+    /// Pixels that took samplesPerPixel paths: those whose centre ray meets the box (all of
+    /// them with jitterPixels); the others are the background, without paths.
     int coveredPixels = 0;
     /// Mean paths per pixel over the whole image.
     double meanSamplesPerPixel = 0.0;
