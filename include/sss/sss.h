@@ -29,5 +29,6 @@
 #include "sss/transfer_function.h"
 #include "sss/transfer_function_editor.h"
 #include "sss/volume.h"
+#include "sss/volume_path_tracer.h"
 #include "sss/volume_reference.h"
 #include "sss/volume_scattering_renderer.h"
