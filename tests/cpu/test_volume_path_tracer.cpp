@@ -157,6 +157,65 @@ TEST_CASE("volume path tracer: single scattering is the reference's Scattering m
     }
 }
 
+TEST_CASE("volume path tracer: single scattering is the reference's physical model (VolumeModel::Physical)",
+          "[volume-path-tracer][cpu]") {
+    // The physical model (TF colour as albedo, Henyey-Greenstein phase, grey extinction, no
+    // ambient, no chromaticity) is exactly what the path tracer's single-scattering mode
+    // estimates: no factor between them. Coloured blobs, g = 0.5 and -0.3, a directional light.
+    // Pooled per channel over the pixels, the difference must stay within 4 standard errors,
+    // and the image's relRmse within 1.4x what the path tracer's standard errors predict.
+    const Volume volume = makeBlobsVolume(16);
+    const TransferFunction tf({{0.0f, {0.9f, 0.6f, 0.3f}, 0.0f}, {0.3f, {0.9f, 0.6f, 0.3f}, 0.0f},
+                               {0.6f, {0.4f, 0.8f, 0.9f}, 0.5f}, {1.0f, {0.8f, 0.8f, 0.5f}, 0.8f}});
+    const std::vector<Light> lights{DirectionalLight{.direction = {-0.6f, -0.8f, -0.3f}, .intensity = 3.0f}};
+    Camera camera;
+    camera.setYaw(30.0f);
+    camera.setPitch(20.0f);
+    camera.frameTight(volume.worldBounds(), 1.0f, 0.02f);
+    const int size = 20;
+    for (double g : {0.5, -0.3}) {
+        VolumeReferenceOptions ro;
+        ro.shading = ReferenceShading::Scattering;
+        ro.model = VolumeModel::Physical;
+        ro.anisotropy = g;
+        ro.threads = 2;
+        // Fine steps: the quadrature error (about 1e-4 relative) is far below the path tracer's.
+        ro.stepVoxels = 1.0 / 32.0;
+        ro.shadowStepVoxels = 1.0 / 16.0;
+        const Image reference = renderVolumeReference(volume, tf, 256, glm::mat4(1.0f), lights, camera, size, size, ro);
+        VolumePathTracerOptions po;
+        po.mode = VolumeScatteringMode::SingleScattering;
+        po.g = g;
+        po.samplesPerPixel = 1024;
+        po.threads = 2;
+        const VolumePathTracerResult pt =
+            renderVolumePathTraced(volume, tf, 256, glm::mat4(1.0f), lights, camera, size, size, po);
+        double err2 = 0.0, ref2 = 0.0, est2 = 0.0;
+        glm::dvec3 sumDiff(0.0), sumVar(0.0);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const glm::vec4 r = reference.at(x, y), p = pt.image.at(x, y), e = pt.standardError.at(x, y);
+                if (double(r.a) * po.samplesPerPixel < 20.0) continue;  // too few collisions for a standard error
+                for (int c = 0; c < 3; ++c) {
+                    const double diff = double(p[c]) - r[c];
+                    err2 += diff * diff;
+                    ref2 += double(r[c]) * r[c];
+                    est2 += double(e[c]) * e[c];
+                    sumDiff[c] += diff;
+                    sumVar[c] += double(e[c]) * e[c];
+                }
+            }
+        const double relRmse = std::sqrt(err2 / ref2), predicted = std::sqrt(est2 / ref2);
+        INFO("g " << g << ": relRmse " << relRmse << ", predicted by the standard errors " << predicted);
+        REQUIRE(ref2 > 0.0);
+        CHECK(relRmse < 1.4 * predicted);
+        for (int c = 0; c < 3; ++c) {
+            INFO("channel " << c << ": pooled z " << sumDiff[c] / std::sqrt(sumVar[c]));
+            CHECK(std::abs(sumDiff[c]) < 4.0 * std::sqrt(sumVar[c]));
+        }
+    }
+}
+
 TEST_CASE("volume path tracer: an albedo-1 cube scatters out all the power it takes from the beam",
           "[volume-path-tracer][cpu]") {
     // A unit cube, sigma_t = 2, albedo 1, g = 0.5, lit along -z (model) with E = 1: the beam
