@@ -14,7 +14,7 @@ struct AccuracyOptions {
     bool gpu = true;       ///< render the GPU column (needs a current GL context)
     std::string renderer;  ///< GL renderer name, for the report
     int width = 96, height = 72;  ///< mesh images
-    int pathsPerPixel = 1024;     ///< mesh random walk, per pixel and channel
+    int pathsPerPixel = 1024;     ///< mesh random walk, per pixel and channel; volume path tracer: x 4
     std::filesystem::path imageDir;  ///< if set, the mesh images go there (PNG, display-encoded)
 };
 
@@ -31,3 +31,6 @@ class BenchmarkContext;
 /// GPU renders with both profiles against the mesh random walk (renderMeshRandomWalk): the
 /// bunny front-lit and back-lit (skin1, 3 cm) and a thin potato slab lit from behind.
 AccuracyReport runMeshAccuracy(BenchmarkContext& bench, const AccuracyOptions& options);
+/// GPU volume images (the paper's light volume, physical single scattering) against the path
+/// tracer's single- and multiple-scattering truths: bucky, bonsai, engine, a high-albedo box.
+AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions& options);

@@ -38,7 +38,10 @@ options:
                       incidence_deg, random_walk, random_walk_stderr, dipole, calibrated, gpu,
                       rel_error_gpu). A = mesh: GPU images with both profiles against the mesh
                       random walk (records with scene, profile, rel_rmse); --size sets the image
-                      (default 96x72), --images DIR keeps them. Markdown and a plot as well
+                      (default 96x72), --images DIR keeps them. A = volume: the light volume and
+                      physical single scattering against path-traced single and multiple
+                      scattering (records with scene, method, rel_rmse_single, rel_rmse_multiple,
+                      mean_ratio, ms). Markdown and a plot as well
   --plot FILE         where the sweep's PNG plot goes (default: the JSON path with .png)
   --reference-cache DIR
                       keep the sweeps' CPU references there as OpenEXR and reuse them when the
@@ -155,8 +158,8 @@ std::optional<Options> parseArgs(int argc, char** argv) {
             o.errorSweep = which;
         } else if (arg == "--accuracy") {
             const std::string which = value();
-            if (which != "slab" && which != "mesh")
-                throw UsageError{"--accuracy: expected slab or mesh, got \"" + which + "\""};
+            if (which != "slab" && which != "mesh" && which != "volume")
+                throw UsageError{"--accuracy: expected slab, mesh or volume, got \"" + which + "\""};
             o.accuracy = which;
         } else if (arg == "--plot") {
             o.plotPath = value();
@@ -224,7 +227,9 @@ int main(int argc, char** argv) {
                 a.width = options->width;
                 a.height = options->height;
             }
-            const AccuracyReport report = *options->accuracy == "slab" ? runSlabAccuracy(a) : runMeshAccuracy(bench, a);
+            const AccuracyReport report = *options->accuracy == "slab"   ? runSlabAccuracy(a)
+                                          : *options->accuracy == "mesh" ? runMeshAccuracy(bench, a)
+                                                                         : runVolumeAccuracy(bench, a);
             const nlohmann::ordered_json json = {{"accuracy", *options->accuracy},
                                                  {"renderer", bench.glInfo().renderer},
                                                  {"date", bench.startedAt()},
