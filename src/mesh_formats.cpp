@@ -205,8 +205,15 @@ std::string checkPlyStructure(std::string_view bytes) {
         if (pos >= bytes.size()) return "the PLY header has no end_header line (the file is truncated)";
         const std::size_t end = bytes.find('\n', pos);  // a header line without one is cut off
         if (end == std::string_view::npos) return "the PLY header has no end_header line (the file is truncated)";
-        const std::string_view line = bytes.substr(pos, end - pos);
+        std::string_view line = bytes.substr(pos, end - pos);
         pos = end + 1;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        // Assimp splits the header differently on other control characters (and then never
+        // finds end_header), so the header must be plain text.
+        for (char c : line)
+            if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+                return "the PLY header has a control character (byte " +
+                       std::to_string(static_cast<unsigned char>(c)) + ")";
         const std::vector<std::string_view> t = splitBlank(line);
         if (first) {
             if (t.size() != 1 || t[0] != "ply") return "the first line is not \"ply\"";
@@ -215,6 +222,7 @@ std::string checkPlyStructure(std::string_view bytes) {
         }
         if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;
         if (t[0] == "end_header") {
+            if (t.size() != 1) return "the PLY header has text after end_header on its line";
             ended = true;
         } else if (t[0] == "format") {
             if (t.size() < 2 || format != Format::None) return "the PLY header has a bad format line";
@@ -339,6 +347,30 @@ std::string checkStlStructure(std::string_view bytes) {
            " bytes, this file " + std::to_string(bytes.size());
 }
 
+uint32_t le32(std::string_view b, std::size_t at) {
+    uint32_t v = 0;
+    for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
+    return v;
+}
+
+// An empty string if the GLB container's lengths agree with the file: Assimp allocates what
+// the header declares before reading (4 GiB for a corrupt length field).
+std::string checkGlbStructure(std::string_view bytes) {
+    if (bytes.size() < 20 || bytes.substr(0, 4) != "glTF") return "is not a GLB file (no glTF header)";
+    if (le32(bytes, 4) != 2) return "is a GLB of version " + std::to_string(le32(bytes, 4)) + "; only glTF 2.0 is read";
+    if (le32(bytes, 8) != bytes.size())
+        return "the GLB header declares " + std::to_string(le32(bytes, 8)) + " bytes, but the file has " +
+               std::to_string(bytes.size()) + " (truncated or corrupt)";
+    for (std::size_t at = 12; at < bytes.size();) {
+        if (bytes.size() - at < 8) return "the GLB file ends inside a chunk header";
+        const uint64_t length = le32(bytes, at);
+        if (length > bytes.size() - at - 8)
+            return "a GLB chunk declares " + std::to_string(length) + " bytes, past the end of the file";
+        at += 8 + static_cast<std::size_t>(length);
+    }
+    return "";
+}
+
 // The header token of an OFF file Assimp reads: [ST][C][N]OFF.
 bool isOffHeaderToken(std::string_view t) {
     if (t.substr(0, 2) == "ST") t.remove_prefix(2);
@@ -382,6 +414,10 @@ std::string checkOffStructure(std::string_view bytes) {
         const std::optional<uint64_t> k = parseCount(lines[next][0]);
         if (!k || lines[next].size() - 1 < *k)
             return "face " + std::to_string(f) + " does not list the number of vertices it declares";
+        // Assimp drops such faces (and with a zero count reads past its face array).
+        if (*k == 0 || *k > 9)
+            return "face " + std::to_string(f) + " has " + std::to_string(*k) +
+                   " vertices; the OFF reader (Assimp) takes faces of 1 to 9";
         // Assimp replaces an index out of range by the last vertex, without an error.
         for (uint64_t c = 1; c <= *k; ++c) {
             const std::optional<uint64_t> index = parseCount(lines[next][c]);
@@ -457,6 +493,10 @@ Mesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view byte
         const std::string problem = format == MeshFormat::Ply ? checkPlyStructure(bytes) : checkOffStructure(bytes);
         if (!problem.empty()) fail(problem);
     }
+    if (format == MeshFormat::Glb || (format == MeshFormat::Gltf && bytes.substr(0, 4) == "glTF")) {
+        const std::string problem = checkGlbStructure(bytes);
+        if (!problem.empty()) fail(problem);
+    }
     if (format == MeshFormat::Stl) {
         const std::string problem = checkStlStructure(bytes);
         if (!problem.empty()) fail(problem);
@@ -501,7 +541,8 @@ Mesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view byte
         }
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
-            if (face.mNumIndices > 0 && !face.mIndices) fail(where(m) + "face " + std::to_string(f) + " has no indices");
+            // Assimp's triangulation aborts on empty faces (an ai_assert in Debian's build).
+            if (face.mNumIndices == 0 || !face.mIndices) fail(where(m) + "face " + std::to_string(f) + " has no vertices");
             for (unsigned k = 0; k < face.mNumIndices; ++k)
                 if (face.mIndices[k] >= mesh->mNumVertices)
                     fail(where(m) + "face " + std::to_string(f) + " references vertex " +

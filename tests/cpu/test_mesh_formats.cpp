@@ -322,10 +322,16 @@ TEST_CASE("Mesh::load rejects corrupted PLY, STL, glTF and OFF files naming the 
     rejects("blank.off", "\n\n", "has no triangles");
     rejects("bad_count.off", "OFF\n4 4 6\n0 0 0\n1 0 0\n", "truncated: it has 2 of the 4 vertex lines");
     rejects("bad_index.off", "OFF\n3 1 3\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n", "face 0 references vertex 5");
+    rejects("zero_face.off", "OFF\n3 1 3\n0 0 0\n1 0 0\n0 1 0\n0 0 0\n", "face 0 has 0 vertices");
+    rejects("ten_gon.off", "OFF\n3 1 3\n0 0 0\n1 0 0\n0 1 0\n10 0 1 2 0 1 2 0 1 2 0\n", "face 0 has 10 vertices");
     rejects("nan.off", "OFF\n3 1 3\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n", "vertex 1 has a non-finite coordinate");
     rejects("garbage.gltf", "{\"asset\":{\"version\":\"2.0\"}, \"meshes\": [", "cannot read glTF (Assimp)");
     rejects("lines.gltf",
             tetraGltfJson("{\"mesh\":0}", "0", "data:application/octet-stream;base64," + base64(tetraGltfBuffer()), 1),
             "has no triangles, only");
-    rejects("garbage.glb", std::string("glTF\2\0\0\0\xff\xff\xff\x7f", 12) + "JSON{", "cannot read GLB (Assimp)");
+    rejects("garbage.glb", std::string("glTF\2\0\0\0\xff\xff\xff\x7f", 12) + "JSON{\"asset\":", "the GLB header declares 2147483647 bytes, but the file has 25");
+    rejects("tiny.glb", "glTF\2", "is not a GLB file");
+    std::string longGlb = glb(tetraGltfJson("{\"mesh\":0}", "0", ""), tetraGltfBuffer());
+    longGlb.resize(longGlb.size() - 8);
+    rejects("cut.glb", longGlb, "(truncated or corrupt)");
 }
