@@ -26,14 +26,15 @@ using namespace examples;
 
 constexpr const char* kUsage = R"(usage: sss-render [--mesh PATH] [--volume PATH] [options] --out FILE.png
 
-Renders a triangle mesh (.obj) and/or a scalar volume (.raw) headless with OpenGL 4.5 (EGL).
+Renders a triangle mesh (.obj .ply .stl .gltf .glb .off) and/or a scalar volume (.raw) headless
+with OpenGL 4.5 (EGL).
 PATH may also be a procedural asset: procedural:sphere | procedural:torus | procedural:slab
 (meshes), procedural:blobs | procedural:shell | procedural:bucky (volumes).
 Relative paths not found as given are looked up in the data directory (and its meshes/ and
 volumes/ folders): --data-dir, else $SSS_DATA_DIR, else ../shared/data if it exists.
 
 input:
-  --mesh PATH               triangle mesh (.obj)
+  --mesh PATH               triangle mesh: OBJ, PLY, STL, glTF 2.0 (.gltf/.glb) or OFF
   --volume PATH             raw volume; dims/type parsed from names like bonsai_256x256x256_uint8.raw
   --dims XxYxZ              volume dimensions (overrides the name)
   --type uint8|uint16       voxel type (overrides the name; default uint8)

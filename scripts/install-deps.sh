@@ -14,6 +14,8 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   # libraries
   libglm-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev catch2 libopenexr-dev
+  # Assimp: the PLY, STL, glTF 2.0 and OFF mesh readers (Mesh::load; OBJ stays on tinyobjloader)
+  libassimp-dev
   # clang with libFuzzer and the sanitizer runtimes: the loader fuzz targets (tests/fuzz)
   clang-14 libclang-rt-14-dev
 )

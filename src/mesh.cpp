@@ -1,6 +1,7 @@
 #include "sss/mesh.h"
 
 #include "format.h"
+#include "mesh_formats.h"
 
 #include "sss/error.h"
 #include "sss/log.h"
@@ -264,13 +265,17 @@ Mesh Mesh::load(const std::filesystem::path& path) {
     if (!std::filesystem::exists(path, ec))
         throw Error(ErrorKind::Io, file + ": file does not exist");
     if (std::filesystem::is_directory(path, ec))
-        throw Error(ErrorKind::Io, file + ": is a directory, not an OBJ file");
+        throw Error(ErrorKind::Io, file + ": is a directory, not a mesh file");
     if (!std::ifstream(path))
         throw Error(ErrorKind::Io, file + ": cannot be opened for reading");
 
     std::ifstream in(path, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) throw Error(ErrorKind::Io, file + ": read error");
+    const detail::MeshFormat format = detail::chooseMeshFormat(path, text);
+    if (format != detail::MeshFormat::Obj) return detail::loadMeshWithAssimp(path, text, format);
+
+    // OBJ, through tinyobjloader.
     const ObjTextCheck check = checkObjText(text);
     if (!check.error.empty()) throw Error(ErrorKind::Parse, file + ": " + check.error);
     if (check.shortFaces > 0)

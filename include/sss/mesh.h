@@ -30,17 +30,39 @@ public:
     /// millimetres are many orders of magnitude inside it.
     static constexpr float kMaxCoordinate = 1e18f;
 
-    /// Loads a Wavefront OBJ file (v/vn/f; texture coordinates and materials are ignored).
-    /// Polygons are triangulated (fan; quads split along the shorter diagonal); all shapes are
-    /// merged into one vertex array with one vertex per distinct (position, normal) index pair.
-    /// If any face corner has no normal, or a referenced normal is zero or non-finite, smooth
-    /// area-weighted normals are computed for the whole mesh instead (one vertex per position).
-    /// Lines may end in "\n", "\r\n" or "\r". Faces with fewer than 3 vertices are skipped with
-    /// a warning in the log.
-    /// @throws Error Io if the file is missing or unreadable; Parse if tinyobjloader rejects it,
-    ///         it has no faces, a coordinate is not a decimal number (nan, inf, hex floats) or is
-    ///         outside [-kMaxCoordinate, kMaxCoordinate], or a face index is out of range.
-    ///         Messages start with the path as given.
+    /// Loads a triangle mesh file. The reader is picked by the extension (case-insensitive):
+    ///  - .obj: Wavefront OBJ through tinyobjloader (v/vn/f; texture coordinates and materials are
+    ///    ignored). Polygons are triangulated (fan; quads split along the shorter diagonal); all
+    ///    shapes are merged into one vertex array with one vertex per distinct (position, normal)
+    ///    index pair. If any face corner has no normal, or a referenced normal is zero or
+    ///    non-finite, smooth area-weighted normals are computed for the whole mesh instead (one
+    ///    vertex per position). Lines may end in "\n", "\r\n" or "\r". Faces with fewer than 3
+    ///    vertices are skipped with a warning in the log.
+    ///  - .ply (ASCII, binary little and big endian), .stl (ASCII and binary), .gltf and .glb
+    ///    (glTF 2.0), .off: through Assimp, polygons triangulated, identical vertices joined. All
+    ///    meshes of the scene are merged into one, each placed by its node's world transform
+    ///    (glTF node hierarchies: translation, rotation, scale; a mesh placed by several nodes
+    ///    appears several times; a mirroring transform keeps the triangles counter-clockwise;
+    ///    placements with a singular (zero-scale) transform are skipped with a warning). Points
+    ///    and lines are ignored with a warning. File normals are used if every mesh has usable
+    ///    ones; otherwise, and always for STL (whose facet normals are flat and often zero),
+    ///    corners at the same position are joined and smooth area-weighted normals computed,
+    ///    as for OBJ. Colours, texture coordinates and materials are ignored.
+    /// A missing or unknown extension is resolved by the content ("ply" first line, "glTF" magic,
+    /// an OFF header, a binary STL's size, "solid", a JSON object with "asset"), else read as
+    /// OBJ. A PLY, GLB or OFF signature also overrides a known extension that names another
+    /// format (with a warning), so a PLY saved as .obj still loads.
+    /// Every format is checked alike: coordinates finite and within kMaxCoordinate, face indices
+    /// in range, at least one triangle; PLY and OFF files must hold every item their header
+    /// declares, a binary STL exactly its triangle count (truncated files are rejected, never
+    /// padded). For the Assimp formats, vertices and faces are numbered from 0 within each mesh
+    /// as Assimp stores them (for STL, three vertices per facet), and a mesh is named ("mesh 1
+    /// vertex 3") when the scene has several.
+    /// @throws Error Io if the file is missing or unreadable; Parse if the reader rejects it (its
+    ///         own message is included), it has no triangles, a coordinate is not a decimal
+    ///         number (OBJ: nan, inf, hex floats) or is non-finite or outside
+    ///         [-kMaxCoordinate, kMaxCoordinate], a face index is out of range, or the file is
+    ///         truncated. Messages start with the path as given.
     static Mesh load(const std::filesystem::path& path);
 
     /// Builds a mesh from arrays. If normals is empty, smooth area-weighted normals are
