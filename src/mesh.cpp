@@ -29,7 +29,6 @@ namespace {
 
 std::string str(glm::vec3 v) { return detail::formatVec(v); }
 
-bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 bool isInRange(glm::vec3 v) {
     const auto ok = [](float c) { return std::abs(c) <= Mesh::kMaxCoordinate; };  // false for NaN
