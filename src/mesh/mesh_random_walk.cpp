@@ -3,6 +3,7 @@
 #include "sss/random_walk.h"
 
 #include "mesh/bvh.h"
+#include "mesh/cpu_lights.h"
 #include "parallel.h"
 #include "walk_sampling.h"
 
@@ -63,12 +64,6 @@ void validateOptions(const MeshRandomWalkOptions& o) {
 }
 
 // A light reduced to what the estimator needs.
-struct LightInfo {
-    bool point = false;
-    glm::dvec3 vector{0.0};    // directional: unit vector towards the light; point: position
-    glm::dvec3 radiance{0.0};  // color * intensity
-};
-
 // World-space triangle data.
 struct TriInfo {
     glm::dvec3 p0, p1, p2;
@@ -406,20 +401,7 @@ public:
             m_channels[c].albedo = material.sigmaS[c] / (material.sigmaA[c] + material.sigmaS[c]);
         }
 
-        for (size_t i = 0; i < lights.size(); ++i) {
-            validateLight(lights[i], "renderMeshRandomWalk: lights[" + std::to_string(i) + "]");
-            LightInfo info;
-            if (const auto* d = std::get_if<DirectionalLight>(&lights[i])) {
-                info.vector = -glm::normalize(glm::dvec3(d->direction));
-                info.radiance = glm::dvec3(d->color) * double(d->intensity);
-            } else {
-                const auto& p = std::get<PointLight>(lights[i]);
-                info.point = true;
-                info.vector = glm::dvec3(p.position);
-                info.radiance = glm::dvec3(p.color) * double(p.intensity);
-            }
-            if (info.radiance.x > 0.0 || info.radiance.y > 0.0 || info.radiance.z > 0.0) m_lights.push_back(info);
-        }
+        m_lights = detail::prepareCpuLights(lights, "renderMeshRandomWalk");
 
         const auto& idx = mesh.indices();
         const double side = det < 0.0 ? -1.0 : 1.0;
@@ -555,7 +537,7 @@ private:
         const std::uint64_t pixel = static_cast<std::uint64_t>(y) * m_width + x;
         for (const Channel& ch : m_channels) {
             bool lit = false;
-            for (const LightInfo& l : m_lights) lit = lit || l.radiance[ch.index] > 0.0;
+            for (const detail::CpuLight& l : m_lights) lit = lit || l.radiance[ch.index] > 0.0;
             if (!lit || !(ch.albedo > 0.0)) continue;  // exactly black
             std::uint64_t key = detail::mix64(m_options.seed + 0x9e3779b97f4a7c15ull);
             key = detail::mix64(key ^ (pixel + 0x632be59bd9b4e019ull));
@@ -679,7 +661,7 @@ private:
     // p_HG * T cos_out / cos_in * exp(-sigma_t |p - x|) * falloff * V for one light, per unit
     // light radiance, divided by the probability q that the roulette by the distance bound
     // let it be estimated. Updates `guess` to the entry point found.
-    double beam(const glm::dvec3& p, const glm::dvec3& dir, const LightInfo& l, const Channel& ch, double q,
+    double beam(const glm::dvec3& p, const glm::dvec3& dir, const detail::CpuLight& l, const Channel& ch, double q,
                 detail::Xoshiro256& rng, EntryGuess& guess, Stats& stats) const {
         glm::dvec3 wl = l.point ? glm::normalize(l.vector - p) : l.vector;
         const double cosGuess = glm::dot(guess.normal, wl);
@@ -746,7 +728,7 @@ private:
     int m_width, m_height;
     double m_g, m_eta;
     std::array<Channel, 3> m_channels;
-    std::vector<LightInfo> m_lights;
+    std::vector<detail::CpuLight> m_lights;
     std::vector<TriInfo> m_tris;
     glm::dvec3 m_lo{0.0}, m_hi{0.0};  // bounding box, a little enlarged
     double m_offset = 0.0;

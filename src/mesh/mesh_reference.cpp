@@ -3,6 +3,7 @@
 #include "sss/mesh_reference.h"
 
 #include "mesh/bvh.h"
+#include "mesh/cpu_lights.h"
 #include "parallel.h"
 #include "sss/error.h"
 
@@ -83,12 +84,6 @@ uint64_t mix64(uint64_t z) {
 }
 
 // A light reduced to what the integrand needs.
-struct LightInfo {
-    bool point = false;
-    glm::dvec3 vector{0.0};    // directional: unit vector towards the light; point: position
-    glm::dvec3 radiance{0.0};  // color * intensity
-};
-
 // World-space triangle data.
 struct TriInfo {
     glm::dvec3 p0, e1, e2;  // p1 = p0 + e1, p2 = p0 + e2
@@ -214,20 +209,7 @@ public:
 
         m_constants = deriveDipoleConstants(material, options.millimetresPerUnit, options.profile);
 
-        for (size_t i = 0; i < lights.size(); ++i) {
-            validateLight(lights[i], "renderMeshReference: lights[" + std::to_string(i) + "]");
-            LightInfo info;
-            if (const auto* d = std::get_if<DirectionalLight>(&lights[i])) {
-                info.vector = -glm::normalize(glm::dvec3(d->direction));
-                info.radiance = glm::dvec3(d->color) * double(d->intensity);
-            } else {
-                const auto& p = std::get<PointLight>(lights[i]);
-                info.point = true;
-                info.vector = glm::dvec3(p.position);
-                info.radiance = glm::dvec3(p.color) * double(p.intensity);
-            }
-            if (info.radiance.x > 0.0 || info.radiance.y > 0.0 || info.radiance.z > 0.0) m_lights.push_back(info);
-        }
+        m_lights = detail::prepareCpuLights(lights, "renderMeshReference");
 
         const auto& idx = mesh.indices();
         const double side = det < 0.0 ? -1.0 : 1.0;
@@ -325,7 +307,7 @@ private:
         const std::array<glm::dvec3, 4> probes{tri.centroid, 0.9 * tri.p0 + 0.1 * tri.centroid,
                                                0.9 * (tri.p0 + tri.e1) + 0.1 * tri.centroid,
                                                0.9 * (tri.p0 + tri.e2) + 0.1 * tri.centroid};
-        for (const LightInfo& l : m_lights) {
+        for (const detail::CpuLight& l : m_lights) {
             glm::dvec3 wi = l.vector;
             double falloff = 1.0;
             if (l.point) {
@@ -511,16 +493,9 @@ private:
         const glm::dvec3 xi = tri.p0 + bary.x * tri.e1 + bary.y * tri.e2;
 
         glm::dvec3 f(0.0);
-        for (const LightInfo& l : m_lights) {
-            glm::dvec3 wi = l.vector;
-            glm::dvec3 irradiance = l.radiance;
-            if (l.point) {
-                const glm::dvec3 d = l.vector - xi;
-                const double d2 = glm::dot(d, d);
-                if (!(d2 > 0.0)) continue;
-                wi = d / std::sqrt(d2);
-                irradiance /= d2;
-            }
+        for (const detail::CpuLight& l : m_lights) {
+            glm::dvec3 wi, irradiance;
+            if (!detail::lightAt(l, xi, wi, irradiance)) continue;
             const glm::dvec3 ni = shadingNormal(tri, bary.x, bary.y, wi);
             const double cosI = glm::dot(ni, wi);
             if (!(cosI > 0.0)) continue;
@@ -542,16 +517,9 @@ private:
                                 const TriInfo& tri) const {
         glm::dvec3 sum(0.0);
         if (!(m_constants.singleScattering > 0.0)) return sum;
-        for (const LightInfo& l : m_lights) {
-            glm::dvec3 wi = l.vector;
-            glm::dvec3 irradiance = l.radiance;
-            if (l.point) {
-                const glm::dvec3 d = l.vector - xo;
-                const double d2 = glm::dot(d, d);
-                if (!(d2 > 0.0)) continue;
-                wi = d / std::sqrt(d2);
-                irradiance /= d2;
-            }
+        for (const detail::CpuLight& l : m_lights) {
+            glm::dvec3 wi, irradiance;
+            if (!detail::lightAt(l, xo, wi, irradiance)) continue;
             const double cosI = glm::dot(no, wi);
             if (!(cosI > 0.0)) continue;
             const double side = glm::dot(tri.ng, wi) < 0.0 ? -1.0 : 1.0;
@@ -562,7 +530,7 @@ private:
     }
 
     // Shadow ray: is light `l` (unit direction towards it `wi`) unoccluded from `origin`?
-    bool reachesLight(const glm::dvec3& origin, const LightInfo& l, const glm::dvec3& wi) const {
+    bool reachesLight(const glm::dvec3& origin, const detail::CpuLight& l, const glm::dvec3& wi) const {
         detail::BvhRay ray;
         ray.origin = origin;
         if (l.point) {
@@ -577,7 +545,7 @@ private:
     MeshReferenceOptions m_options;
     int m_width, m_height;
     DipoleConstants m_constants;
-    std::vector<LightInfo> m_lights;
+    std::vector<detail::CpuLight> m_lights;
     std::vector<TriInfo> m_tris;
     double m_totalArea = 0.0;
     double m_sceneSize = 0.0;
