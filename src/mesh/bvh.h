@@ -4,7 +4,10 @@
 // ray-triangle tests, closest-hit and any-hit queries. Immutable after construction, so one
 // instance may be queried from many threads at once.
 
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +25,21 @@ struct BvhRay {
     double tMin = 0.0;
     double tMax = std::numeric_limits<double>::infinity();
 };
+
+/// The camera ray of pixel (x, y) of a width x height image (row 0 at the top), through the
+/// pixel centre: the segment from the near to the far plane (t in (0, 1)), as the CPU mesh
+/// renderers define it (sss/mesh_reference.h).
+inline BvhRay pixelRay(const glm::dmat4& inverseViewProjection, int x, int y, int width, int height) {
+    const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, 1.0 - (y + 0.5) / height * 2.0);
+    const glm::dvec4 a = inverseViewProjection * glm::dvec4(ndc, -1.0, 1.0);
+    const glm::dvec4 b = inverseViewProjection * glm::dvec4(ndc, 1.0, 1.0);
+    BvhRay ray;
+    ray.origin = glm::dvec3(a) / a.w;
+    ray.direction = glm::dvec3(b) / b.w - ray.origin;
+    ray.tMin = 0.0;
+    ray.tMax = 1.0;
+    return ray;
+}
 
 /// A ray-triangle intersection: ray parameter t, triangle index (into the indices given at
 /// construction, divided by 3) and the barycentric weights u, v of the triangle's second and

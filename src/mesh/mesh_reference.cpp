@@ -380,15 +380,7 @@ private:
 
     PixelResult renderPixel(int x, int y, Scratch& scratch) const {
         PixelResult result;
-        const glm::dvec2 ndc((x + 0.5) / m_width * 2.0 - 1.0, 1.0 - (y + 0.5) / m_height * 2.0);
-        const glm::dvec4 a = m_inverseViewProjection * glm::dvec4(ndc, -1.0, 1.0);
-        const glm::dvec4 b = m_inverseViewProjection * glm::dvec4(ndc, 1.0, 1.0);
-        const glm::dvec3 nearPoint = glm::dvec3(a) / a.w, farPoint = glm::dvec3(b) / b.w;
-        detail::BvhRay ray;
-        ray.origin = nearPoint;
-        ray.direction = farPoint - nearPoint;
-        ray.tMin = 0.0;
-        ray.tMax = 1.0;
+        const detail::BvhRay ray = detail::pixelRay(m_inverseViewProjection, x, y, m_width, m_height);
         const auto hit = m_bvh->closestHit(ray);
         if (!hit) return result;
         result.covered = true;

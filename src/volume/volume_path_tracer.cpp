@@ -2,6 +2,8 @@
 // estimation with ratio tracking, RGB throughput (see sss/volume_path_tracer.h).
 #include "sss/volume_path_tracer.h"
 
+#include "volume/box_clip.h"
+
 #include "format.h"
 #include "parallel.h"
 #include "walk_sampling.h"
@@ -68,21 +70,7 @@ double opticalDepthPerVoxel(double alpha) {
     return std::min(-std::log1p(-alpha), kMaxOpticalDepthPerVoxel);
 }
 
-// Clips origin + t * dir, t in [tMin, tMax], to the box (the reference's clip).
-bool clipToBox(glm::dvec3 boxMin, glm::dvec3 boxMax, glm::dvec3 origin, glm::dvec3 dir, double& tMin,
-               double& tMax) {
-    for (int a = 0; a < 3; ++a) {
-        if (dir[a] == 0.0) {
-            if (origin[a] < boxMin[a] || origin[a] > boxMax[a]) return false;
-            continue;
-        }
-        double t0 = (boxMin[a] - origin[a]) / dir[a], t1 = (boxMax[a] - origin[a]) / dir[a];
-        if (t0 > t1) std::swap(t0, t1);
-        tMin = std::max(tMin, t0);
-        tMax = std::min(tMax, t1);
-    }
-    return tMin < tMax;
-}
+using detail::clipToBox;
 
 struct PreparedLight {
     bool directional = true;

@@ -2,6 +2,7 @@
 
 #include "format.h"
 #include "parallel.h"
+#include "volume/box_clip.h"
 
 #include "sss/error.h"
 #include "sss/image_compare.h"
@@ -166,17 +167,7 @@ struct VolumeReference::Impl {
 
     // Clips origin + t * dir, t in [tMin, tMax], to the box; false if nothing is left.
     bool clip(glm::dvec3 origin, glm::dvec3 dir, double& tMin, double& tMax) const {
-        for (int a = 0; a < 3; ++a) {
-            if (dir[a] == 0.0) {
-                if (origin[a] < boxMin[a] || origin[a] > boxMax[a]) return false;
-                continue;
-            }
-            double t0 = (boxMin[a] - origin[a]) / dir[a], t1 = (boxMax[a] - origin[a]) / dir[a];
-            if (t0 > t1) std::swap(t0, t1);
-            tMin = std::max(tMin, t0);
-            tMax = std::min(tMax, t1);
-        }
-        return tMin < tMax;
+        return detail::clipToBox(boxMin, boxMax, origin, dir, tMin, tMax);
     }
 
     // Number of equal pieces of length <= step covering `length`.
