@@ -12,6 +12,7 @@
 #include <cassert>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <sstream>
@@ -49,6 +50,8 @@ void validateOptions(const SlabRandomWalkOptions& o) {
         invalid(w, "SlabRandomWalkOptions::profileMaxRadius must be finite and > 0, got " + num(o.profileMaxRadius));
     if (o.profileBins < 1 || o.profileBins > 1000000)
         invalid(w, "SlabRandomWalkOptions::profileBins must be in [1, 1000000], got " + num(o.profileBins));
+    if (std::isnan(o.thickness) || o.thickness <= 0.0)
+        invalid(w, "SlabRandomWalkOptions::thickness must be > 0 (infinity: a half-space), got " + num(o.thickness));
 }
 
 void validateIncidence(const std::string& where, double incidenceDeg) {
@@ -87,6 +90,7 @@ Dir scatter(const Dir& d, double g, Rng& rng) { return detail::scatterHenyeyGree
 struct Counts {
     std::int64_t single = 0, multiple = 0, absorbed = 0, truncated = 0, events = 0;
     std::int64_t cone = 0, coneSingle = 0;
+    std::int64_t transmitted = 0, transmittedSingle = 0, ballistic = 0, transmittedCone = 0;
     std::vector<std::int64_t> angle, angleSingle, profile, profileSingle;
 
     Counts(int angleBins, int profileBins)
@@ -99,6 +103,10 @@ struct Counts {
         events += o.events;
         cone += o.cone;
         coneSingle += o.coneSingle;
+        transmitted += o.transmitted;
+        transmittedSingle += o.transmittedSingle;
+        ballistic += o.ballistic;
+        transmittedCone += o.transmittedCone;
         for (size_t i = 0; i < angle.size(); ++i) angle[i] += o.angle[i], angleSingle[i] += o.angleSingle[i];
         for (size_t i = 0; i < profile.size(); ++i) profile[i] += o.profile[i], profileSingle[i] += o.profileSingle[i];
     }
@@ -118,6 +126,7 @@ struct Walk {
     int angleBins = 1;
     double profileMaxRadius = 1.0;
     int profileBins = 1;
+    double thickness = std::numeric_limits<double>::infinity();
 
     void path(const ChannelMedium& m, Rng& rng, Counts& c) const {
         double px = 0.0, py = 0.0, pz = 0.0;
@@ -137,7 +146,31 @@ struct Walk {
                     d.z = -d.z;  // internal (possibly total) reflection
                     continue;
                 }
-                tallyExit(events, cosT, std::sqrt(px * px + py * py), c);
+                if (events == 0)
+                    ++c.ballistic;  // back out unreflected by the medium: only off a finite slab's bottom
+                else
+                    tallyExit(events, cosT, std::sqrt(px * px + py * py), c);
+                break;
+            }
+            if (d.z < 0.0 && s * -d.z >= pz + thickness) {
+                // Reaches the bottom of a finite slab first (never for the half-space).
+                const double t = (pz + thickness) / -d.z;
+                px += t * d.x;
+                py += t * d.y;
+                pz = -thickness;
+                double cosT;
+                const double f = fresnel(eta, -d.z, cosT);
+                if (f >= 1.0 || rng.uniform() < f) {
+                    d.z = -d.z;
+                    continue;
+                }
+                if (events == 0) {
+                    ++c.ballistic;
+                } else {
+                    ++c.transmitted;
+                    if (events == 1) ++c.transmittedSingle;
+                    if (cosT >= coneCos) ++c.transmittedCone;
+                }
                 break;
             }
             px += s * d.x;
@@ -158,7 +191,7 @@ struct Walk {
     }
 
     void tallyExit(std::int64_t events, double cosOut, double r, Counts& c) const {
-        assert(events >= 1);  // unscattered light never turns back in a half-space
+        assert(events >= 1);
         const bool single = events == 1;
         (single ? c.single : c.multiple) += 1;
         const int a = std::min(static_cast<int>(cosOut * angleBins), angleBins - 1);
@@ -208,6 +241,7 @@ SlabRandomWalkResult simulateSlab(const ScatteringMaterial& material, double inc
     walk.angleBins = options.angleBins;
     walk.profileMaxRadius = options.profileMaxRadius;
     walk.profileBins = options.profileBins;
+    walk.thickness = options.thickness;
 
     std::array<ChannelMedium, 3> media;
     for (int c = 0; c < 3; ++c) {
@@ -251,6 +285,10 @@ SlabRandomWalkResult simulateSlab(const ScatteringMaterial& material, double inc
         r.truncated = estimate(k.truncated, 1.0);
         r.coneRadiance = estimate(k.cone, coneSolidAngle);
         r.coneRadianceSingle = estimate(k.coneSingle, coneSolidAngle);
+        r.transmitted = estimate(k.transmitted, 1.0);
+        r.transmittedSingle = estimate(k.transmittedSingle, 1.0);
+        r.ballistic = estimate(k.ballistic, 1.0);
+        r.transmittedConeRadiance = estimate(k.transmittedCone, coneSolidAngle);
         for (int i = 0; i < options.angleBins; ++i) {
             const double m1 = result.angleBinEdges[i], m2 = result.angleBinEdges[i + 1];
             const double omega = pi * (m2 * m2 - m1 * m1);

@@ -41,6 +41,13 @@ enum class ScatteringProfile {
 inline constexpr int kProfileIncidenceNodes = 6;
 /// Entry cosine of node i of the calibration, 1 - 0.19 i.
 constexpr double profileIncidenceNode(int i) { return 1.0 - 0.19 * i; }
+/// The calibrated profile's transmission factor (light going through a thin part, see
+/// profileTransmissionScale()) is tabulated at these many reduced optical thicknesses,
+/// profileThicknessNode(i) = 0.25 * 2^i (0.25 to 16), its logarithm interpolated linearly in log2
+/// between.
+inline constexpr int kProfileThicknessNodes = 7;
+/// Reduced optical thickness sigma_t' d of node i of the transmission calibration, 0.25 * 2^i.
+constexpr double profileThicknessNode(int i) { return 0.25 * static_cast<double>(1 << i); }
 
 /// "calibrated" or "dipole".
 std::string_view toString(ScatteringProfile profile);
@@ -99,6 +106,14 @@ struct DipoleConstants {
     /// profileCalibrationScale(alpha', eta, node) per channel.
     std::array<glm::dvec3, kProfileIncidenceNodes> incidenceScale{
         glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0)};
+    /// Per-channel factor on S_d where light goes through (the dipole's back-lit branch), at the
+    /// reduced optical thicknesses profileThicknessNode(i) of the medium between x_i and x_o
+    /// (estimated per pair as sigma_t' (x . n_o - x . n_i) / 2), log-interpolated in log2 thickness
+    /// and held at both ends: 1 for the dipole; profileTransmissionScale(alpha', eta, node) per channel
+    /// for the calibrated profile.
+    std::array<glm::dvec3, kProfileThicknessNodes> transmissionScale{
+        glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0),
+        glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0)};
     /// Single-scattering albedo sigma_s / sigma_t (UNREDUCED), per channel.
     glm::dvec3 albedo{0.0};
     double g = 0.0;                 ///< Henyey-Greenstein mean cosine of the single-scattering term
@@ -133,6 +148,33 @@ DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double
 /// @throws Error InvalidArgument for an albedo outside [0, 1], or an eta or cosIncidence that is
 ///         not finite.
 double profileCalibrationScale(double reducedAlbedo, double eta, double cosIncidence = 1.0);
+
+/// The calibrated profile's factor for light going THROUGH a slab of reduced optical thickness
+/// `opticalThickness` = sigma_t' d, for one channel of reduced albedo `reducedAlbedo` in [0, 1]
+/// and relative index `eta`: the random walk's diffuse transmittance (light leaving the far face
+/// after scattering at least once; simulateSlab with a finite thickness, normal incidence)
+/// divided by the dipole's (profileSlabTransmittance() of the dipole), from the table that
+/// sss-calibrate --transmission generates. Thin slabs: the dipole transmits up to 4x too much
+/// (diffusion needs several mean free paths); thick ones: too little (it ignores the far face
+/// and falls off as exp(-sigma_tr d) / d, not exp(-sigma_tr d)). Interpolated linearly in eta,
+/// log-linearly in s = sqrt(1 - alpha') and in log2 of the thickness (the logarithm of the factor) (held at the table's ends:
+/// eta in [1, 2.5], thickness in [0.25, 16]).
+/// @throws Error InvalidArgument for an albedo outside [0, 1], a thickness not > 0 or an eta that
+///         is not finite.
+double profileTransmissionScale(double reducedAlbedo, double eta, double opticalThickness);
+
+/// Integral of S_d over the far face of a slab: the entry point at the origin with normal +z, lit
+/// at normal incidence, the exit points on the plane z = -thickness with normal -z (the dipole's
+/// back-lit branch, including profileScale and the profile's transmissionScale), per channel,
+/// without Fresnel factors. Same quadrature as dipolePlaneIntegral().
+/// @throws Error InvalidArgument unless thickness is finite and > 0.
+glm::dvec3 dipoleSlabTransmissionIntegral(const DipoleConstants& constants, double thickness);
+
+/// Diffuse transmittance of the profile through a slab of thickness `thickness` (constants'
+/// unit) lit at normal incidence, per unit incident power: T(eta, 1) times
+/// dipoleSlabTransmissionIntegral() times fresnelHemisphereIntegral(). What the random walk's
+/// SlabChannelResult::transmitted estimates physically.
+glm::dvec3 profileSlabTransmittance(const DipoleConstants& constants, double thickness);
 
 /// Integral of S_d over the plane z = 0 around an entry point at the origin with normal +z,
 /// lit from w_i = (sin theta, 0, cos theta) at cos theta = `cosIncidence` in (0, 1], out to

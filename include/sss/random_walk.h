@@ -78,6 +78,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace sss {
@@ -103,6 +104,13 @@ struct SlabRandomWalkOptions {
     double profileMaxRadius = 10.0;
     /// Equal-width annuli of the radial exit profile, in [1, 1000000] (default: 100).
     int profileBins = 100;
+    /// Thickness of the medium in mm, > 0; infinity (the default) is the half-space. A finite
+    /// value makes it the slab -thickness < z < 0 with a second smooth boundary at the bottom (the
+    /// same eta, the same exact Fresnel crossing); what leaves through it is tallied in
+    /// SlabChannelResult::transmitted and the fields after it. The tallies of the top boundary
+    /// keep their meaning (light that comes back out of the top unscattered, after an internal
+    /// reflection at the bottom, counts as ballistic).
+    double thickness = std::numeric_limits<double>::infinity();
 };
 
 /// A Monte Carlo estimate and its standard error (see the file comment).
@@ -126,6 +134,17 @@ struct SlabChannelResult {
     /// Radial exit profile R(r) per annulus (SlabRandomWalkResult::profileBinEdges), mm^-2.
     std::vector<Estimate> profile;
     std::vector<Estimate> profileSingle;  ///< its single-scattering part
+    /// Finite slabs (SlabRandomWalkOptions::thickness): power leaving through the bottom after
+    /// scattering at least once (single + multiple), its single-scattering part, the power
+    /// leaving unscattered through either face (the refracted beam attenuated by
+    /// exp(-sigma_t thickness / cos), after internal reflections), and the radiance leaving the
+    /// bottom within coneHalfAngleDeg of its normal after scattering (per unit irradiance on the
+    /// top). All 0 for the half-space. diffuse + transmitted + ballistic + absorbed + truncated +
+    /// specular = 1.
+    Estimate transmitted;
+    Estimate transmittedSingle;
+    Estimate ballistic;
+    Estimate transmittedConeRadiance;
     std::int64_t truncatedPaths = 0;      ///< number of truncated paths
     double meanEvents = 0.0;              ///< mean scattering events per path (the cost)
 };

@@ -35,6 +35,9 @@
 // Entry cosines at which the calibrated profile's factor is given: mu = 1 - 0.19 i
 // (sss::profileIncidenceNode), interpolated linearly between.
 const int DIRPOLE_INCIDENCE_NODES = 6;
+// Reduced optical thicknesses at which its transmission factor is given: 0.25 * 2^i
+// (sss::profileThicknessNode), its logarithm interpolated linearly in log2 between.
+const int DIRPOLE_THICKNESS_NODES = 7;
 
 // Material constants, derived once on the CPU in double (sss::deriveDipoleConstants) and
 // uploaded as uniforms, e.g. `uniform DirpoleParams dirpole;` set member by member
@@ -53,6 +56,7 @@ struct DirpoleParams {
     // The profile on top of the dipole (sss::ScatteringProfile): 1, 0 for the paper's dipole.
     real3 profileScale;   // per-channel factor on S_d (the renderer's cut-tail correction)
     real3 incidenceScale[DIRPOLE_INCIDENCE_NODES];  // calibration per channel at the entry cosines
+    real3 transmissionScale[DIRPOLE_THICKNESS_NODES];  // calibration per channel at the thicknesses
     real3 albedo;         // single-scattering albedo sigma_s / sigma_t (unreduced)
     real g;               // Henyey-Greenstein mean cosine of the single-scattering term
     real singleScattering;  // weight of the single-scattering term (1 or 0)
@@ -146,14 +150,29 @@ real3 dirpoleIncidenceScale(DirpoleParams p, real mu) {
     return p.incidenceScale[i] * (1.0 - t) + p.incidenceScale[i + 1] * t;
 }
 
-// The calibration applies where light comes back out on the side it went in (mu0 = -n_o.w12 > 0,
-// the dipole's front-lit branch: reflection, which it overestimates by 22-37 %). Where it goes
-// through (mu0 < 0, the back-lit branch: thin parts lit from behind) the dipole alone measures
-// 0.89-0.98 of the mesh random walk on a back-lit slab, and the reflection factor would halve it;
-// the two blend smoothly over -0.2 < mu0 < 0.2 (side-lit pairs).
-real3 dirpoleTransportScale(DirpoleParams p, real3 wi, real3 ni, real3 w12, real3 no) {
+// The transmission factor of one channel (index c) through a reduced optical thickness tau.
+real dirpoleThicknessScale(DirpoleParams p, real tau, int c) {
+    real x = clamp(log2(max(tau, 1e-6)) + 2.0, 0.0, 6.0);
+    int i = int(min(floor(x), 5.0));
+    real t = x - real(i);
+    // Log-linear, as the table is interpolated on the CPU (the factor spans orders of magnitude).
+    real a = max(p.transmissionScale[i][c], 1e-30);
+    return a * pow(max(p.transmissionScale[i + 1][c], 1e-30) / a, t);
+}
+
+// The calibration of light that comes back out on the side it went in (mu0 = -n_o.w12 > 0, the
+// dipole's front-lit branch: reflection, which it overestimates by 22-37 %) is the half-space
+// factor at the entry cosine. Light that goes through (mu0 < 0, the back-lit branch: thin parts
+// lit from behind) gets the slab-transmission factor at the thickness between the two points,
+// sigma_t' (x.n_o - x.n_i) / 2 (exact for a slab, whatever the pair's lateral offset). The two
+// blend smoothly over -0.2 < mu0 < 0.2 (side-lit pairs).
+real3 dirpoleTransportScale(DirpoleParams p, real3 wi, real3 ni, real3 w12, real3 x, real3 no) {
     real w = smoothstep(-0.2, 0.2, -dot(no, w12));
-    return dirpoleIncidenceScale(p, dot(wi, ni)) * w + real3(1.0 - w);
+    real d = max(0.5 * (dot(x, no) - dot(x, ni)), 0.0);
+    real3 tau = d / (3.0 * p.D);  // sigma_t' = 1 / (3 D)
+    real3 through = real3(dirpoleThicknessScale(p, tau.x, 0), dirpoleThicknessScale(p, tau.y, 1),
+                          dirpoleThicknessScale(p, tau.z, 2));
+    return dirpoleIncidenceScale(p, dot(wi, ni)) * w + through * (1.0 - w);
 }
 
 // S_d for RGB (length^-2, no Fresnel factors). Normals and w_i must be unit vectors.
@@ -167,7 +186,7 @@ real3 dirpoleSd(DirpoleParams p, real3 xi, real3 ni, real3 wi, real3 xo, real3 n
     real blue = dirpoleChannel(x, w12, niStar, no, p.sigmaTr.z, p.D.z, p.de.z, p.sigmaT.z, p.A, p.cPhi, p.cE);
     return real3(dirpoleSanitize(red * p.normalization), dirpoleSanitize(green * p.normalization),
                  dirpoleSanitize(blue * p.normalization)) *
-           (p.profileScale * dirpoleTransportScale(p, wi, ni, w12, no));
+           (p.profileScale * dirpoleTransportScale(p, wi, ni, w12, x, no));
 }
 
 // Exact dielectric Fresnel transmittance T = 1 - F_r for light crossing a boundary of relative

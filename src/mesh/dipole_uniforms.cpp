@@ -15,6 +15,9 @@ void setDipoleUniforms(const gl::Program& p, const std::string& name, const Dipo
     p.set(name + ".profileScale", glm::vec3(c.profileScale));
     for (int i = 0; i < kProfileIncidenceNodes; ++i)
         p.set(name + ".incidenceScale[" + std::to_string(i) + "]", glm::vec3(c.incidenceScale[static_cast<size_t>(i)]));
+    for (int i = 0; i < kProfileThicknessNodes; ++i)
+        p.set(name + ".transmissionScale[" + std::to_string(i) + "]",
+              glm::vec3(c.transmissionScale[static_cast<size_t>(i)]));
     p.set(name + ".albedo", glm::vec3(c.albedo));
     p.set(name + ".g", static_cast<float>(c.g));
     p.set(name + ".singleScattering", static_cast<float>(c.singleScattering));

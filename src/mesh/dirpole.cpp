@@ -35,6 +35,8 @@ dirpole_cpp::DirpoleParams toParams(const DipoleConstants& c) {
     p.normalization = c.normalization;
     p.profileScale = c.profileScale;
     for (int i = 0; i < kProfileIncidenceNodes; ++i) p.incidenceScale[i] = c.incidenceScale[static_cast<size_t>(i)];
+    for (int i = 0; i < kProfileThicknessNodes; ++i)
+        p.transmissionScale[i] = c.transmissionScale[static_cast<size_t>(i)];
     p.albedo = c.albedo;
     p.g = c.g;
     p.singleScattering = c.singleScattering;

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -451,5 +452,48 @@ TEST_CASE("random walk: report of total diffuse reflectance, walk against the di
                         c == 0 ? "R" : c == 1 ? "G" : "B", k.alphaPrime[c], w.diffuse.value, w.diffuse.standardError,
                         w.single.value, diffuseLit[c], w.diffuse.value / t0, classic[c], t0 * plane[c] * hemisphere);
         }
+    }
+}
+
+TEST_CASE("random walk: a finite slab conserves energy and lets the exact unscattered beam through", "[random-walk][cpu]") {
+    // eta = 1 (no reflection at either face), normal incidence, sigma_t = 1 / mm, 0.7 mm: the
+    // unscattered beam leaves the bottom with exp(-0.7) exactly, whatever the albedo. Albedo 0
+    // scatters nothing, so nothing else leaves either face.
+    SlabRandomWalkOptions o;
+    o.paths = 200000;
+    o.thickness = 0.7;
+    o.seed = 5;
+    const SlabRandomWalkResult matched = simulateSlab(withAlbedos(0.9, 0.5, 0.0, 1.0), 0.0, o);
+    for (const SlabChannelResult& w : matched.channels) checkAgainst(w.ballistic, std::exp(-0.7), 1.5e-3, "unscattered");
+    CHECK(matched.channels[2].transmitted.value == 0.0);
+    CHECK(matched.channels[2].diffuse.value == 0.0);
+    CHECK(matched.channels[0].transmitted.value > 0.1);  // a thin, bright slab lets light through
+    CHECK(matched.channels[0].transmitted.value > matched.channels[1].transmitted.value);
+    // With Fresnel faces every path ends in exactly one tally: the fractions sum to 1.
+    const SlabRandomWalkResult glass = simulateSlab(withAlbedos(0.99, 0.7, 0.2, 1.4), 30.0, o);
+    for (const SlabChannelResult& w : glass.channels) {
+        CHECK(glass.specular + w.diffuse.value + w.transmitted.value + w.ballistic.value + w.absorbed.value +
+                  w.truncated.value ==
+              Approx(1.0).margin(1e-12));
+        CHECK(w.transmittedSingle.value <= w.transmitted.value);
+        CHECK(w.transmittedConeRadiance.value > 0.0);
+    }
+    // A slab far thicker than any path reaches is the half-space, draw for draw.
+    SlabRandomWalkOptions deep = o;
+    deep.paths = 20000;
+    deep.thickness = 1e12;
+    SlabRandomWalkOptions half = deep;
+    half.thickness = std::numeric_limits<double>::infinity();
+    const SlabRandomWalkResult a = simulateSlab(withAlbedos(0.95, 0.5, 0.1, 1.3), 0.0, deep);
+    const SlabRandomWalkResult b = simulateSlab(withAlbedos(0.95, 0.5, 0.1, 1.3), 0.0, half);
+    for (int c = 0; c < 3; ++c) {
+        CHECK(a.channels[c].diffuse.value == b.channels[c].diffuse.value);
+        CHECK(a.channels[c].transmitted.value == 0.0);
+        CHECK(b.channels[c].ballistic.value == 0.0);
+    }
+    for (double bad : {0.0, -1.0, std::nan("")}) {
+        SlabRandomWalkOptions wrong = o;
+        wrong.thickness = bad;
+        CHECK_THROWS_WITH(simulateSlab(withAlbedos(0.5, 0.5, 0.5, 1.3), 0.0, wrong), Contains("thickness"));
     }
 }

@@ -28,8 +28,8 @@ namespace {
 
 constexpr const char* kSweepPath = "test/dirpole_sweep.comp";
 
-// Test-only shader: the library's dirpole.glsl, fed from SSBOs. Material constants arrive as 5
-// vec4 per material, assembled into DirpoleParams as a render pass would from uniforms.
+// Test-only shader: the library's dirpole.glsl, fed from SSBOs. Material constants arrive as
+// STRIDE vec4 per material, assembled into DirpoleParams as a render pass would from uniforms.
 constexpr const char* kSweepSource = R"(
 #include "common/dirpole.glsl"
 layout(local_size_x = 64) in;
@@ -39,7 +39,7 @@ layout(std430, binding = 1) readonly buffer Materials { vec4 materials[]; };
 layout(std430, binding = 2) writeonly buffer Results { vec4 results[]; };  // 3 per pair
 uniform uint pairCount;
 
-const int STRIDE = 7 + DIRPOLE_INCIDENCE_NODES;  // vec4s per material
+const int STRIDE = 7 + DIRPOLE_INCIDENCE_NODES + DIRPOLE_THICKNESS_NODES;  // vec4s per material
 DirpoleParams material(int m) {
     DirpoleParams p;
     int b = STRIDE * m;
@@ -53,6 +53,8 @@ DirpoleParams material(int m) {
     p.profileScale = materials[b + 5].xyz;
     p.albedo = materials[b + 6].xyz;
     for (int i = 0; i < DIRPOLE_INCIDENCE_NODES; ++i) p.incidenceScale[i] = materials[b + 7 + i].xyz;
+    for (int i = 0; i < DIRPOLE_THICKNESS_NODES; ++i)
+        p.transmissionScale[i] = materials[b + 7 + DIRPOLE_INCIDENCE_NODES + i].xyz;
     return p;
 }
 
@@ -154,6 +156,7 @@ TEST_CASE("bssrdf: GLSL float matches the C++ double evaluation over 131072 conf
         materialData.emplace_back(glm::vec3(c.profileScale), 0.0f);
         materialData.emplace_back(glm::vec3(c.albedo), 0.0f);
         for (const dvec3& v : c.incidenceScale) materialData.emplace_back(glm::vec3(v), 0.0f);
+        for (const dvec3& v : c.transmissionScale) materialData.emplace_back(glm::vec3(v), 0.0f);
     }
 
     // Point pairs. Lengths follow the material's kernel: 1/sigma_tr of its widest channel.
