@@ -92,10 +92,11 @@ std::string decadeLabel(int exponent) {
 
 void savePlot(const PlotSpec& spec, const std::filesystem::path& path) {
     Canvas c{sss::Image8(spec.width, spec.height, {255, 255, 255, 255})};
+    const bool bars = !spec.categories.empty();
     double xMin = 1e300, xMax = -1e300, yMin = 1e300, yMax = -1e300;
     for (const PlotSeries& s : spec.series)
         for (auto [x, y] : s.points)
-            if (x > 0 && y > 0) {
+            if ((bars || x > 0) && y > 0) {
                 xMin = std::min(xMin, x), xMax = std::max(xMax, x);
                 yMin = std::min(yMin, y), yMax = std::max(yMax, y);
             }
@@ -108,11 +109,21 @@ void savePlot(const PlotSpec& spec, const std::filesystem::path& path) {
     auto py = [&](double y) { return bottom - static_cast<int>((std::log10(y) - y0) / (y1 - y0) * (bottom - top)); };
 
     const unsigned grid = 0xdddddd, ink = 0x222222;
-    for (int e = x0; e <= x1; ++e) {
-        const int x = px(std::pow(10.0, e));
-        c.line(x, top, x, bottom, grid);
-        const std::string label = decadeLabel(e);
-        c.text(x - static_cast<int>(label.size()) * 3, bottom + 6, label, ink);
+    const int groups = static_cast<int>(spec.categories.size());
+    const double groupWidth = bars ? double(right - left) / groups : 0.0;
+    if (bars) {
+        for (int k = 0; k < groups; ++k) {
+            const std::string& label = spec.categories[static_cast<size_t>(k)];
+            const int centre = left + static_cast<int>((k + 0.5) * groupWidth);
+            c.text(centre - static_cast<int>(label.size()) * 3, bottom + 6, label, ink);
+        }
+    } else {
+        for (int e = x0; e <= x1; ++e) {
+            const int x = px(std::pow(10.0, e));
+            c.line(x, top, x, bottom, grid);
+            const std::string label = decadeLabel(e);
+            c.text(x - static_cast<int>(label.size()) * 3, bottom + 6, label, ink);
+        }
     }
     for (int e = y0; e <= y1; ++e) {
         const int y = py(std::pow(10.0, e));
@@ -127,16 +138,32 @@ void savePlot(const PlotSpec& spec, const std::filesystem::path& path) {
     c.textVertical(14, (top + bottom) / 2 + static_cast<int>(spec.yLabel.size()) * 3, spec.yLabel, ink);
 
     int legendY = top;
-    for (const PlotSeries& s : spec.series) {
-        std::pair<int, int> previous{-1, -1};
-        for (auto [x, y] : s.points) {
-            if (!(x > 0 && y > 0)) continue;
-            const std::pair<int, int> p{px(x), py(y)};
-            if (s.connect && previous.first >= 0) c.line(previous.first, previous.second, p.first, p.second, s.color);
-            c.disc(p.first, p.second, 3, s.color);
-            previous = p;
+    const int nSeries = static_cast<int>(spec.series.size());
+    for (int si = 0; si < nSeries; ++si) {
+        const PlotSeries& s = spec.series[static_cast<size_t>(si)];
+        if (bars) {
+            // Bars share 80 % of the group's width; each rises from the axis to its value.
+            const double barWidth = 0.8 * groupWidth / std::max(nSeries, 1);
+            for (size_t k = 0; k < s.points.size() && static_cast<int>(k) < groups; ++k) {
+                const double y = s.points[k].second;
+                if (!(y > 0)) continue;
+                const int xa = left + static_cast<int>((static_cast<double>(k) + 0.1) * groupWidth + si * barWidth);
+                const int xb = std::max(xa, static_cast<int>(xa + barWidth) - 1);
+                const int yTop = std::max(top, py(y));
+                for (int x = xa; x <= xb; ++x) c.line(x, bottom - 1, x, yTop, s.color);
+            }
+            for (int y = -3; y <= 3; ++y) c.line(right + 13, legendY + 3 + y, right + 19, legendY + 3 + y, s.color);
+        } else {
+            std::pair<int, int> previous{-1, -1};
+            for (auto [x, y] : s.points) {
+                if (!(x > 0 && y > 0)) continue;
+                const std::pair<int, int> p{px(x), py(y)};
+                if (s.connect && previous.first >= 0) c.line(previous.first, previous.second, p.first, p.second, s.color);
+                c.disc(p.first, p.second, 3, s.color);
+                previous = p;
+            }
+            c.disc(right + 16, legendY + 3, 3, s.color);
         }
-        c.disc(right + 16, legendY + 3, 3, s.color);
         c.text(right + 26, legendY, s.label, ink);
         legendY += 14;
     }

@@ -1,6 +1,7 @@
 #pragma once
-// A small log-log scatter plot written to PNG, for the time-against-error sweeps: no plotting
-// library is packaged for this project, and the plots only need points, lines, axes and numbers.
+// A small log-log scatter plot (the time-against-error sweeps) or a grouped bar chart on a log
+// axis (errors per material or scene), written to PNG: no plotting library is packaged for this
+// project, and the plots only need points, bars, lines, axes and numbers.
 #include <sss/image.h>
 
 #include <filesystem>
@@ -18,6 +19,10 @@ struct PlotSpec {
     std::string title, xLabel, yLabel;
     std::vector<PlotSeries> series;
     int width = 720, height = 480;
+    /// Non-empty: a bar chart instead, one group per category (named under the x axis), one bar
+    /// per series in each group; series[s].points[k].second is category k's value (x unused,
+    /// values <= 0 draw no bar). The y axis is log10, as in the scatter plot.
+    std::vector<std::string> categories{};
 };
 
 /// Renders the plot (log10 axes with decade ticks and labels, legend) and saves it as PNG.
