@@ -22,6 +22,7 @@ inline constexpr int kThesisHeight = 680;
 
 struct Options {
     bool quick = false;
+    bool glInfoOnly = false;  // --gl-info: print the GL device and the timing method, run nothing
     std::optional<std::filesystem::path> jsonPath;
     std::optional<std::filesystem::path> markdownPath;  // default: jsonPath with .md
     std::filesystem::path dataDir;                       // empty: no data sets available

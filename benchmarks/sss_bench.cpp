@@ -19,6 +19,9 @@ the results as JSON and as a Markdown table (also printed to stdout).
 
 options:
   --quick             procedural data only, small viewport, 1 warm-up + 3 runs (for ctest)
+  --gl-info           print the GL vendor, renderer and version and the timing method (one
+                      "key: value" per line), then exit; benchmarks/run-gpu.sh checks with it
+                      that the EGL device is the GPU it means to measure
   --json FILE         write the results as JSON to FILE
   --markdown FILE     write the Markdown table to FILE (default: the JSON path with .md)
   --data-dir DIR      data sets (meshes/, volumes/); default $SSS_DATA_DIR, else ../shared/data
@@ -124,6 +127,9 @@ std::optional<Options> parseArgs(int argc, char** argv) {
         } else if (arg == "--quick") {
             flag();
             o.quick = true;
+        } else if (arg == "--gl-info") {
+            flag();
+            o.glInfoOnly = true;
         } else if (arg == "--json") {
             o.jsonPath = value();
         } else if (arg == "--markdown") {
@@ -214,6 +220,13 @@ int main(int argc, char** argv) {
 
     try {
         BenchmarkContext bench(*options);
+        if (options->glInfoOnly) {
+            const sss::ContextInfo& gl = bench.glInfo();
+            std::cout << "vendor: " << gl.vendor << "\nrenderer: " << gl.renderer << "\nversion: " << gl.version
+                      << "\nbackend: " << gl.backend << "\nsoftware: " << (gl.software ? "yes" : "no")
+                      << "\ntiming: " << bench.timingMethodName() << "\n";
+            return 0;
+        }
         std::cerr << "sss-bench: " << bench.glInfo().renderer << ", " << bench.timingMethodName() << ", "
                   << options->width << "x" << options->height << ", " << options->warmup << " warm-up + "
                   << options->runs << " runs\n";
