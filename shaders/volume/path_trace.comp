@@ -1,6 +1,5 @@
 // Progressive volume path tracing (sss::VolumeRenderOptions::multipleScattering): per pixel,
-// samplesPerFrame paths from the eye, each adding (radiance, hit) to the running sums in
-// `accumulation`. The estimator is renderVolumePathTraced()'s (sss/volume_path_tracer.h), in
+// one path from the eye, adding (radiance, hit) to the running sums in `accumulation`. The estimator is renderVolumePathTraced()'s (sss/volume_path_tracer.h), in
 // float: delta tracking against a majorant per brick, next-event estimation to every light
 // with ratio tracking, HG scattering, Russian roulette on the throughput. All transport is in
 // the volume's model space.
@@ -18,8 +17,7 @@ uniform vec3 boxMax;
 uniform vec3 cellSize;             // one brick, model units
 uniform float voxelLength;         // the opacity reference length D
 uniform float phaseG;
-uniform int samplesPerFrame;
-uniform uint firstSample;          // paths per pixel already in the sums
+uniform uint sampleIndex;          // this path's index in the pixel's running mean
 uniform int maxBounces;
 uniform mat4 modelToWorld;
 uniform int lightCount;
@@ -259,11 +257,7 @@ void main() {
         span.y = min(span.y, dot(hitModel - ray.origin, ray.direction));
     }
     if (!(span.x < span.y)) return;  // the background, exactly (the composite adds nothing)
-    vec4 sum = vec4(0.0);
-    uint pixelKey = pcgHash(uint(pixel.y * imageSize.x + pixel.x) ^ 0x6a09e667u);
-    for (int s = 0; s < samplesPerFrame; ++s) {
-        rngState = pcgHash(pixelKey ^ pcgHash(firstSample + uint(s)));
-        sum += path(ray.origin, ray.direction, span.x, span.y);
-    }
-    imageStore(accumulation, pixel, imageLoad(accumulation, pixel) + sum);
+    // One path per dispatch (see volume/path_trace_pass.cpp), its stream keyed by pixel and index.
+    rngState = pcgHash(pcgHash(uint(pixel.y * imageSize.x + pixel.x) ^ 0x6a09e667u) ^ pcgHash(sampleIndex));
+    imageStore(accumulation, pixel, imageLoad(accumulation, pixel) + path(ray.origin, ray.direction, span.x, span.y));
 }

@@ -49,14 +49,14 @@ VolumeRenderOptions pathTraced(int samplesPerFrame, int maxBounces = VolumeRende
     return o;
 }
 
-// The CPU truth, computed once per mode: 2048 paths per pixel (its own error estimate:
-// relativeRmseEstimate, about 1.3 % for multiple and 1.1 % for single scattering).
+// The CPU truth, computed once per mode and process: 8192 paths per pixel (its own error
+// estimate, relativeRmseEstimate: 2.1 % for multiple scattering). About 12 s for both modes.
 const VolumePathTracerResult& cpuTruth(VolumeScatteringMode mode) {
     static std::map<VolumeScatteringMode, VolumePathTracerResult> cache;
     auto it = cache.find(mode);
     if (it == cache.end()) {
         VolumePathTracerOptions o;
-        o.samplesPerPixel = 2048;
+        o.samplesPerPixel = 8192;
         o.mode = mode;
         o.g = kAnisotropy;
         it = cache.emplace(mode, renderVolumePathTraced(testVolume(), testTf(), 256, glm::mat4(1.0f), kLights,
@@ -104,20 +104,22 @@ TEST_CASE("the GPU path tracer converges to the CPU path tracer's multiple scatt
     const VolumePathTracerResult& truth = cpuTruth(VolumeScatteringMode::MultipleScattering);
     const VolumePathTracerResult& single = cpuTruth(VolumeScatteringMode::SingleScattering);
     REQUIRE(truth.majorantViolations == 0);
-    // Multiple scattering matters in this scene (measured: it carries 1.9x the single light).
+    // Multiple scattering matters in this scene (measured: it carries 2.6x the single light).
     REQUIRE(meanRatio(truth.image, single.image) > 1.5);
 
-    Scene scene(pathTraced(128));
+    Scene scene(pathTraced(512));
     Image image(1, 1);
-    for (int i = 0; i < 16; ++i) image = scene.frame(testCamera());
-    REQUIRE(scene.renderer.accumulatedSamples() == 2048);
-    // Measured on llvmpipe at 2048 + 2048 paths: relRMSE 1.9 % (the two images' noise alone is
-    // about sqrt(1.3^2 + 1.3^2) = 1.8 %), mean ratio 0.998. The bound leaves room for noise and
-    // the float arithmetic, and is far below what a missing order of scattering gives (the
-    // single-scattering image is 47 % off).
+    for (int i = 0; i < 8; ++i) image = scene.frame(testCamera());
+    REQUIRE(scene.renderer.accumulatedSamples() == 4096);
+    // Measured on llvmpipe, 4096 GPU paths against 8192 CPU paths: relRMSE 3.9 %, which is the two
+    // images' noise (sqrt(2.1^2 + 2.9^2) = 3.6 %, the GPU's estimator being the CPU's), mean
+    // ratio 0.993, coverage within 0.2 %. A bias of 4 % would take the error past the bound;
+    // a missing order of scattering is far beyond it (single scattering is 69 % off).
+    // With 512 paths per frame this also checks that many paths per frame lose none (they did
+    // when one shader invocation ran them all: llvmpipe's loop limiter cut them, -28 %).
     const double error = relRmse(image, truth);
     INFO("relRMSE against the CPU truth " << error << ", its own estimate " << truth.relativeRmseEstimate);
-    CHECK(error < 0.035);
+    CHECK(error < 0.05);
     CHECK(std::abs(meanRatio(image, truth.image) - 1.0) < 0.02);
     // Coverage: the fraction of paths with a real collision, as the CPU's alpha.
     double alphaGpu = 0.0, alphaCpu = 0.0;
@@ -141,7 +143,8 @@ TEST_CASE("the GPU path tracer's error falls monotonically as samples accumulate
         if (frame == 1 || frame == 4 || frame == 16 || frame == 64) errors.push_back(relRmse(image, truth));
     }
     REQUIRE(scene.renderer.accumulatedSamples() == 256);
-    // Measured: 26.8 %, 13.5 %, 6.9 %, 3.7 % (1 / sqrt(N) until the truth's own 1.3 % shows).
+    // Measured: 77.7 %, 39.7 %, 21.4 %, 11.7 % (1 / sqrt(N): high-albedo paths are long and
+    // their values spread widely; the truth's own 2.1 % hardly shows yet).
     INFO("relRMSE at 4, 16, 64, 256 paths: " << errors[0] << ", " << errors[1] << ", " << errors[2] << ", "
                                              << errors[3]);
     for (size_t i = 1; i < errors.size(); ++i) CHECK(errors[i] < errors[i - 1]);
@@ -154,10 +157,11 @@ TEST_CASE("one bounce of the GPU path tracer is the CPU's single scattering", "[
     test::GlTestScope gl;
     const VolumePathTracerResult& single = cpuTruth(VolumeScatteringMode::SingleScattering);
     const VolumePathTracerResult& multiple = cpuTruth(VolumeScatteringMode::MultipleScattering);
-    Scene scene(pathTraced(256, 1));
+    Scene scene(pathTraced(512, 1));
     Image image(1, 1);
     for (int i = 0; i < 8; ++i) image = scene.frame(testCamera());
-    // Measured: 1.5 % against single scattering (noise of both), 47 % against multiple.
+    // Measured (4096 GPU paths, 8192 CPU paths): 2.1 % against single scattering, which is the
+    // noise of both; 69 % against multiple.
     const double error = relRmse(image, single);
     INFO("relRMSE against CPU single scattering " << error);
     CHECK(error < 0.03);
