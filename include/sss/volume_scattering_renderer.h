@@ -128,7 +128,8 @@ struct VolumeRenderOptions {
     /// changes (camera, target size, lights, transfer function, volume, model transform, these
     /// options) and restarts otherwise; accumulatedSamples() says how many it holds. Rays go
     /// through pixel centres (as the CPU's); the first frame shows its first samples, noisy.
-    /// Meshes of a hybrid scene clip the camera rays but cast no shadows into it (default: off).
+    /// Meshes of a hybrid scene clip the camera rays but cast no shadows into the medium, and a
+    /// mesh that moves while all of the above stays does not restart the mean (default: off).
     bool multipleScattering = false;
     /// Paths per pixel each render() adds in the multiple-scattering mode, 1..4096 (default: 1).
     int samplesPerFrame = 1;
