@@ -94,9 +94,12 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     in.majorants.bind(3);
     sums.bindImage(0, GL_READ_WRITE);
     p.use();
-    // One path per pixel and dispatch: llvmpipe limits the iterations of each shader loop per
-    // invocation (its loop limiter), and with many paths in one invocation it cut paths short
-    // (measured: 512 paths per invocation lost 28 % of the light and of the coverage).
+    // One path per pixel and dispatch: llvmpipe gives each invocation 65535 loop iterations in
+    // all, over all its loops (measured: two loops of 40000 ran 40000 and 25534), then leaves
+    // every loop early. With many paths in one invocation it cut them short (512 paths lost 28 %
+    // of the light and of the coverage). A single path still runs out in the engine data set,
+    // whose bright, dense medium makes long paths: its image is 3 % too bright there (see
+    // benchmarks/README.md); carrying paths over dispatches would end that.
     for (int s = 0; s < in.options.samplesPerFrame; ++s) {
         p.set("sampleIndex", in.firstSample + static_cast<unsigned>(s));
         glDispatchCompute(static_cast<GLuint>((size.x + 7) / 8), static_cast<GLuint>((size.y + 7) / 8), 1);
