@@ -68,9 +68,11 @@ shading:
                             random walk, plus single scattering) or dipole (the paper's, as the
                             thesis) (default: calibrated)
   --cameras K               scattering maps, 1..32 (default: 8)
-  --samples N               samples per pixel and frame, 1..4096 (default: 24)
+  --samples N               samples per pixel and frame, 1..4096 (default: 24); with
+                            --multiple-scattering, the volume's paths per pixel and frame
   --map-resolution R        scattering-map and light-buffer side in texels (default: 512)
-  --frames F                frames accumulated into the scattering maps (default: 8)
+  --frames F                frames accumulated into the scattering maps, and with
+                            --multiple-scattering into the volume's running mean (default: 8)
   --scale MM                millimetres per scene unit (default: 1000, i.e. metres)
   --no-specular             no specular highlight on the translucent surface
   --environment R,G,B       radiance of a uniform environment lighting the translucent mesh, so
@@ -98,6 +100,13 @@ shading:
                             (single scattering: TF colour as albedo x phase function x light;
                             about 4 pi dimmer, raise --light-intensity or --exposure) (default: paper)
   --eye-pass                add the second, view-dependent pass towards the viewer
+  --multiple-scattering     volume modes scattering and hybrid: progressive GPU path tracing of
+                            all orders of scattering (the physical model: implies --volume-model
+                            physical; paper is an error). --frames F x --samples N paths per
+                            pixel before the timed frames (each --repeat adds N more); through
+                            pixel centres, so --aa is not applied
+  --max-bounces B           with --multiple-scattering: scatterings per path, >= 1 (1 = single
+                            scattering; default: 100000, Russian roulette ends paths earlier)
 camera and light:
   --yaw DEG --pitch DEG     orbit angles around the scene centre (default: 30, 20)
   --zoom F                  distance factor after framing the scene (default: 1; < 1 moves
@@ -139,7 +148,8 @@ struct Args {
     glm::vec3 color{0.8f, 0.75f, 0.7f};
     float shininess = 40.0f, step = 1.0f, earlyTermination = 0.99f, lightVolumeScale = 1.0f, anisotropy = 0.5f;
     sss::VolumeModel volumeModel = sss::VolumeRenderOptions{}.model;
-    bool eyePass = false;
+    bool eyePass = false, multipleScattering = false, volumeModelGiven = false;
+    int maxBounces = sss::VolumeRenderOptions{}.maxBounces;
     sss::DisplayTransform display;
     sss::LightVolumeFallback lightVolumeFallback = sss::LightVolumeFallback::Reduce;
     bool gradientVolume = true;
@@ -238,7 +248,9 @@ Args parseArgs(int argc, char** argv) {
             const auto model = sss::parseVolumeModel(v);
             if (!model) throw UsageError("--volume-model: expected paper or physical, got \"" + v + "\"");
             a.volumeModel = *model;
-        }
+            a.volumeModelGiven = true;
+        } else if (opt == "--multiple-scattering") a.multipleScattering = true;
+        else if (opt == "--max-bounces") a.maxBounces = parseInt(opt, value());
         else if (opt == "--yaw") a.yaw = *(a.yawGiven = parseFloat(opt, value()));
         else if (opt == "--pitch") a.pitch = *(a.pitchGiven = parseFloat(opt, value()));
         else if (opt == "--zoom") {
@@ -266,6 +278,14 @@ Args parseArgs(int argc, char** argv) {
             throw UsageError(std::string(name) + ": components must be within +-1e18 (scene units)");
     if (a.mesh.empty() && a.volume.empty()) throw UsageError("nothing to render: give --mesh PATH and/or --volume PATH");
     if (a.mode.empty()) a.mode = a.volume.empty() ? "blinn-phong" : "emission-absorption";
+    if (a.multipleScattering) {
+        if (a.mode != "scattering" && a.mode != "hybrid")
+            throw UsageError("--multiple-scattering needs --mode scattering or hybrid (with a volume), got --mode " + a.mode);
+        if (a.volumeModelGiven && a.volumeModel != sss::VolumeModel::Physical)
+            throw UsageError("--multiple-scattering path-traces the physical model: it cannot be combined with "
+                             "--volume-model paper");
+        a.volumeModel = sss::VolumeModel::Physical;
+    }
     if (a.mode == "hybrid") {
         if (a.mesh.empty() || a.volume.empty()) throw UsageError("--mode hybrid needs --mesh and --volume");
         return a;
@@ -352,7 +372,10 @@ int run(const Args& a) {
         .lightVolumeFallback = a.lightVolumeFallback,
         .anisotropy = a.anisotropy,
         .model = a.volumeModel,
-        .eyePass = a.eyePass};
+        .eyePass = a.eyePass,
+        .multipleScattering = a.multipleScattering,
+        .samplesPerFrame = a.samples,
+        .maxBounces = a.maxBounces};
     const sss::HybridOptions sceneOptions{.background = glm::vec4(a.background, 1.0f), .cornellBox = a.cornellBox};
     if (mesh) sss::validate(meshOptions), sss::validate(meshMaterial);
     if (volume) sss::validate(volumeOptions);
@@ -368,10 +391,11 @@ int run(const Args& a) {
         meshRenderer->setScatteringMaterial(material);
         meshRenderer->setMaterial(meshMaterial);
     }
+    sss::VolumeScatteringRenderer* volumeRenderer = nullptr;
     if (volume) {
         try {
-            scene.addVolume(*volume, glm::translate(glm::mat4(1.0f), a.volumeOffset), volumeOptions)
-                .setTransferFunction(*tf);
+            volumeRenderer = &scene.addVolume(*volume, glm::translate(glm::mat4(1.0f), a.volumeOffset), volumeOptions);
+            volumeRenderer->setTransferFunction(*tf);
         } catch (const sss::Error& e) {
             // The library names the GPU object; the user knows the file.
             throw sss::Error(e.kind(), a.volume + ": " + e.what());
@@ -429,13 +453,21 @@ int run(const Args& a) {
         }
         convergeMs = timer.endMilliseconds();
     }
+    // The path tracer's running mean: --frames frames before the timed ones (which add to it).
+    double pathTraceMs = 0.0;
+    if (a.multipleScattering) {
+        timer.begin();
+        for (int i = 0; i < a.frames; ++i) scene.render(camera, target);
+        pathTraceMs = timer.endMilliseconds();
+    }
     for (int i = 0; i < a.repeat; ++i) {
         timer.begin();
         scene.render(camera, target);
         times.push_back(timer.endMilliseconds());
     }
     sss::Image image = target.readColor();
-    if (a.antiAliasing > 1) {
+    // Sub-pixel offsets would restart the path tracer's mean at every frame.
+    if (a.antiAliasing > 1 && !a.multipleScattering) {
         sss::FrameAccumulator accumulator(a.width, a.height);
         for (int i = 0; i < a.antiAliasing; ++i) {
             camera.setSubpixelOffset(sss::FrameAccumulator::subpixelOffset(i, a.width, a.height));
@@ -467,6 +499,10 @@ int run(const Args& a) {
         std::printf("scattering: %s, K = %d, N = %d, maps %d^2; %d frames to converge took %.2f ms "
                     "(includes shader compilation)\n",
                     material.name.c_str(), a.cameras, a.samples, a.mapResolution, convergeFrames, convergeMs);
+    if (a.multipleScattering)
+        std::printf("multiple scattering: %d paths per pixel (%d frames of %d took %.2f ms before the timed frames, "
+                    "includes shader compilation)\n",
+                    volumeRenderer->accumulatedSamples(), a.frames, a.samples, pathTraceMs);
     std::printf("wrote %s\n", a.out.c_str());
     return 0;
 }

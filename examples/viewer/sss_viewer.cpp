@@ -53,6 +53,8 @@ sss::Mesh normalised(const sss::Mesh& mesh) {
 
 constexpr std::array<int, 5> kMapResolutions{128, 256, 512, 1024, 2048};
 constexpr std::array<int, 4> kShadowResolutions{256, 512, 1024, 2048};
+// The viewer stops path tracing a still scene at this many paths per pixel (noise about 1/64 of one path's).
+constexpr int kMaxViewerPaths = 4096;
 
 bool comboInt(const char* label, int& value, const int* options, std::size_t count) {
     bool changed = false;
@@ -199,8 +201,13 @@ private:
         else
             o.shading = m_volumeBaselineGradient ? sss::VolumeShading::Gradient : sss::VolumeShading::EmissionAbsorption;
         o.finishEachPass = m_honestTimings;
+        // The path tracer needs the physical model without highlights; elsewhere the box is inert.
+        o.multipleScattering = m_volumeMultiple && o.shading == sss::VolumeShading::Scattering &&
+                               o.model == sss::VolumeModel::Physical;
         return o;
     }
+
+    bool pathTracing() const { return m_volume && volumeOptions().multipleScattering; }
 
     sss::Light light() const {
         // The light travels from the direction given by azimuth (around +y) and elevation.
@@ -315,7 +322,20 @@ private:
         if (m_viewChanged || viewProjection != m_lastViewProjection || !m_mapsConverged) m_accumulator->reset();
         m_viewChanged = false;
         m_lastViewProjection = viewProjection;
-        if (m_accumulator->frames() < m_args.antiAliasing) {
+        if (pathTracing()) {
+            // The path tracer keeps its own running mean (through pixel centres: sub-pixel
+            // offsets would restart it); the accumulator just holds its latest picture.
+            if (m_accumulator->frames() == 0 || m_compositor->volume(0).accumulatedSamples() < kMaxViewerPaths) {
+                try {
+                    m_compositor->render(m_camera, *m_target);
+                } catch (const sss::Error& e) {
+                    showMessage(e.what(), true);
+                    m_target->clear(m_hybrid.background);
+                }
+                m_accumulator->reset();
+                m_accumulator->add(*m_target);
+            }
+        } else if (m_accumulator->frames() < m_args.antiAliasing) {
             try {
                 m_camera.setSubpixelOffset(sss::FrameAccumulator::subpixelOffset(m_accumulator->frames(), fb.x, fb.y));
                 m_compositor->render(m_camera, *m_target);
@@ -677,6 +697,14 @@ private:
             }
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("on: TF colour as albedo x phase function x light (about 4 pi dimmer)\noff: the paper's ambient + diffuse x light-volume colour");
+            if (physical && !m_volumeHighlights) {
+                m_volumeDirty |= ImGui::Checkbox("multiple scattering (path traced)", &m_volumeMultiple);
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("all orders of scattering, path traced on the GPU: one path per pixel and\n"
+                                      "frame, accumulated while the camera and the scene stay still");
+                if (m_volumeMultiple)
+                    ImGui::Text("paths per pixel: %d", m_compositor->volume(0).accumulatedSamples());
+            }
         }
         m_volumeDirty |= ImGui::SliderFloat("ambient", &m_volumeOptions.ambient, 0.0f, 1.0f, "%.2f");
         m_volumeDirty |= ImGui::SliderFloat("diffuse", &m_volumeOptions.diffuse, 0.0f, 2.0f, "%.2f");
@@ -820,6 +848,7 @@ private:
     int m_materialIndex = -1;
     sss::VolumeRenderOptions m_volumeOptions;
     bool m_volumeScattering = true, m_volumeHighlights = false, m_volumeBaselineGradient = true;
+    bool m_volumeMultiple = false;  // the path tracer, where the options allow it (volumeOptions)
     float m_lightAzimuth = 35.0f, m_lightElevation = 40.0f, m_lightIntensity = 1.0f;
     glm::vec3 m_lightColor{1.0f};
     sss::TransferFunctionEditor m_tfEditor;

@@ -118,6 +118,24 @@ struct VolumeRenderOptions {
     /// view direction changes (default: off).
     bool eyePass = false;
     float eyePassStrength = 1.0f;  ///< >= 0 (default: 1)
+    // Multiple scattering (VolumeShading::Scattering with VolumeModel::Physical only):
+    /// Progressive GPU path tracing of all orders of scattering instead of the light volume's
+    /// single scattering: the quantity renderVolumePathTraced() computes in its
+    /// MultipleScattering mode (same medium, camera rays, lights and HG phase with g =
+    /// anisotropy), by the same estimator (delta tracking against a majorant per 8^3 brick,
+    /// next-event estimation with ratio tracking, Russian roulette). Each render() adds
+    /// samplesPerFrame paths per pixel to a running mean that the renderer keeps while nothing
+    /// changes (camera, target size, lights, transfer function, volume, model transform, these
+    /// options) and restarts otherwise; accumulatedSamples() says how many it holds. Rays go
+    /// through pixel centres (as the CPU's); the first frame shows its first samples, noisy.
+    /// Meshes of a hybrid scene clip the camera rays but cast no shadows into the medium, and a
+    /// mesh that moves while all of the above stays does not restart the mean (default: off).
+    bool multipleScattering = false;
+    /// Paths per pixel each render() adds in the multiple-scattering mode, 1..4096 (default: 1).
+    int samplesPerFrame = 1;
+    /// Scatterings after which a path ends, >= 1: 1 is single scattering (default: 100000, as
+    /// VolumePathTracerOptions::maxBounces; Russian roulette ends paths long before).
+    int maxBounces = 100000;
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).
     bool finishEachPass = false;
 };
@@ -156,6 +174,9 @@ public:
     /// Bytes of GPU memory the gradient volume holds (0 when there is none: gradient modes
     /// unused, VolumeRenderOptions::gradientVolume off, or it did not fit).
     std::size_t gradientVolumeBytes() const;
+    /// Paths per pixel in the multiple-scattering mode's running mean (0 in the other modes,
+    /// and after anything that restarts it, until the next render()).
+    int accumulatedSamples() const;
 
     const RenderStats& stats() const;
 

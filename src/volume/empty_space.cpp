@@ -42,6 +42,7 @@ void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueS
         return m;
     };
     std::vector<std::uint8_t> occupied(m_min.size());
+    m_maxOpacity.assign(m_min.size(), 0.0f);
     size_t count = 0;
     for (size_t i = 0; i < m_min.size(); ++i) {
         // TF coordinates of the range (clamped as classify() does), then the table entries the
@@ -50,7 +51,8 @@ void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueS
         const float hi = std::clamp(m_max[i] * valueScaleOffset.x + valueScaleOffset.y, 0.0f, 1.0f);
         const int a = std::max(0, static_cast<int>(std::floor(lo * static_cast<float>(entries - 1))));
         const int b = std::min(entries - 1, static_cast<int>(std::ceil(hi * static_cast<float>(entries - 1))));
-        occupied[i] = m_min[i] <= m_max[i] && maxOpacity(a, b) > 0.0f ? 255 : 0;
+        m_maxOpacity[i] = m_min[i] <= m_max[i] ? maxOpacity(a, b) : 0.0f;
+        occupied[i] = m_maxOpacity[i] > 0.0f ? 255 : 0;
         count += occupied[i] ? 1 : 0;
     }
     m_texture.upload(GL_RED, GL_UNSIGNED_BYTE, occupied.data());

@@ -27,10 +27,15 @@ public:
     const gl::Texture& texture() const { return m_texture; }
     /// Fraction of bricks marked occupied by the last update().
     double occupiedFraction() const { return m_occupiedFraction; }
+    /// Per brick (x fastest), the largest TF opacity a trilinear sample inside it can be
+    /// classified to under the last update()'s table: a bound, as the path tracer's majorants
+    /// need (volume/path_trace_pass.h).
+    const std::vector<float>& maxOpacity() const { return m_maxOpacity; }
 
 private:
     glm::ivec3 m_bricks{0};
     std::vector<float> m_min, m_max;  // per brick
+    std::vector<float> m_maxOpacity;  // per brick, from the last update()
     gl::Texture m_texture;            // R8, 1 = occupied
     double m_occupiedFraction = 1.0;
 };

@@ -13,6 +13,7 @@
 #include "volume/gpu_volume.h"
 #include "volume/eye_pass.h"
 #include "volume/light_volume_pass.h"
+#include "volume/path_trace_pass.h"
 #include "volume/ray_cast_pass.h"
 #include "volume/renderer_access.h"
 
@@ -41,6 +42,19 @@ struct LightVolumeInputs {
     float resolutionScale = 0.0f;
     float anisotropy = 0.0f;
     bool operator==(const LightVolumeInputs&) const = default;
+};
+
+// Everything the path tracer's running mean depends on; it restarts when this changes.
+struct PathTraceInputsKey {
+    std::uint64_t volumeGeneration = 0;
+    std::uint64_t transferFunctionRevision = 0;
+    int transferFunctionEntries = 0;
+    std::vector<Light> lights;
+    glm::mat4 model{1.0f}, view{1.0f}, projection{1.0f};
+    glm::ivec2 size{0};
+    float anisotropy = 0.0f;
+    int maxBounces = 0;
+    bool operator==(const PathTraceInputsKey&) const = default;
 };
 
 }  // namespace
@@ -75,6 +89,12 @@ void validate(const VolumeRenderOptions& o) {
     if (!(o.anisotropy > -1.0f && o.anisotropy < 1.0f)) fail("anisotropy", "in (-1, 1)", o.anisotropy);
     if (!(o.eyePassStrength >= 0.0f) || !std::isfinite(o.eyePassStrength))
         fail("eyePassStrength", "finite and >= 0", o.eyePassStrength);
+    if (o.samplesPerFrame < 1 || o.samplesPerFrame > 4096) fail("samplesPerFrame", "in 1..4096", o.samplesPerFrame);
+    if (o.maxBounces < 1) fail("maxBounces", ">= 1", o.maxBounces);
+    if (o.multipleScattering && (o.shading != VolumeShading::Scattering || o.model != VolumeModel::Physical))
+        throw Error(ErrorKind::InvalidArgument,
+                    "VolumeRenderOptions::multipleScattering needs shading Scattering and model Physical (it "
+                    "path-traces the physical model)");
     const glm::vec3 s = o.specular;
     if (!(s.x >= 0 && s.y >= 0 && s.z >= 0) || !std::isfinite(s.x + s.y + s.z))
         throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions::specular must be finite and >= 0");
@@ -122,6 +142,52 @@ struct VolumeScatteringRenderer::Impl {
     }
     std::optional<std::tuple<LightVolumeInputs, glm::vec3, float, float>> eyeInputs;
     const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
+    // Multiple scattering: the path tracer, its running sums and what they were built from.
+    std::optional<detail::PathTracePass> pathTrace;
+    gl::Texture pathSums;                                   // RGBA32F sums of (radiance, hit)
+    int pathSamples = 0;                                    // paths per pixel in pathSums
+    std::optional<PathTraceInputsKey> pathKey;
+    gl::Texture majorants;                                  // per brick, for the current TF
+    std::optional<std::tuple<std::uint64_t, std::uint64_t, int>> majorantKey;
+
+    void renderPathTraced(const Camera& camera, RenderTarget& target) {
+        const auto start = std::chrono::steady_clock::now();
+        const auto tableKey = std::make_tuple(volumeGeneration, transferFunction.revision(), options.transferFunctionEntries);
+        if (majorantKey != tableKey) {
+            majorants = detail::brickMajorants(*occupancy, volume->voxelLength);
+            majorantKey = tableKey;
+        }
+        PathTraceInputsKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
+                               model, camera.view(), camera.projection(target.aspect()),
+                               glm::ivec2(target.width(), target.height()), options.anisotropy, options.maxBounces};
+        if (pathKey != key) {
+            if (!pathSums || pathSums.size() != glm::ivec3(key.size, 1))
+                pathSums = gl::Texture::create2D(GL_RGBA32F, key.size.x, key.size.y, "path-tracer sums");
+            const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+            glClearTexImage(pathSums.id(), 0, GL_RGBA, GL_FLOAT, zero);
+            pathSamples = 0;
+            pathKey = std::move(key);
+        }
+        if (!pathTrace) pathTrace.emplace();
+        copyDepth(target);
+        pathTrace->accumulate({.volume = *volume,
+                               .transferFunction = transferFunctionTable,
+                               .majorants = majorants,
+                               .sceneDepth = sceneDepth,
+                               .model = model,
+                               .lights = lights,
+                               .options = options,
+                               .camera = camera,
+                               .aspect = target.aspect(),
+                               .firstSample = static_cast<unsigned>(pathSamples)},
+                              pathSums);
+        pathSamples += options.samplesPerFrame;
+        target.bindForDrawing();
+        pathTrace->composite(pathSums, pathSamples);
+        if (options.finishEachPass) finishGpuWork();
+        stats.record("path-trace",
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
     gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
 
     // Sampling the depth attachment of the framebuffer being drawn would be a feedback loop,
@@ -240,6 +306,7 @@ void VolumeScatteringRenderer::setOptions(const VolumeRenderOptions& options) {
 const VolumeRenderOptions& VolumeScatteringRenderer::options() const { return m_impl->options; }
 const RenderStats& VolumeScatteringRenderer::stats() const { return m_impl->stats; }
 float VolumeScatteringRenderer::lightVolumeScaleInUse() const { return m_impl->lightVolumeScaleInUse; }
+int VolumeScatteringRenderer::accumulatedSamples() const { return m_impl->pathSamples; }
 std::size_t VolumeScatteringRenderer::gradientVolumeBytes() const {
     return m_impl->gradientVolume ? m_impl->gradientVolume->bytes() : 0;
 }
@@ -247,6 +314,12 @@ std::size_t VolumeScatteringRenderer::gradientVolumeBytes() const {
 void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target) {
     if (!m_impl->volume)
         throw Error(ErrorKind::InvalidArgument, "VolumeScatteringRenderer::render: no volume set (call setVolume first)");
+    if (m_impl->options.multipleScattering) {
+        m_impl->renderPathTraced(camera, target);
+        return;
+    }
+    m_impl->pathKey.reset();  // leaving the mode drops its running mean
+    m_impl->pathSamples = 0;
     // Programs are compiled lazily, once per shading mode in use.
     // The eye pass is the paper's second-order term; the physical model leaves it out.
     const bool eyePass = detail::usesEyePass(m_impl->options);

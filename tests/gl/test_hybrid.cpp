@@ -426,6 +426,13 @@ TEST_CASE("every renderer leaves the GL state it found (src/lighting/gl_state.h)
     Camera camera = frontCamera(4.0f);
     scene.render(camera, target);
     check("hybrid scene");
+    // The volume path tracer (a compute pass and a composite draw) in the same scene.
+    VolumeRenderOptions pathTraced{.shading = VolumeShading::Scattering, .model = VolumeModel::Physical};
+    pathTraced.multipleScattering = true;
+    scene.volume(0).setOptions(pathTraced);
+    scene.render(camera, target);
+    CHECK(scene.volume(0).accumulatedSamples() == 1);
+    check("hybrid scene, volume path traced");
     FrameAccumulator accumulator(64, 48);
     accumulator.add(target);
     check("frame accumulator");

@@ -1,0 +1,130 @@
+#include "volume/path_trace_pass.h"
+
+#include "lighting/light_uniforms.h"
+#include "sss/volume_reference.h"
+
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <variant>
+
+namespace sss::detail {
+
+namespace {
+// The GPU's filtered classification may round a little above the table's largest opacity; a
+// majorant below sigma_t would bias the estimate, one a little above only costs lookups (the
+// shader also clamps sigma_t to it).
+constexpr float kMajorantSlack = 1.001f;
+}  // namespace
+
+gl::Texture brickMajorants(const OccupancyGrid& grid, float voxelLength) {
+    std::vector<float> sigma;
+    sigma.reserve(grid.maxOpacity().size());
+    for (const float alpha : grid.maxOpacity()) {
+        const double a = alpha;
+        const double depth = !(a > 0.0) ? 0.0 : a >= 1.0 ? kMaxOpticalDepthPerVoxel
+                                                         : std::min(-std::log1p(-a), kMaxOpticalDepthPerVoxel);
+        sigma.push_back(static_cast<float>(depth / voxelLength) * kMajorantSlack);
+    }
+    gl::Texture texture = gl::Texture::create3D(GL_R32F, grid.brickCount(), "path-tracer majorants");
+    texture.setFilter(GL_NEAREST, GL_NEAREST);
+    texture.upload(GL_RED, GL_FLOAT, sigma.data());
+    return texture;
+}
+
+PathTracePass::PathTracePass()
+    : m_trace(gl::Program::link({{GL_COMPUTE_SHADER, "volume/path_trace.comp"}},
+                                {{"MAX_LIGHTS", std::to_string(kMaxLights)}})),
+      m_resolve(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                   {GL_FRAGMENT_SHADER, "volume/path_trace_resolve.frag"}})),
+      m_emptyVertexArray(gl::VertexArray::create()) {}
+
+void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sums) const {
+    const GpuVolume& volume = in.volume;
+    const glm::mat4 viewProjection = in.camera.projection(in.aspect) * in.camera.view();
+    const glm::mat4 worldToModel = glm::inverse(in.model);
+    const gl::Program& p = m_trace;
+    p.set("inverseViewProjection", glm::inverse(viewProjection));
+    p.set("worldToModel", worldToModel);
+    p.set("modelToWorld", in.model);
+    p.set("volumeTexture", 0);
+    p.set("transferFunction", 1);
+    p.set("sceneDepth", 2);
+    p.set("majorants", 3);
+    p.set("transferFunctionEntries", static_cast<float>(in.transferFunction.size().x));
+    p.set("valueScaleOffset", volume.valueScaleOffset);
+    p.set("boxMin", volume.box.min);
+    p.set("boxMax", volume.box.max);
+    p.set("cellSize", volume.box.size() * static_cast<float>(kBrickVoxels) / glm::vec3(volume.dims));
+    p.set("voxelLength", volume.voxelLength);
+    p.set("phaseG", in.options.anisotropy);
+    p.set("maxBounces", in.options.maxBounces);
+    const glm::ivec3 size = sums.size();
+    glProgramUniform2i(p.id(), p.uniformLocation("imageSize"), size.x, size.y);
+    // Lights as the CPU path tracer prepares them: directions and positions in model space,
+    // point-light falloff from world-space distances; black lights are left out.
+    const glm::mat3 worldToModelLinear(worldToModel);
+    int count = 0;
+    for (const Light& light : in.lights) {
+        glm::vec4 modelVector;
+        glm::vec3 worldPosition(0.0f), radiance;
+        if (const auto* d = std::get_if<DirectionalLight>(&light)) {
+            modelVector = glm::vec4(glm::normalize(worldToModelLinear * -glm::normalize(d->direction)), 0.0f);
+            radiance = d->color * d->intensity;
+        } else {
+            const auto& point = std::get<PointLight>(light);
+            worldPosition = point.position;
+            modelVector = glm::vec4(glm::vec3(worldToModel * glm::vec4(point.position, 1.0f)), 1.0f);
+            radiance = point.color * point.intensity;
+        }
+        if (!(std::max({radiance.x, radiance.y, radiance.z}) > 0.0f)) continue;
+        const std::string i = "[" + std::to_string(count++) + "]";
+        p.set("lightModel" + i, modelVector);
+        p.set("lightWorldPosition" + i, worldPosition);
+        p.set("lightRadiance" + i, radiance);
+    }
+    p.set("lightCount", count);
+
+    volume.texture.bind(0);
+    in.transferFunction.bind(1);
+    in.sceneDepth.bind(2);
+    in.majorants.bind(3);
+    sums.bindImage(0, GL_READ_WRITE);
+    p.use();
+    // One path per pixel and dispatch: llvmpipe gives each invocation 65535 loop iterations in
+    // all, over all its loops (measured: two loops of 40000 ran 40000 and 25534), then leaves
+    // every loop early. With many paths in one invocation it cut them short (512 paths lost 28 %
+    // of the light and of the coverage). A single path still runs out in the engine data set,
+    // whose bright, dense medium makes long paths: its image is 3 % too bright there (see
+    // benchmarks/README.md); carrying paths over dispatches would end that.
+    for (int s = 0; s < in.options.samplesPerFrame; ++s) {
+        p.set("sampleIndex", in.firstSample + static_cast<unsigned>(s));
+        glDispatchCompute(static_cast<GLuint>((size.x + 7) / 8), static_cast<GLuint>((size.y + 7) / 8), 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glUseProgram(0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+}
+
+void PathTracePass::composite(const gl::Texture& sums, int samples) const {
+    m_resolve.set("accumulation", 0);
+    m_resolve.set("inverseSamples", samples > 0 ? 1.0f / static_cast<float>(samples) : 0.0f);
+    sums.bind(0);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    m_resolve.use();
+    m_emptyVertexArray.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+}
+
+}  // namespace sss::detail
