@@ -139,8 +139,13 @@ struct MeshScatteringRenderer::Impl {
                     if (whole[c] > 0.0) share = std::min(share, kept[c] / whole[c]);
                 return share;
             };
-            if (options.sampleRadius <= 0.0f)
+            if (options.sampleRadius <= 0.0f) {
                 for (int i = 0; i < 12 && keptShare(sampling.diskRadius) < 0.999; ++i) sampling.diskRadius *= 1.25f;
+                // The exponential sampler must reach the widened disk: without absorption (spectralon,
+                // sigma_tr = 0) the disk grows to 43 / sigma*, where exp(-sigma* r) gives rare samples
+                // weights of e^40 (sparkles). Keep the edge at three of the sampler's lengths.
+                sampling.sigmaStar = std::min(sampling.sigmaStar, 3.0f / sampling.diskRadius);
+            }
             const glm::dvec3 kept = dipolePlaneIntegral(dipole, 1.0, sampling.diskRadius);
             for (int c = 0; c < 3; ++c)
                 if (kept[c] > 0.0) dipole.profileScale[c] *= whole[c] / kept[c];
