@@ -14,6 +14,7 @@
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNIFTIImageReader.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
@@ -31,6 +32,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -124,8 +126,12 @@ public:
         m_previous = vtkOutputWindow::GetInstance();
         m_previous->Register(nullptr);  // keep it alive while ours is installed
         vtkOutputWindow::SetInstance(m_window);
+        // The pipeline also logs failures to stderr through vtkLogger.
+        m_verbosity = vtkLogger::GetCurrentVerbosityCutoff();
+        vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
     }
     ~VtkCapture() {
+        vtkLogger::SetStderrVerbosity(m_verbosity);
         vtkOutputWindow::SetInstance(m_previous);
         m_previous->UnRegister(nullptr);
     }
@@ -141,6 +147,7 @@ private:
     std::lock_guard<std::mutex> m_lock;
     vtkNew<CapturingOutputWindow> m_window;
     vtkOutputWindow* m_previous = nullptr;
+    vtkLogger::Verbosity m_verbosity = vtkLogger::VERBOSITY_OFF;
 };
 
 // The image a VTK reader produced, or a Parse error with what the reader said.
@@ -224,44 +231,52 @@ Decoded readVti(const std::string& file, const std::string& prefix) {
     return d;
 }
 
+// vtkDICOMImageReader reads a pixel data element that ends early without complaint, so each
+// file with a DICOM preamble is checked first: its last (7FE0,0010) element must fit in it.
+void checkDicomPixelData(const std::filesystem::path& dir, const std::string& prefix) {
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        if (!entry.is_regular_file()) continue;
+        std::ifstream in(entry.path(), std::ios::binary);
+        const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (data.size() < 132 || data.compare(128, 4, "DICM") != 0) continue;
+        const std::size_t tag = data.rfind(std::string("\xE0\x7F\x10\x00", 4));
+        if (tag == std::string::npos) continue;
+        auto u32 = [&](std::size_t at) {
+            uint32_t v = 0;
+            for (int i = 0; i < 4; ++i) v |= static_cast<uint32_t>(static_cast<uint8_t>(data[at + i])) << (8 * i);
+            return v;
+        };
+        // Explicit VR: "OB"/"OW", 2 reserved bytes, 4-byte length; implicit VR: 4-byte length.
+        const bool explicitVr = tag + 6 <= data.size() && data[tag + 4] == 'O';
+        const std::size_t lengthAt = tag + (explicitVr ? 8 : 4);
+        if (lengthAt + 4 > data.size())
+            fail(ErrorKind::Parse, prefix, entry.path().filename().string() + ": the pixel data element is cut off");
+        const uint32_t length = u32(lengthAt);
+        if (length != 0xffffffffu && lengthAt + 4 + static_cast<std::size_t>(length) > data.size())
+            fail(ErrorKind::Parse, prefix,
+                 entry.path().filename().string() + ": the pixel data is truncated: " +
+                     std::to_string(data.size() - lengthAt - 4) + " of " + std::to_string(length) + " bytes present");
+    }
+}
+
 Decoded readDicomSeries(const std::string& dir, const std::string& prefix) {
+    checkDicomPixelData(dir, prefix);
     VtkCapture capture;
     vtkNew<vtkDICOMImageReader> reader;
     reader->SetDirectoryName(dir.c_str());
     reader->Update();
     Decoded d = fromVtkImage(prefix, reader->GetOutput(), capture, reader->GetErrorCode() != 0);
-    // The reader orders slices along the normal and turns rows bottom-up (VTK's convention): its
-    // y axis runs against the DICOM column direction.
+    // The reader sorts the slices by position along the normal, descending, and turns rows
+    // bottom-up (VTK's convention): its y and z axes run against the column direction and the
+    // normal (checked by the DICOM test).
     const float* o = reader->GetImageOrientationPatient();
     const glm::dvec3 row(o[0], o[1], o[2]), col(o[3], o[4], o[5]);
     if (glm::length(row) > 0.5 && glm::length(col) > 0.5)
-        d.direction = glm::dmat3(row, -col, glm::cross(row, col));
-    // Rescale slope/intercept turns stored values into Hounsfield units.
-    const double slope = reader->GetRescaleSlope(), inter = reader->GetRescaleOffset();
-    if (slope != 0.0 && (slope != 1.0 || inter != 0.0)) {
-        const Volume raw = Volume::fromData(d.dims, d.type, d.bytes);
-        bool integral = slope == std::round(slope) && inter == std::round(inter);
-        double lo = raw.valueRange().first * slope + inter, hi = raw.valueRange().second * slope + inter;
-        if (lo > hi) std::swap(lo, hi);
-        const bool fitsInt16 = integral && lo >= -32768.0 && hi <= 32767.0;
-        std::vector<uint8_t> out(raw.voxelCount() * (fitsInt16 ? 2 : 4));
-        std::size_t i = 0;
-        for (int z = 0; z < d.dims.z; ++z)
-            for (int y = 0; y < d.dims.y; ++y)
-                for (int x = 0; x < d.dims.x; ++x, ++i) {
-                    const double v = raw.valueAt(x, y, z) * slope + inter;
-                    if (fitsInt16) {
-                        const auto u = static_cast<uint16_t>(static_cast<int16_t>(v));
-                        out[2 * i] = static_cast<uint8_t>(u & 0xff);
-                        out[2 * i + 1] = static_cast<uint8_t>(u >> 8);
-                    } else {
-                        const float f = static_cast<float>(v);
-                        std::memcpy(out.data() + 4 * i, &f, 4);
-                    }
-                }
-        d.type = fitsInt16 ? VoxelType::Int16 : VoxelType::Float32;
-        d.bytes = std::move(out);
-    }
+        d.direction = glm::dmat3(row, -col, -glm::cross(row, col));
+    // The reader applies rescale slope and intercept itself (Hounsfield units out), and puts
+    // PixelSpacing's first value (the row spacing, along y) on x: swap it back.
+    std::swap(d.spacing.x, d.spacing.y);
     return d;
 }
 
@@ -289,6 +304,38 @@ private:
     std::streambuf* m_err;
 };
 
+// MetaIO accepts uncompressed data that ends early (the rest of the buffer stays unset), so the
+// size is checked first: the data is the file's tail after the ElementDataFile line (LOCAL) or
+// the whole named data file.
+void checkMetaImageSize(const std::string& file, const std::string& prefix, const vtkmetaio::MetaImage& image) {
+    if (image.CompressedData() || !image.BinaryData()) return;
+    int elementBytes = 0;
+    vtkmetaio::MET_SizeOfType(image.ElementType(), &elementBytes);
+    unsigned long long expected = static_cast<unsigned long long>(elementBytes) * image.ElementNumberOfChannels();
+    for (int i = 0; i < image.NDims(); ++i) expected *= static_cast<unsigned long long>(image.DimSize(i));
+    const std::string dataName = image.ElementDataFileName();
+    unsigned long long present = 0;
+    std::error_code ec;
+    if (dataName == "LOCAL") {
+        std::ifstream in(file, std::ios::binary);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::size_t key = text.find("ElementDataFile");
+        const std::size_t end = key == std::string::npos ? std::string::npos : text.find('\n', key);
+        if (end == std::string::npos) fail(ErrorKind::Parse, prefix, "the header has no ElementDataFile line");
+        present = text.size() - (end + 1);
+    } else if (dataName.find("LIST") == std::string::npos && dataName.find('%') == std::string::npos) {
+        const std::filesystem::path data = std::filesystem::path(file).parent_path() / dataName;
+        present = std::filesystem::file_size(data, ec);
+        if (ec) fail(ErrorKind::Io, prefix, "cannot read the data file " + data.string() + ": " + ec.message());
+    } else {
+        return;  // a slice list or pattern: MetaIO checks each file
+    }
+    if (present < expected)
+        fail(ErrorKind::Parse, prefix,
+             "the data is truncated: " + std::to_string(present) + " bytes where the header needs " +
+                 std::to_string(expected));
+}
+
 Decoded readMetaImage(const std::string& file, const std::string& prefix) {
     vtkmetaio::MetaImage image;
     image.AutoFreeElementData(true);
@@ -305,6 +352,7 @@ Decoded readMetaImage(const std::string& file, const std::string& prefix) {
             fail(ErrorKind::Parse, prefix,
                  std::to_string(image.ElementNumberOfChannels()) +
                      " components per voxel are not supported (only scalar volumes are)");
+        checkMetaImageSize(file, prefix, image);
         if (!image.Read(file.c_str(), true))
             fail(ErrorKind::Parse, prefix,
                  "cannot read the voxels" + (capture.firstLine().empty() ? "" : ": " + capture.firstLine()));
