@@ -29,6 +29,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -231,37 +232,66 @@ Decoded readVti(const std::string& file, const std::string& prefix) {
     return d;
 }
 
-// vtkDICOMImageReader reads a pixel data element that ends early without complaint, so each
-// file with a DICOM preamble is checked first: its last (7FE0,0010) element must fit in it.
-void checkDicomPixelData(const std::filesystem::path& dir, const std::string& prefix) {
+// vtkDICOMImageReader reads a pixel data element that ends early without complaint, and crashes
+// on some files cut inside their header. So every file with a DICOM preamble is walked element
+// by element first (framing only: tag, VR, length): each must fit in the file, and one must be
+// the pixel data (7FE0,0010). Elements of undefined length (sequences, encapsulated pixel data)
+// end the walk, since their extent needs a full parse.
+void checkDicomFraming(const std::filesystem::path& dir, const std::string& prefix) {
     std::error_code ec;
     for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
         if (!entry.is_regular_file()) continue;
         std::ifstream in(entry.path(), std::ios::binary);
         const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         if (data.size() < 132 || data.compare(128, 4, "DICM") != 0) continue;
-        const std::size_t tag = data.rfind(std::string("\xE0\x7F\x10\x00", 4));
-        if (tag == std::string::npos) continue;
-        auto u32 = [&](std::size_t at) {
-            uint32_t v = 0;
-            for (int i = 0; i < 4; ++i) v |= static_cast<uint32_t>(static_cast<uint8_t>(data[at + i])) << (8 * i);
-            return v;
+        const std::string name = entry.path().filename().string();
+        auto u16 = [&](std::size_t at) {
+            return static_cast<uint32_t>(static_cast<uint8_t>(data[at]) | (static_cast<uint8_t>(data[at + 1]) << 8));
         };
-        // Explicit VR: "OB"/"OW", 2 reserved bytes, 4-byte length; implicit VR: 4-byte length.
-        const bool explicitVr = tag + 6 <= data.size() && data[tag + 4] == 'O';
-        const std::size_t lengthAt = tag + (explicitVr ? 8 : 4);
-        if (lengthAt + 4 > data.size())
-            fail(ErrorKind::Parse, prefix, entry.path().filename().string() + ": the pixel data element is cut off");
-        const uint32_t length = u32(lengthAt);
-        if (length != 0xffffffffu && lengthAt + 4 + static_cast<std::size_t>(length) > data.size())
-            fail(ErrorKind::Parse, prefix,
-                 entry.path().filename().string() + ": the pixel data is truncated: " +
-                     std::to_string(data.size() - lengthAt - 4) + " of " + std::to_string(length) + " bytes present");
+        auto u32 = [&](std::size_t at) { return u16(at) | (u16(at + 2) << 16); };
+        auto upper = [](char c) { return c >= 'A' && c <= 'Z'; };
+        std::size_t pos = 132;
+        bool pixels = false, undefinedLength = false;
+        while (pos < data.size() && !pixels && !undefinedLength) {
+            if (pos + 8 > data.size())
+                fail(ErrorKind::Parse, prefix, name + ": cut off inside an element header at byte " + std::to_string(pos));
+            const uint32_t group = u16(pos), element = u16(pos + 2);
+            const bool explicitVr = upper(data[pos + 4]) && upper(data[pos + 5]);
+            const std::string vr = explicitVr ? data.substr(pos + 4, 2) : "";
+            const bool longForm = vr == "OB" || vr == "OW" || vr == "OF" || vr == "OD" || vr == "OL" || vr == "OV" ||
+                                  vr == "SQ" || vr == "UT" || vr == "UN" || vr == "UC" || vr == "UR";
+            std::size_t header = 8;
+            uint32_t length = 0;
+            if (!explicitVr) {
+                length = u32(pos + 4);
+            } else if (longForm) {
+                header = 12;
+                if (pos + 12 > data.size())
+                    fail(ErrorKind::Parse, prefix, name + ": cut off inside an element header at byte " + std::to_string(pos));
+                length = u32(pos + 8);
+            } else {
+                length = u16(pos + 6);
+            }
+            if (length == 0xffffffffu) {
+                undefinedLength = true;
+                break;
+            }
+            if (pos + header + length > data.size()) {
+                char tag[16];
+                std::snprintf(tag, sizeof tag, "(%04X,%04X)", group, element);
+                fail(ErrorKind::Parse, prefix,
+                     name + ": element " + tag + " at byte " + std::to_string(pos) + " needs " + std::to_string(length) +
+                         " bytes, the file ends after " + std::to_string(data.size() - pos - header));
+            }
+            pixels = group == 0x7FE0 && element == 0x0010;
+            pos += header + length;
+        }
+        if (!pixels && !undefinedLength) fail(ErrorKind::Parse, prefix, name + ": no pixel data element (7FE0,0010)");
     }
 }
 
 Decoded readDicomSeries(const std::string& dir, const std::string& prefix) {
-    checkDicomPixelData(dir, prefix);
+    checkDicomFraming(dir, prefix);
     VtkCapture capture;
     vtkNew<vtkDICOMImageReader> reader;
     reader->SetDirectoryName(dir.c_str());

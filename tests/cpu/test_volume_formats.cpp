@@ -15,7 +15,9 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <algorithm>
 #include <functional>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -436,4 +438,45 @@ TEST_CASE("Each Volume::load reader rejects corrupted files with a message namin
     const auto unknown = dir.write("v.xyz", "1234");
     REQUIRE_SSS_ERROR(Volume::load(unknown), ErrorKind::InvalidArgument, Contains(unknown.string()) && Contains(".nrrd"));
     REQUIRE_SSS_ERROR(Volume::load(dir.path() / "missing.nii"), ErrorKind::Io, Contains("missing.nii"));
+}
+
+TEST_CASE("Volume::load survives every format cut short at many lengths", "[cpu][volume-formats]") {
+    // A cheap stand-in for fuzzing: each prefix throws sss::Error (never a crash, a hang or
+    // another exception type) or, if only trailing markup is missing, loads the right values.
+    sss::test::TempDir dir;
+    std::vector<std::pair<std::string, std::string>> files{
+        {"c.nrrd", nrrdFile(VoxelType::Int16, kAlignedDirections)},
+        {"c.mha", metaHeader(VoxelType::Float32, "1 0 0 0 1 0 0 0 1", "LOCAL") + voxelBytes(VoxelType::Float32)},
+        {"c.nii", niftiFile(VoxelType::UInt16, kAlignedRows)}};
+    {
+        vtkNew<vtkImageData> image;
+        fillImage(image, VoxelType::Int16);
+        vtkNew<vtkXMLImageDataWriter> writer;
+        writer->SetInputData(image);
+        writer->SetFileName((dir.path() / "whole.vti").string().c_str());
+        REQUIRE(writer->Write() == 1);
+        std::ifstream in(dir.path() / "whole.vti", std::ios::binary);
+        files.emplace_back("c.vti", std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+    }
+    for (const auto& [name, whole] : files) {
+        CAPTURE(name);
+        const std::size_t step = std::max<std::size_t>(1, whole.size() / 60);
+        for (std::size_t length = 0; length < whole.size(); length += step) {
+            CAPTURE(length);
+            const auto path = dir.write(name, whole.substr(0, length));
+            try {
+                const Volume v = Volume::load(path);
+                const VoxelType type = v.type();
+                checkVolume(v, type, kDims, kSpacing, same);
+            } catch (const sss::Error&) {
+            }
+        }
+    }
+    sss::test::TempDir dicom;
+    const std::string slice = dicomSlice(1, 0.0, 0, 0.0);
+    for (std::size_t length = 0; length < slice.size(); length += 16) {
+        CAPTURE(length);
+        dicom.write("s.dcm", slice.substr(0, length));
+        CHECK_THROWS_AS(Volume::load(dicom.path()), sss::Error);
+    }
 }
