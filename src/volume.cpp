@@ -4,7 +4,7 @@
 
 #include "sss/error.h"
 
-#include "volume/voxel_storage.h"
+#include "voxel_storage.h"
 
 #include <algorithm>
 #include <cctype>

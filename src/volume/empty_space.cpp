@@ -1,6 +1,6 @@
 #include "volume/empty_space.h"
 
-#include "volume/voxel_storage.h"
+#include "voxel_storage.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "volume/gpu_volume.h"
 
-#include "volume/voxel_storage.h"
+#include "voxel_storage.h"
 
 #include <algorithm>
 

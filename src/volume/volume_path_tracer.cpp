@@ -3,7 +3,7 @@
 #include "sss/volume_path_tracer.h"
 
 #include "volume/box_clip.h"
-#include "volume/voxel_storage.h"
+#include "voxel_storage.h"
 
 #include "format.h"
 #include "parallel.h"

@@ -3,7 +3,7 @@
 #include "format.h"
 #include "parallel.h"
 #include "volume/box_clip.h"
-#include "volume/voxel_storage.h"
+#include "voxel_storage.h"
 
 #include "sss/error.h"
 #include "sss/image_compare.h"
