@@ -36,6 +36,7 @@
 #include <iterator>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <sstream>
 #include <string>
 
@@ -567,23 +568,36 @@ Volume Volume::load(const std::filesystem::path& path, const VolumeLoadOptions& 
         for (const auto& entry : std::filesystem::directory_iterator(path, ec))
             any = any || entry.is_regular_file();
         if (!any) fail(ErrorKind::Io, prefix, "the directory has no files (a DICOM series was expected)");
-        return orient(prefix, readDicomSeries(file, prefix), options.allowOblique);
+        try {
+            return orient(prefix, readDicomSeries(file, prefix), options.allowOblique);
+        } catch (const std::bad_alloc&) {
+            fail(ErrorKind::Parse, prefix, "out of memory reading the series");
+        }
     }
     const std::string name = lower(path.filename().string());
     if (endsWith(name, ".raw")) return loadRaw(path, options.raw);
+    bool known = false;
+    for (const char* ext : {".nrrd", ".nhdr", ".mhd", ".mha", ".nii", ".nii.gz", ".vti"}) known = known || endsWith(name, ext);
+    if (!known)
+        fail(ErrorKind::InvalidArgument, prefix,
+             "unknown volume format: expected .raw, .nrrd, .nhdr, .mhd, .mha, .nii, .nii.gz, .vti or a DICOM directory");
     {
         std::ifstream probe(path, std::ios::binary);
         if (!probe) fail(ErrorKind::Io, prefix, "cannot be opened for reading");
         if (std::filesystem::file_size(path, ec) == 0 || ec) fail(ErrorKind::Parse, prefix, "the file is empty");
     }
-    if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) return orient(prefix, readNrrd(file, prefix), options.allowOblique);
-    if (endsWith(name, ".mhd") || endsWith(name, ".mha"))
-        return orient(prefix, readMetaImage(file, prefix), options.allowOblique);
-    if (endsWith(name, ".nii") || endsWith(name, ".nii.gz"))
-        return orient(prefix, readNifti(file, prefix), options.allowOblique);
-    if (endsWith(name, ".vti")) return orient(prefix, readVti(file, prefix), options.allowOblique);
-    fail(ErrorKind::InvalidArgument, prefix,
-         "unknown volume format: expected .raw, .nrrd, .nhdr, .mhd, .mha, .nii, .nii.gz, .vti or a DICOM directory");
+    try {
+        if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr"))
+            return orient(prefix, readNrrd(file, prefix), options.allowOblique);
+        if (endsWith(name, ".mhd") || endsWith(name, ".mha"))
+            return orient(prefix, readMetaImage(file, prefix), options.allowOblique);
+        if (endsWith(name, ".nii") || endsWith(name, ".nii.gz"))
+            return orient(prefix, readNifti(file, prefix), options.allowOblique);
+        return orient(prefix, readVti(file, prefix), options.allowOblique);  // the one left: .vti
+    } catch (const std::bad_alloc&) {
+        // A header can claim up to 8192^3 voxels; the libraries allocate before we can check.
+        fail(ErrorKind::Parse, prefix, "out of memory reading the voxels (are the header's sizes right?)");
+    }
 }
 
 }  // namespace sss
