@@ -70,16 +70,22 @@ public:
     /// Loads a volume, picking the reader by what the path is: a directory is a DICOM series
     /// (every file in it that parses as DICOM; slices ordered by position); ".raw" goes to
     /// loadRaw unchanged; ".nrrd"/".nhdr" NRRD, ".mhd"/".mha" MetaImage, ".nii"/".nii.gz"
-    /// NIfTI-1 or -2, ".vti" VTK XML image data (extensions case-insensitive). Readers are VTK's.
+    /// NIfTI-1 or -2, ".vti" VTK XML image data (extensions case-insensitive). Readers: teem
+    /// (NRRD), MetaIO as VTK bundles it (MetaImage), VTK (NIfTI, .vti, DICOM).
     /// Dims, type and spacing come from the header. Voxels are reordered so that x, y, z run
     /// along the file's world/patient axes in increasing order: a direction matrix that is a
     /// signed permutation is undone (axes swapped, flipped axes reversed); NIfTI uses its qform
-    /// (else sform) matrix. Voxel types: uint8, int16, uint16, float32; int8 is widened to
-    /// int16, and uint32/int32/float64 are rejected, as is more than one component.
+    /// (else sform) matrix; a DICOM series its ImageOrientationPatient. Voxel types: uint8,
+    /// int16, uint16, float32; int8 is widened to int16, and uint32/int32/float64 are rejected,
+    /// as is more than one component. DICOM rescale slope/intercept are applied by VTK's
+    /// reader (Hounsfield units; float32 when they are fractional); NIfTI scl_slope/scl_inter
+    /// other than 1/0 give float32. Not thread-safe with other code using VTK's output window or std::cout
+    /// while a load runs (their messages are captured for the exception).
     /// @throws Error Io if the path is missing or unreadable; Parse if the reader fails or the
     ///         file is truncated or inconsistent, or for a voxel type, component count or (without
     ///         allowOblique) orientation that is not supported; InvalidArgument for an unknown
-    ///         extension, or as fromData. Messages start with "Volume::load: <path>: " (loadRaw's with its own).
+    ///         extension, or as fromData. Messages start with "Volume::load: <path>: " (loadRaw's
+    ///         with its own).
     static Volume load(const std::filesystem::path& path, const VolumeLoadOptions& options = {});
 
     /// Loads a headerless .raw file. dims/type come from options, else from the file name

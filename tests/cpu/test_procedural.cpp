@@ -172,7 +172,7 @@ TEST_CASE("makeBuckyLikeVolume is a symmetric cage of blobs", "[cpu]") {
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
-                const int value = v.valueAt(x, y, z);
+                const int value = static_cast<int>(v.valueAt(x, y, z));
                 worst = std::max(worst, std::abs(value - int(v.valueAt(n - 1 - x, y, z))));
                 worst = std::max(worst, std::abs(value - int(v.valueAt(x, n - 1 - y, z))));
                 worst = std::max(worst, std::abs(value - int(v.valueAt(y, z, x))));
