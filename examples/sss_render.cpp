@@ -26,7 +26,8 @@ using namespace examples;
 
 constexpr const char* kUsage = R"(usage: sss-render [--mesh PATH] [--volume PATH] [options] --out FILE.png
 
-Renders a triangle mesh (.obj .ply .stl .gltf .glb .off) and/or a scalar volume (.raw) headless
+Renders a triangle mesh (.obj .ply .stl .gltf .glb .off) and/or a scalar volume (.raw .nrrd .nhdr
+.mhd .mha .nii .nii.gz .vti, or a directory holding a DICOM series) headless
 with OpenGL 4.5 (EGL).
 PATH may also be a procedural asset: procedural:sphere | procedural:torus | procedural:slab
 (meshes), procedural:blobs | procedural:shell | procedural:bucky (volumes).
@@ -35,10 +36,13 @@ volumes/ folders): --data-dir, else $SSS_DATA_DIR, else ../shared/data if it exi
 
 input:
   --mesh PATH               triangle mesh: OBJ, PLY, STL, glTF 2.0 (.gltf/.glb) or OFF
-  --volume PATH             raw volume; dims/type parsed from names like bonsai_256x256x256_uint8.raw
-  --dims XxYxZ              volume dimensions (overrides the name)
-  --type uint8|uint16       voxel type (overrides the name; default uint8)
-  --spacing X,Y,Z           voxel spacing (default 1,1,1)
+  --volume PATH             volume: NRRD, MetaImage, NIfTI, VTK .vti or a DICOM directory (dims,
+                            type, spacing and orientation from the header), or headerless raw
+                            data with dims/type parsed from names like bonsai_256x256x256_uint8.raw
+  --dims XxYxZ              raw volume dimensions (overrides the name)
+  --type T                  raw voxel type: uint8|uint16|int16|float32 (overrides the name;
+                            default uint8)
+  --spacing X,Y,Z           raw voxel spacing (default 1,1,1)
   --data-dir DIR            where to look for relative paths
 output:
   --out FILE.png|FILE.exr   output image (default: sss-render.png): a PNG is the display image
@@ -82,8 +86,10 @@ shading:
   --shininess S             mesh Blinn-Phong exponent (default: 40)
   --tf NAME|FILE.json       transfer-function preset (default: ramp; see --list-tf) or a
                             ParaView JSON colour map (RGBPoints/Points)
-  --tf-range LO,HI          data values the JSON's x axis spans (default: the file's own x range;
-                            x in data units, e.g. 0..255 for 8-bit data, needs this)
+  --tf-range LO,HI          value window: the data values (e.g. Hounsfield units) that the
+                            transfer function's domain spans; values outside clamp to its ends
+                            (default: 0..255 for uint8, else the data's min..max). A JSON's x
+                            axis is mapped with it too (default there: the file's own x range)
   --list-tf                 print the transfer-function presets and exit
   --step VOXELS             ray step in voxels (default: 1)
   --early-termination A     stop rays at this opacity, (0,1] (default: 0.99)
@@ -188,10 +194,7 @@ Args parseArgs(int argc, char** argv) {
         else if (opt == "--tf") a.tf = value();
         else if (opt == "--list-tf") a.listTf = true;
         else if (opt == "--tf-range") {
-            const std::string v = value();
-            const auto parts = split(v, ',');
-            if (parts.size() != 2) throw UsageError("--tf-range: expected LO,HI, got \"" + v + "\"");
-            a.tfRange = std::pair<double, double>(parseFloat(opt, parts[0]), parseFloat(opt, parts[1]));
+            a.tfRange = parseRange(opt, value());
         }
         else if (opt == "--material") a.material = value();
         else if (opt == "--list-materials") a.listMaterials = true;
@@ -344,6 +347,7 @@ int run(const Args& a) {
     const sss::ScatteringMaterial material = sss::materialPreset(a.material);
     if (!a.volume.empty()) {
         volume = loadSceneVolume(a.volume, dataDir, rawOptions(a));
+        volume->setValueWindow(a.tfRange);
         const bool file = a.tf.size() > 5 && a.tf.substr(a.tf.size() - 5) == ".json";
         tf = file ? sss::TransferFunction::loadParaViewJson(a.tf, a.tfRange) : sss::TransferFunction::preset(a.tf);
     }
@@ -489,8 +493,10 @@ int run(const Args& a) {
     std::printf("renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().backend.c_str());
     if (mesh) std::printf("mesh: %zu vertices, %zu triangles\n", mesh->vertexCount(), mesh->triangleCount());
     if (volume)
-        std::printf("volume: %dx%dx%d %s\n", volume->dims().x, volume->dims().y, volume->dims().z,
-                    volume->type() == sss::VoxelType::UInt16 ? "uint16" : "uint8");
+        std::printf("volume: %dx%dx%d %s, spacing %g,%g,%g, values %g..%g, TF range %g..%g\n", volume->dims().x,
+                    volume->dims().y, volume->dims().z, sss::voxelTypeName(volume->type()), volume->spacing().x,
+                    volume->spacing().y, volume->spacing().z, volume->valueRange().first, volume->valueRange().second,
+                    volume->transferFunctionRange().first, volume->transferFunctionRange().second);
     std::printf("frame: %.2f ms median, %.2f min, %.2f max over %d run(s) at %dx%d, %s; first run includes "
                 "shader compilation\n",
                 times[times.size() / 2], times.front(), times.back(), a.repeat, a.width, a.height,

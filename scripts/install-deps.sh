@@ -16,6 +16,10 @@ packages=(
   libglm-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev catch2 libopenexr-dev
   # Assimp: the PLY, STL, glTF 2.0 and OFF mesh readers (Mesh::load; OBJ stays on tinyobjloader)
   libassimp-dev
+  # Volume::load: VTK 9.1 reads NIfTI, .vti, DICOM series and (bundled MetaIO) MetaImage; teem
+  # reads NRRD with its orientation. VTK is the only Debian library with a .vti reader; it is
+  # large (156 MB download, 775 MB installed with its -dev closure; see README "Volume formats").
+  libvtk9-dev libteem-dev
   # clang with libFuzzer and the sanitizer runtimes: the loader fuzz targets (tests/fuzz)
   clang-14 libclang-rt-14-dev
 )

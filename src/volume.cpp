@@ -4,12 +4,15 @@
 
 #include "sss/error.h"
 
+#include "voxel_storage.h"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -24,7 +27,7 @@ std::string dimsStr(glm::ivec3 d) {
     return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
 }
 
-const char* typeStr(VoxelType t) { return t == VoxelType::UInt16 ? "uint16" : "uint8"; }
+const char* typeStr(VoxelType t) { return voxelTypeName(t); }
 
 std::string vecStr(glm::vec3 v) { return detail::formatVec(v); }
 
@@ -137,14 +140,21 @@ Volume Volume::fromData(glm::ivec3 dims, VoxelType type, std::vector<uint8_t> by
     v.m_spacing = spacing;
     v.m_bytes = std::move(bytes);
     // Computed once here so valueRange() is a cheap, thread-safe getter.
-    uint16_t lo = 0xffff, hi = 0;
+    double lo = 0.0, hi = 0.0;
     if (type == VoxelType::UInt8) {
         auto [mn, mx] = std::minmax_element(v.m_bytes.begin(), v.m_bytes.end());
         lo = *mn;
         hi = *mx;
     } else {
-        for (std::size_t i = 0; i + 1 < v.m_bytes.size(); i += 2) {
-            uint16_t value = uint16_t(v.m_bytes[i] | (v.m_bytes[i + 1] << 8));
+        lo = std::numeric_limits<double>::infinity();
+        hi = -lo;
+        const std::size_t n = v.voxelCount();
+        for (std::size_t i = 0; i < n; ++i) {
+            const double value = detail::rawValue(v.m_bytes.data(), type, i);
+            if (!std::isfinite(value))
+                throw Error(ErrorKind::InvalidArgument, prefix + "voxel " + std::to_string(i) + " is " +
+                                                            detail::formatNumber(value) +
+                                                            "; float32 voxels must be finite");
             lo = std::min(lo, value);
             hi = std::max(hi, value);
         }
@@ -187,7 +197,25 @@ Volume Volume::loadRaw(const std::filesystem::path& path, const RawLoadOptions& 
     return fromData(dims, type, std::move(bytes), spacing);
 }
 
-uint16_t Volume::valueAt(int x, int y, int z) const {
+const char* voxelTypeName(VoxelType type) {
+    switch (type) {
+    case VoxelType::UInt8: return "uint8";
+    case VoxelType::UInt16: return "uint16";
+    case VoxelType::Int16: return "int16";
+    case VoxelType::Float32: return "float32";
+    }
+    return "unknown";
+}
+
+void Volume::setValueWindow(std::optional<std::pair<double, double>> window) {
+    if (window && !(std::isfinite(window->first) && std::isfinite(window->second) && window->first < window->second))
+        throw Error(ErrorKind::InvalidArgument, "Volume::setValueWindow: the window must be finite with lo < hi, got (" +
+                                                    detail::formatNumber(window->first) + ", " +
+                                                    detail::formatNumber(window->second) + ")");
+    m_window = window;
+}
+
+double Volume::valueAt(int x, int y, int z) const {
     if (x < 0 || y < 0 || z < 0 || x >= m_dims.x || y >= m_dims.y || z >= m_dims.z)
         throw Error(ErrorKind::InvalidArgument, "Volume::valueAt: voxel (" + std::to_string(x) + ", " +
                                                     std::to_string(y) + ", " + std::to_string(z) +
@@ -195,13 +223,19 @@ uint16_t Volume::valueAt(int x, int y, int z) const {
     const std::size_t i = (static_cast<std::size_t>(z) * static_cast<std::size_t>(m_dims.y) +
                            static_cast<std::size_t>(y)) * static_cast<std::size_t>(m_dims.x) +
                           static_cast<std::size_t>(x);
-    if (m_type == VoxelType::UInt8) return m_bytes[i];
-    return uint16_t(m_bytes[2 * i] | (m_bytes[2 * i + 1] << 8));
+    return detail::rawValue(m_bytes.data(), m_type, i);
 }
 
 float Volume::normalizedAt(int x, int y, int z) const {
-    const float scale = m_type == VoxelType::UInt8 ? 1.0f / 255.0f : 1.0f / 65535.0f;
-    return float(valueAt(x, y, z)) * scale;
+    const double value = valueAt(x, y, z);
+    switch (m_type) {
+    case VoxelType::UInt8: return float(value) * (1.0f / 255.0f);
+    case VoxelType::UInt16: return float(value) * (1.0f / 65535.0f);
+    case VoxelType::Int16: return float(value + 32768.0) * (1.0f / 65535.0f);
+    case VoxelType::Float32: break;
+    }
+    const double span = m_range.second - m_range.first;
+    return span > 0.0 ? float((value - m_range.first) / span) : 0.0f;
 }
 
 Bounds Volume::worldBounds() const {
@@ -221,22 +255,33 @@ std::vector<uint32_t> Volume::histogram(int bins) const {
                     "Volume::histogram: bins must be in [1, 65536], got " + std::to_string(bins));
     // 64-bit while counting: a 2048x2048x1024 uint8 volume of one value holds 2^32 voxels.
     std::vector<uint64_t> counts(static_cast<std::size_t>(bins), 0);
-    const uint64_t range = m_type == VoxelType::UInt8 ? 256 : 65536;
     if (m_type == VoxelType::UInt8) {
-        for (uint8_t value : m_bytes) ++counts[static_cast<std::size_t>(uint64_t(value) * uint64_t(bins) / range)];
-    } else {
-        for (std::size_t i = 0; i + 1 < m_bytes.size(); i += 2) {
-            const uint64_t value = uint64_t(m_bytes[i] | (m_bytes[i + 1] << 8));
-            ++counts[static_cast<std::size_t>(value * uint64_t(bins) / range)];
+        for (uint8_t value : m_bytes) ++counts[static_cast<std::size_t>(uint64_t(value) * uint64_t(bins) / 256)];
+    } else if (m_type != VoxelType::Float32) {
+        // Integer storage codes 0..65535 (Int16 biased by 32768) over the whole type range.
+        const std::size_t n = voxelCount();
+        for (std::size_t i = 0; i < n; ++i) {
+            const uint64_t code = detail::storageCode(m_bytes.data(), m_type, i);
+            ++counts[static_cast<std::size_t>(code * uint64_t(bins) / 65536)];
         }
+    } else {
+        const auto [lo, hi] = transferFunctionDataRange();
+        return histogram(bins, {lo, hi});
     }
     return saturated(counts);
 }
 
 std::pair<double, double> Volume::transferFunctionRange() const {
+    if (m_window) return *m_window;
+    return transferFunctionDataRange();
+}
+
+std::pair<double, double> Volume::transferFunctionDataRange() const {
     if (m_type == VoxelType::UInt8) return {0.0, 255.0};
+    // A flat volume: widen by 1, or for huge floats by a step that is not lost to rounding.
     const double lo = m_range.first;
-    return {lo, std::max(lo + 1.0, static_cast<double>(m_range.second))};
+    const double step = std::max(1.0, std::abs(lo) * std::ldexp(1.0, -20));
+    return {lo, std::max(lo + step, m_range.second)};
 }
 
 std::vector<uint32_t> Volume::histogram(int bins, std::pair<double, double> range) const {
@@ -247,23 +292,32 @@ std::vector<uint32_t> Volume::histogram(int bins, std::pair<double, double> rang
     if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi))
         throw Error(ErrorKind::InvalidArgument, "Volume::histogram: range must be finite with lo < hi, got (" +
                                                     detail::formatNumber(lo) + ", " + detail::formatNumber(hi) + ")");
-    // One bin index per possible raw value (-1: outside the range), then one lookup per voxel.
-    const std::size_t values = m_type == VoxelType::UInt8 ? 256 : 65536;
-    std::vector<int32_t> binOf(values, -1);
-    for (std::size_t v = 0; v < values; ++v) {
-        const double value = static_cast<double>(v);
-        if (value < lo || value > hi) continue;
-        const double bin = std::floor((value - lo) / (hi - lo) * bins);
-        binOf[v] = static_cast<int32_t>(std::min(bin, static_cast<double>(bins - 1)));
-    }
     std::vector<uint64_t> counts(static_cast<std::size_t>(bins), 0);
-    auto count = [&](std::size_t value) {
-        if (const int32_t bin = binOf[value]; bin >= 0) ++counts[static_cast<std::size_t>(bin)];
+    auto binOfValue = [&](double value) -> int32_t {
+        if (value < lo || value > hi) return -1;
+        const double bin = std::floor((value - lo) / (hi - lo) * bins);
+        return static_cast<int32_t>(std::min(bin, static_cast<double>(bins - 1)));
+    };
+    if (m_type == VoxelType::Float32) {
+        const std::size_t n = voxelCount();
+        for (std::size_t i = 0; i < n; ++i)
+            if (const int32_t bin = binOfValue(detail::rawValue(m_bytes.data(), m_type, i)); bin >= 0)
+                ++counts[static_cast<std::size_t>(bin)];
+        return saturated(counts);
+    }
+    // One bin index per possible storage code (-1: outside the range), then one lookup per voxel.
+    const std::size_t codes = m_type == VoxelType::UInt8 ? 256 : 65536;
+    const double codeToValue = m_type == VoxelType::Int16 ? -32768.0 : 0.0;
+    std::vector<int32_t> binOf(codes, -1);
+    for (std::size_t c = 0; c < codes; ++c) binOf[c] = binOfValue(static_cast<double>(c) + codeToValue);
+    auto count = [&](std::size_t code) {
+        if (const int32_t bin = binOf[code]; bin >= 0) ++counts[static_cast<std::size_t>(bin)];
     };
     if (m_type == VoxelType::UInt8) {
         for (uint8_t value : m_bytes) count(value);
     } else {
-        for (std::size_t i = 0; i + 1 < m_bytes.size(); i += 2) count(std::size_t(m_bytes[i] | (m_bytes[i + 1] << 8)));
+        const std::size_t n = voxelCount();
+        for (std::size_t i = 0; i < n; ++i) count(detail::storageCode(m_bytes.data(), m_type, i));
     }
     return saturated(counts);
 }

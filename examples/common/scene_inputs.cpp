@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <sstream>
 
@@ -90,7 +93,9 @@ glm::ivec3 parseDims(const std::string& option, const std::string& text) {
 sss::VoxelType parseVoxelType(const std::string& option, const std::string& text) {
     if (text == "uint8") return sss::VoxelType::UInt8;
     if (text == "uint16") return sss::VoxelType::UInt16;
-    throw UsageError(option + ": expected uint8 or uint16, got \"" + text + "\"");
+    if (text == "int16") return sss::VoxelType::Int16;
+    if (text == "float32") return sss::VoxelType::Float32;
+    throw UsageError(option + ": expected uint8, uint16, int16 or float32, got \"" + text + "\"");
 }
 
 fs::path dataDirectory(const std::string& dataDirOption) {
@@ -119,7 +124,25 @@ sss::Volume loadSceneVolume(const std::string& path, const fs::path& dataDir, co
         throw UsageError("--volume: unknown procedural volume \"" + *name + "\" (blobs, shell, bucky)");
     }
     if (path.empty()) throw UsageError("--volume: empty path");
-    return sss::Volume::loadRaw(resolveInput(path, dataDir, "volumes"), options);
+    const fs::path resolved = resolveInput(path, dataDir, "volumes");
+    // Headered formats and DICOM directories go to Volume::load; anything else is read as
+    // headerless raw data, as before (names other than .raw included).
+    std::string name = resolved.filename().string();
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const bool headered = fs::is_directory(resolved);
+    bool known = headered;
+    for (const char* ext : {".nrrd", ".nhdr", ".mhd", ".mha", ".nii", ".nii.gz", ".vti"})
+        known = known || (name.size() >= std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::string::npos, ext) == 0);
+    if (!known) return sss::Volume::loadRaw(resolved, options);
+    return sss::Volume::load(resolved);
+}
+
+std::optional<std::pair<double, double>> parseRange(const std::string& option, const std::string& text) {
+    const auto parts = split(text, ',');
+    if (parts.size() != 2) throw UsageError(option + ": expected LO,HI, got \"" + text + "\"");
+    const double lo = parseFloat(option, parts[0]), hi = parseFloat(option, parts[1]);
+    if (!(lo < hi)) throw UsageError(option + ": LO must be less than HI, got \"" + text + "\"");
+    return std::pair<double, double>(lo, hi);
 }
 
 int runReportingErrors(const char* program, const std::function<int()>& body) {

@@ -11,6 +11,8 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,7 +54,9 @@ int parseInt(const std::string& option, const std::string& text);
 std::vector<std::string> split(const std::string& text, char separator);
 glm::vec3 parseVec3(const std::string& option, const std::string& text);  ///< "X,Y,Z"
 glm::ivec3 parseDims(const std::string& option, const std::string& text);  ///< "XxYxZ"
-sss::VoxelType parseVoxelType(const std::string& option, const std::string& text);  ///< uint8|uint16
+sss::VoxelType parseVoxelType(const std::string& option, const std::string& text);  ///< uint8|uint16|int16|float32
+/// "LO,HI" with LO < HI (a value window, e.g. --tf-range -1000,2000).
+std::optional<std::pair<double, double>> parseRange(const std::string& option, const std::string& text);
 sss::LightVolumeFallback parseLightVolumeFallback(const std::string& option, const std::string& text);  ///< reduce|fail
 sss::ToneMap parseToneMap(const std::string& option, const std::string& text);  ///< none|filmic
 float parseExposure(const std::string& option, const std::string& text);  ///< stops in [-64, 64]
@@ -63,7 +67,9 @@ std::filesystem::path dataDirectory(const std::string& dataDirOption);
 /// procedural:sphere|torus|slab, or an .obj file (relative paths not found as given are looked up
 /// in dataDir and dataDir/meshes). Throws UsageError for an unknown procedural name.
 sss::Mesh loadSceneMesh(const std::string& path, const std::filesystem::path& dataDir);
-/// procedural:blobs|shell|bucky, or a .raw file (looked up like meshes, in dataDir/volumes).
+/// procedural:blobs|shell|bucky, a NRRD/MetaImage/NIfTI/.vti file or DICOM directory
+/// (Volume::load), or else a headerless raw file read with `options` (Volume::loadRaw). Looked
+/// up like meshes, in dataDir/volumes.
 sss::Volume loadSceneVolume(const std::string& path, const std::filesystem::path& dataDir,
                             const sss::RawLoadOptions& options = {});
 

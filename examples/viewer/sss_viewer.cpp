@@ -182,6 +182,7 @@ public:
 private:
     // ---- scene -------------------------------------------------------------------------------
     void setVolume(sss::Volume volume, const std::string& label) {
+        volume.setValueWindow(m_args.tfRange);  // --tf-range applies to every volume opened
         m_histogram.histogram = sss::TransferFunctionEditor::histogramBars(volume, 128);
         m_histogram.rawRange = volume.transferFunctionRange();
         m_volume = std::move(volume);
@@ -260,13 +261,18 @@ private:
 
     // Pushes the UI's settings into the renderers; a bad value shows an error instead of throwing.
     void applyChanges() {
-        m_viewChanged |= m_sceneDirty || m_meshDirty || m_volumeDirty || m_lightsDirty || m_hybridDirty ||
+        m_viewChanged |= m_sceneDirty || m_windowDirty || m_meshDirty || m_volumeDirty || m_lightsDirty || m_hybridDirty ||
                          m_uploadedTf != m_tfEditor.transferFunction().revision();
         try {
             if (m_sceneDirty) {
                 rebuildScene();
                 reframe();
                 m_sceneDirty = false;
+                m_meshDirty = m_volumeDirty = m_lightsDirty = m_hybridDirty = m_windowDirty = false;
+            }
+            if (m_windowDirty) {  // the volume again, with its new window; the camera stays
+                rebuildScene();
+                m_windowDirty = false;
                 m_meshDirty = m_volumeDirty = m_lightsDirty = m_hybridDirty = false;
             }
             if (m_hybridDirty) m_compositor->setOptions(m_hybrid);
@@ -525,7 +531,7 @@ private:
             m_sceneDirty = true;
         }
         ImGui::EndDisabled();
-        ImGui::InputText("volume (.raw)", &m_volumePath);
+        ImGui::InputText("volume", &m_volumePath);
         ImGui::InputInt3("dims (0: name)", &m_volumeDims.x);
         ImGui::Checkbox("16-bit voxels", &m_volume16);
         if (ImGui::Button("Open volume")) openVolume();
@@ -668,7 +674,7 @@ private:
     void volumeSection() {
         const auto dims = m_volume->dims();
         ImGui::Text("%s: %dx%dx%d %s", m_volumeLabel.c_str(), dims.x, dims.y, dims.z,
-                    m_volume->type() == sss::VoxelType::UInt16 ? "uint16" : "uint8");
+                    sss::voxelTypeName(m_volume->type()));
         m_volumeDirty |= ImGui::Checkbox("scattering", &m_volumeScattering);
         ImGui::SameLine();
         if (m_volumeScattering) {
@@ -752,13 +758,48 @@ private:
         }
         ImGui::SameLine();
         ImGui::TextDisabled("(ParaView)");
+        valueWindowRow();
         const uint64_t before = m_tfEditor.transferFunction().revision();
         // The canvas takes what is left above the point controls (two rows).
-        const float canvasHeight = std::max(60.0f, windowHeight - 4.0f * ImGui::GetFrameHeightWithSpacing() - 20.0f);
+        const float canvasHeight = std::max(60.0f, windowHeight - 5.0f * ImGui::GetFrameHeightWithSpacing() - 20.0f);
         viewer::ScreenRect canvas;
         viewer::transferFunctionEditorWidget(m_tfEditor, m_histogram, canvasHeight, &canvas);
         m_layout.tfCanvas = canvas;
         if (m_tfEditor.transferFunction().revision() != before) m_tfPreset.clear();
+    }
+
+    // Window/level of the value window (Volume::setValueWindow, in data units): the TF's domain is
+    // level -+ window / 2. Applied when a drag ends, since the volume is uploaded again.
+    void valueWindowRow() {
+        if (!m_volume) {
+            ImGui::TextDisabled("window/level: open a volume");
+            return;
+        }
+        const auto [lo, hi] = m_volume->transferFunctionRange();
+        float level = static_cast<float>(0.5 * (lo + hi)), window = static_cast<float>(hi - lo);
+        const float speed = std::max(window * 0.002f, 1e-6f);
+        bool done = false;
+        ImGui::SetNextItemWidth(140.0f);
+        ImGui::DragFloat("level", &level, speed, 0.0f, 0.0f, "%.4g");
+        done |= ImGui::IsItemDeactivatedAfterEdit();
+        const float levelEdited = level;
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(140.0f);
+        ImGui::DragFloat("window", &window, speed, 0.0f, 0.0f, "%.4g");
+        done |= ImGui::IsItemDeactivatedAfterEdit();
+        ImGui::SameLine();
+        const bool reset = ImGui::Button("data range");
+        if (!done && !reset) return;
+        try {
+            m_volume->setValueWindow(reset ? std::nullopt
+                                           : std::optional(std::pair<double, double>(levelEdited - 0.5 * window,
+                                                                                     levelEdited + 0.5 * window)));
+            m_histogram.histogram = sss::TransferFunctionEditor::histogramBars(*m_volume, 128);
+            m_histogram.rawRange = m_volume->transferFunctionRange();
+            m_windowDirty = true;
+        } catch (const sss::Error& e) {  // a window of width <= 0
+            showMessage(e.what(), true);
+        }
     }
 
     // Where the window being built lies (window pixels).
@@ -856,7 +897,7 @@ private:
     std::string m_tfPreset, m_tfPath = "transfer-function.json";
 
     bool m_sceneDirty = false, m_meshDirty = false, m_volumeDirty = false, m_lightsDirty = false,
-         m_hybridDirty = false;
+         m_hybridDirty = false, m_windowDirty = false;
     bool m_showUi = true, m_honestTimings = false, m_screenshotRequested = false;
     std::string m_meshPath, m_volumePath, m_screenshotPath = "sss-viewer.png";
     glm::ivec3 m_volumeDims{0};

@@ -13,7 +13,8 @@ namespace viewer {
 struct TfEditorWidgetState {
     std::vector<float> histogram;  ///< bar heights in [0,1] (TransferFunctionEditor::histogramBars)
     /// Raw voxel values at the canvas's left and right edge, for the tooltip
-    /// (Volume::transferFunctionRange(): 0..255, or a 16-bit volume's min..max).
+    /// (Volume::transferFunctionRange(): 0..255 for uint8, else the data's min..max, or the
+    /// value window).
     std::pair<double, double> rawRange{0.0, 255.0};
 };
 

@@ -31,10 +31,13 @@ else $SSS_DATA_DIR, else ../shared/data if it exists. Both can also be opened fr
 
 input:
   --mesh PATH               triangle mesh (.obj)
-  --volume PATH             raw volume; dims/type parsed from names like bonsai_256x256x256_uint8.raw
-  --dims XxYxZ              volume dimensions (overrides the name)
-  --type uint8|uint16       voxel type (overrides the name; default uint8)
-  --spacing X,Y,Z           voxel spacing (default 1,1,1)
+  --volume PATH             volume: .nrrd .nhdr .mhd .mha .nii .nii.gz .vti, a DICOM directory,
+                            or raw data, dims/type parsed from names like bonsai_256x256x256_uint8.raw
+  --dims XxYxZ              raw volume dimensions (overrides the name)
+  --type T                  raw voxel type: uint8|uint16|int16|float32 (default uint8)
+  --spacing X,Y,Z           raw voxel spacing (default 1,1,1)
+  --tf-range LO,HI          value window in data units (e.g. -1000,2000 Hounsfield units) that
+                            the transfer function spans; window/level in the TF panel change it
   --data-dir DIR            where to look for relative paths
 scene:
   --cornell-box             put the scene in a Cornell box
@@ -101,6 +104,8 @@ ViewerOptions parseArgs(int argc, char** argv) {
             o.dims = examples::parseDims(opt, value());
         } else if (opt == "--type") {
             o.type = examples::parseVoxelType(opt, value());
+        } else if (opt == "--tf-range") {
+            o.tfRange = examples::parseRange(opt, value());
         } else if (opt == "--spacing") {
             o.spacing = examples::parseVec3(opt, value());
         } else if (opt == "--data-dir") o.dataDir = value();

@@ -26,7 +26,8 @@ struct ViewerOptions {
     std::string mesh;                      ///< --mesh PATH or procedural:NAME
     std::string volume;                    ///< --volume PATH or procedural:NAME
     std::optional<glm::ivec3> dims;        ///< --dims XxYxZ
-    std::optional<sss::VoxelType> type;    ///< --type uint8|uint16
+    std::optional<sss::VoxelType> type;    ///< --type uint8|uint16|int16|float32
+    std::optional<std::pair<double, double>> tfRange;  ///< --tf-range LO,HI (Volume::setValueWindow)
     std::optional<glm::vec3> spacing;      ///< --spacing X,Y,Z
     std::string dataDir;                   ///< --data-dir DIR
     std::string tf;                        ///< --tf NAME|FILE.json (default: guessed from the volume's name)

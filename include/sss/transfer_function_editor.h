@@ -129,7 +129,7 @@ public:
     static std::vector<float> histogramBars(const std::vector<uint32_t>& counts);
     /// histogramBars(volume.histogram(bins, volume.transferFunctionRange())): the bars span the
     /// transfer function's domain, so bar i lies under x in [i / bins, (i + 1) / bins) (for 16-bit
-    /// data the data's min..max, not 0..65535).
+    /// and float data the data's min..max or the value window, not 0..65535).
     /// @throws Error InvalidArgument unless 1 <= bins <= 65536.
     static std::vector<float> histogramBars(const Volume& volume, int bins = 128);
 

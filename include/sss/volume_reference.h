@@ -14,12 +14,14 @@
 /// inverse(camera.projection(W / H) * camera.view()), taken to model space by inverse(M), and
 /// is clipped to the box (and to [near, far]). All distances are model-space lengths.
 ///
-/// Reconstruction. A voxel's normalised value is v / 255 (UInt8) or v / 65535 (UInt16); the
-/// field s(p) is the trilinear interpolation of these with voxel i's centre at texture
-/// coordinate (i + 0.5) / n and clamp-to-edge outside (GL_LINEAR on the 3D texture).
-/// The transfer-function coordinate is x(p) = clamp(s(p) * a + b, 0, 1), (a, b) = (1, 0) for
-/// UInt8 and (65535 / (hi - lo), -lo / (hi - lo)) with (lo, hi) = Volume::valueRange() (range at
-/// least 1) for UInt16. Classification uses the table T = TransferFunction::table(N), linearly
+/// Reconstruction. A voxel's normalised value (what the GPU texture holds) is v / 255 (UInt8),
+/// v / 65535 (UInt16), (v + 32768) / 65535 (Int16) or (v - min) / (max - min) over valueRange()
+/// (Float32); the field s(p) is the trilinear interpolation of these with voxel i's centre at
+/// texture coordinate (i + 0.5) / n and clamp-to-edge outside (GL_LINEAR on the 3D texture).
+/// With raw = s * k + m the inverse of that normalisation and (lo, hi) =
+/// Volume::transferFunctionRange(), the transfer-function coordinate is
+/// x(p) = clamp(s(p) * a + b, 0, 1), a = k / (hi - lo), b = (m - lo) / (hi - lo): for UInt8 with
+/// the default range (1, 0). Classification uses the table T = TransferFunction::table(N), linearly
 /// interpolated: with f = x * (N - 1), i = min(floor(f), N - 2), C_tf(x), alpha_tf(x) =
 /// T[i] + (f - i) * (T[i + 1] - T[i]) (the GPU's texture lookup at u = (f + 0.5) / N).
 ///

@@ -1,5 +1,7 @@
 #include "volume/empty_space.h"
 
+#include "voxel_storage.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,13 +13,17 @@ OccupancyGrid::OccupancyGrid(const Volume& volume) {
     const size_t count = static_cast<size_t>(m_bricks.x) * m_bricks.y * m_bricks.z;
     m_min.assign(count, 1.0f);
     m_max.assign(count, 0.0f);
-    const float scale = volume.type() == VoxelType::UInt16 ? 1.0f / 65535.0f : 1.0f / 255.0f;
+    // The texture's samples (voxel_storage.h), as the shader's classify() sees them.
+    const float scale = 1.0f / static_cast<float>(storedPerSample(volume.type()));
+    const StorageToRaw storage = storageToRaw(volume);
     // A trilinear sample inside brick b mixes voxels up to one beyond the brick on each side, so
     // each voxel widens the range of every brick whose extended footprint contains it.
     for (int z = 0; z < dims.z; ++z)
         for (int y = 0; y < dims.y; ++y)
             for (int x = 0; x < dims.x; ++x) {
-                const float value = static_cast<float>(volume.valueAt(x, y, z)) * scale;
+                const std::size_t index = (static_cast<std::size_t>(z) * dims.y + y) * dims.x + x;
+                const float value =
+                    static_cast<float>(storedValue(volume.bytes().data(), volume.type(), index, storage)) * scale;
                 const glm::ivec3 v(x, y, z);
                 const glm::ivec3 lo = glm::max(glm::ivec3(0), (v - 1) / kBrickVoxels);
                 const glm::ivec3 hi = glm::min(m_bricks - 1, (v + 1) / kBrickVoxels);

@@ -3,6 +3,7 @@
 #include "sss/volume_path_tracer.h"
 
 #include "volume/box_clip.h"
+#include "voxel_storage.h"
 
 #include "format.h"
 #include "parallel.h"
@@ -221,9 +222,8 @@ private:
         m_cells = glm::ivec3(std::min(res, dims.x), std::min(res, dims.y), std::min(res, dims.z));
         m_cellSize = (m_boxMax - m_boxMin) / glm::dvec3(m_cells);
         // Raw voxel value -> TF coordinate, as the reference (monotone increasing).
-        const auto [lo, hi] = volume.transferFunctionRange();
-        const double typeMax = volume.type() == VoxelType::UInt16 ? 65535.0 : 255.0;
-        const double normalise = 1.0 / typeMax, scale = typeMax / (hi - lo), offset = -lo / (hi - lo);
+        const glm::dvec2 toTf = detail::sampleToTfCoordinate(volume);
+        const double normalise = 1.0 / detail::storedPerSample(volume.type()), scale = toTf.x, offset = toTf.y;
         auto coordinate = [&](double raw) { return std::clamp(raw * normalise * scale + offset, 0.0, 1.0); };
         std::vector<double> alphas;
         for (const glm::vec4& e : tf.table(tfEntries)) alphas.push_back(static_cast<double>(e.a));
@@ -231,12 +231,12 @@ private:
         const std::size_t last = alphas.size() - 1;
 
         const std::vector<uint8_t>& bytes = volume.bytes();
-        const bool wide = volume.type() == VoxelType::UInt16;
-        auto raw = [&](int x, int y, int z) {
+        const detail::StorageToRaw storage = detail::storageToRaw(volume);
+        auto raw = [&](int x, int y, int z) {  // what the texture holds, as the reference's field
             const std::size_t i = static_cast<std::size_t>(x) +
                                   static_cast<std::size_t>(dims.x) *
                                       (static_cast<std::size_t>(y) + static_cast<std::size_t>(dims.y) * z);
-            return wide ? static_cast<unsigned>(bytes[2 * i] | (bytes[2 * i + 1] << 8)) : static_cast<unsigned>(bytes[i]);
+            return detail::storedValue(bytes.data(), volume.type(), i, storage);
         };
         // Voxels the trilinear interpolation reads anywhere in cell c along an axis: texel
         // centres at (i + 0.5) / n, so the cell [c / R, (c + 1) / R] reads floor(c n / R - 0.5)
@@ -255,11 +255,11 @@ private:
                 for (int cx = 0; cx < m_cells.x; ++cx) {
                     int x0, x1;
                     footprint(cx, m_cells.x, dims.x, x0, x1);
-                    unsigned vMin = ~0u, vMax = 0;
+                    double vMin = std::numeric_limits<double>::infinity(), vMax = -vMin;
                     for (int z = z0; z <= z1; ++z)
                         for (int y = y0; y <= y1; ++y)
                             for (int x = x0; x <= x1; ++x) {
-                                const unsigned v = raw(x, y, z);
+                                const double v = raw(x, y, z);
                                 vMin = std::min(vMin, v);
                                 vMax = std::max(vMax, v);
                             }

@@ -3,6 +3,7 @@
 #include "format.h"
 #include "parallel.h"
 #include "volume/box_clip.h"
+#include "voxel_storage.h"
 
 #include "sss/error.h"
 #include "sss/image_compare.h"
@@ -102,8 +103,8 @@ struct PreparedLight {
 
 struct VolumeReference::Impl {
     glm::ivec3 dims{0};
-    std::vector<uint16_t> raw;  // x fastest
-    double normalise = 1.0;     // raw -> [0,1] sample (1/255 or 1/65535)
+    std::vector<float> raw;  // x fastest: what the GPU texture holds (voxel_storage.h's storedValue)
+    double normalise = 1.0;  // raw -> sample (1/255, 1/65535, or 1 for Float32)
     double valueScale = 1.0, valueOffset = 0.0;  // sample -> TF coordinate
     glm::dvec3 boxMin{0.0}, boxMax{0.0}, boxSize{0.0};
     double voxel = 0.0;  // reference length D, model units
@@ -340,20 +341,14 @@ VolumeReference::VolumeReference(const Volume& volume, const TransferFunction& t
     impl->options = options;
     impl->dims = volume.dims();
     impl->raw.resize(volume.voxelCount());
-    const std::vector<uint8_t>& bytes = volume.bytes();
-    if (volume.type() == VoxelType::UInt16) {
-        for (std::size_t i = 0; i < impl->raw.size(); ++i)
-            impl->raw[i] = static_cast<uint16_t>(bytes[2 * i] | (bytes[2 * i + 1] << 8));
-        impl->normalise = 1.0 / 65535.0;
-    } else {
-        for (std::size_t i = 0; i < impl->raw.size(); ++i) impl->raw[i] = bytes[i];
-        impl->normalise = 1.0 / 255.0;
-    }
-    // As GpuVolume: Volume::transferFunctionRange() maps onto [0,1].
-    const auto [lo, hi] = volume.transferFunctionRange();
-    const double typeMax = volume.type() == VoxelType::UInt16 ? 65535.0 : 255.0;  // 1 / normalise
-    impl->valueScale = typeMax / (hi - lo);
-    impl->valueOffset = -lo / (hi - lo);
+    // The GPU texture's contents and mapping (GpuVolume::upload, voxel_storage.h).
+    const detail::StorageToRaw storage = detail::storageToRaw(volume);
+    for (std::size_t i = 0; i < impl->raw.size(); ++i)
+        impl->raw[i] = static_cast<float>(detail::storedValue(volume.bytes().data(), volume.type(), i, storage));
+    impl->normalise = 1.0 / detail::storedPerSample(volume.type());
+    const glm::dvec2 toTf = detail::sampleToTfCoordinate(volume);
+    impl->valueScale = toTf.x;
+    impl->valueOffset = toTf.y;
     const Bounds box = volume.worldBounds();
     impl->boxMin = glm::dvec3(box.min);
     impl->boxMax = glm::dvec3(box.max);

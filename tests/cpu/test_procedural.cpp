@@ -155,7 +155,7 @@ TEST_CASE("makeShellVolume is hollow", "[cpu]") {
     CHECK(v.valueAt(x, n / 2, n / 2) > 200);
     CHECK(v.valueAt(n - 1 - x, n / 2, n / 2) > 200);
     CHECK(v.valueAt(n / 2, x, n / 2) > 200);
-    CHECK(v.valueRange() == std::pair<uint16_t, uint16_t>(0, 255));
+    CHECK(v.valueRange() == std::pair<double, double>(0, 255));
     REQUIRE_SSS_ERROR(sss::makeShellVolume(n, 0.6f), ErrorKind::InvalidArgument, Contains("outerRadius"));
     REQUIRE_SSS_ERROR(sss::makeShellVolume(n, 0.3f, 0.4f), ErrorKind::InvalidArgument, Contains("thickness"));
 }
@@ -172,7 +172,7 @@ TEST_CASE("makeBuckyLikeVolume is a symmetric cage of blobs", "[cpu]") {
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
-                const int value = v.valueAt(x, y, z);
+                const int value = static_cast<int>(v.valueAt(x, y, z));
                 worst = std::max(worst, std::abs(value - int(v.valueAt(n - 1 - x, y, z))));
                 worst = std::max(worst, std::abs(value - int(v.valueAt(x, n - 1 - y, z))));
                 worst = std::max(worst, std::abs(value - int(v.valueAt(y, z, x))));

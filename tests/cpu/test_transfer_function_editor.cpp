@@ -277,7 +277,7 @@ TEST_CASE("Histogram bars are log-scaled into [0,1]", "[cpu]") {
     const std::vector<float> fromVolume = TransferFunctionEditor::histogramBars(shell, 64);
     REQUIRE(fromVolume.size() == 64);
     CHECK(fromVolume.front() == Approx(1.0f));  // most of a shell volume is empty space
-    const int top = shell.valueRange().second * 64 / 256;  // the densest voxels' bin (0..255, 64 bins)
+    const int top = static_cast<int>(shell.valueRange().second) * 64 / 256;  // the densest voxels' bin (0..255, 64 bins)
     CHECK(fromVolume[static_cast<std::size_t>(top)] > 0.0f);
     for (float b : fromVolume) {
         CHECK(b >= 0.0f);

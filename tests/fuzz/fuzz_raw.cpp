@@ -122,7 +122,7 @@ void checkVolume(const sss::Volume& v, glm::ivec3 dims, sss::VoxelType type, glm
         lo = std::min(lo, value);
         hi = std::max(hi, value);
     }
-    SSS_FUZZ_CHECK(v.valueRange() == std::make_pair(lo, hi), "valueRange (%u, %u), voxels span (%u, %u)",
+    SSS_FUZZ_CHECK(v.valueRange() == std::make_pair(double(lo), double(hi)), "valueRange (%g, %g), voxels span (%u, %u)",
                    v.valueRange().first, v.valueRange().second, lo, hi);
 
     const sss::Bounds b = v.worldBounds();

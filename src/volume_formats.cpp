@@ -1,0 +1,603 @@
+// Volume::load: NRRD through teem, MetaImage through MetaIO (as VTK ships it), NIfTI, VTK XML
+// image data and DICOM series through VTK's readers. The library headers stay in this file
+// (VTK's cost several seconds of compile time per translation unit).
+#include "sss/volume.h"
+
+#include "sss/error.h"
+#include "sss/log.h"
+
+#include <teem/nrrd.h>
+
+#include <vtkDICOMImageReader.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkMatrix3x3.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNIFTIImageReader.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkType.h>
+#include <vtkXMLImageDataReader.h>
+#include <vtkmetaio/metaImage.h>
+
+#include <glm/mat3x3.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <sstream>
+#include <string>
+
+namespace sss {
+namespace {
+
+// What a reader hands over before orientation and validation.
+struct Decoded {
+    glm::ivec3 dims{0};
+    VoxelType type = VoxelType::UInt8;
+    std::vector<uint8_t> bytes;  // little-endian, x fastest
+    glm::dvec3 spacing{1.0};
+    glm::dmat3 direction{1.0};   // column j: world direction of index axis j
+};
+
+[[noreturn]] void fail(ErrorKind kind, const std::string& prefix, const std::string& what) {
+    throw Error(kind, prefix + what);
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+// The file's axes are accepted up to 8192 voxels each, the rest is checked by Volume::fromData;
+// a header claiming more is rejected before anything allocates.
+void checkDims(const std::string& prefix, const std::array<long long, 3>& dims) {
+    for (long long d : dims)
+        if (d < 1 || d > 8192)
+            fail(ErrorKind::Parse, prefix,
+                 "dims " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
+                     " are out of range: each side must be in [1, 8192]");
+}
+
+// Copies `count` voxels of a library's scalar type into our storage; int8 widens to int16.
+template <class T>
+std::vector<uint8_t> toBytes(const void* data, std::size_t count) {
+    std::vector<uint8_t> out(count * sizeof(T));
+    std::memcpy(out.data(), data, out.size());
+    return out;
+}
+
+std::vector<uint8_t> widenInt8(const void* data, std::size_t count) {
+    std::vector<uint8_t> out(count * 2);
+    const auto* in = static_cast<const int8_t*>(data);
+    for (std::size_t i = 0; i < count; ++i) {
+        const auto v = static_cast<uint16_t>(static_cast<int16_t>(in[i]));
+        out[2 * i] = static_cast<uint8_t>(v & 0xff);
+        out[2 * i + 1] = static_cast<uint8_t>(v >> 8);
+    }
+    return out;
+}
+
+std::string unsupportedType(const std::string& name) {
+    return "voxel type " + name + " is not supported (uint8, int8, int16, uint16 and float32 are)";
+}
+
+// ---- VTK: collect what readers report instead of printing it ---------------------------------
+
+// VTK reports errors through a process-wide output window; while a load runs, this one keeps
+// the text so the exception can carry it. The mutex serialises VTK loads.
+class CapturingOutputWindow : public vtkOutputWindow {
+public:
+    static CapturingOutputWindow* New();
+    vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
+    void DisplayText(const char* text) override { record(text); }
+    void DisplayErrorText(const char* text) override { record(text); }
+    void DisplayWarningText(const char* text) override { record(text); }
+    void DisplayGenericWarningText(const char* text) override { record(text); }
+    void DisplayDebugText(const char*) override {}
+    std::string first;  // the first message, reduced to its last line
+
+private:
+    void record(const char* text) {
+        if (!first.empty() || !text) return;
+        std::string s(text);
+        while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+        // "ERROR: In <source>, line N\n<class> (0x...): message": keep the message.
+        if (std::size_t nl = s.rfind('\n'); nl != std::string::npos) s = s.substr(nl + 1);
+        if (std::size_t p = s.find("): "); p != std::string::npos && p < 40) s = s.substr(p + 3);
+        first = s.empty() ? "unknown error" : s;
+    }
+};
+vtkStandardNewMacro(CapturingOutputWindow);
+
+class VtkCapture {
+public:
+    VtkCapture() : m_lock(mutex()) {
+        m_previous = vtkOutputWindow::GetInstance();
+        m_previous->Register(nullptr);  // keep it alive while ours is installed
+        vtkOutputWindow::SetInstance(m_window);
+        // The pipeline also logs failures to stderr through vtkLogger.
+        m_verbosity = vtkLogger::GetCurrentVerbosityCutoff();
+        vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+    }
+    ~VtkCapture() {
+        vtkLogger::SetStderrVerbosity(m_verbosity);
+        vtkOutputWindow::SetInstance(m_previous);
+        m_previous->UnRegister(nullptr);
+    }
+    VtkCapture(const VtkCapture&) = delete;
+    VtkCapture& operator=(const VtkCapture&) = delete;
+    const std::string& first() const { return m_window->first; }
+
+private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    std::lock_guard<std::mutex> m_lock;
+    vtkNew<CapturingOutputWindow> m_window;
+    vtkOutputWindow* m_previous = nullptr;
+    vtkLogger::Verbosity m_verbosity = vtkLogger::VERBOSITY_OFF;
+};
+
+// The image a VTK reader produced, or a Parse error with what the reader said.
+Decoded fromVtkImage(const std::string& prefix, vtkImageData* image, const VtkCapture& capture, bool readerFailed) {
+    if (readerFailed || !capture.first().empty() || !image)
+        fail(ErrorKind::Parse, prefix, capture.first().empty() ? "the reader failed" : capture.first());
+    int extent[6];
+    image->GetExtent(extent);
+    const std::array<long long, 3> dims{extent[1] - extent[0] + 1LL, extent[3] - extent[2] + 1LL,
+                                        extent[5] - extent[4] + 1LL};
+    vtkDataArray* scalars = image->GetPointData() ? image->GetPointData()->GetScalars() : nullptr;
+    if (!scalars && image->GetPointData() && image->GetPointData()->GetNumberOfArrays() > 0)
+        scalars = image->GetPointData()->GetArray(0);
+    if (!scalars || dims[0] < 1 || dims[1] < 1 || dims[2] < 1) fail(ErrorKind::Parse, prefix, "the file has no voxels");
+    checkDims(prefix, dims);
+    if (scalars->GetNumberOfComponents() != 1)
+        fail(ErrorKind::Parse, prefix,
+             std::to_string(scalars->GetNumberOfComponents()) +
+                 " components per voxel are not supported (only scalar volumes are)");
+    const std::size_t count = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
+    if (static_cast<std::size_t>(scalars->GetNumberOfTuples()) != count)
+        fail(ErrorKind::Parse, prefix, "the file holds " + std::to_string(scalars->GetNumberOfTuples()) +
+                                           " voxels, its header says " + std::to_string(count));
+    Decoded d;
+    d.dims = glm::ivec3(int(dims[0]), int(dims[1]), int(dims[2]));
+    const void* data = scalars->GetVoidPointer(0);
+    switch (scalars->GetDataType()) {
+    case VTK_UNSIGNED_CHAR: d.type = VoxelType::UInt8; d.bytes = toBytes<uint8_t>(data, count); break;
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR: d.type = VoxelType::Int16; d.bytes = widenInt8(data, count); break;
+    case VTK_SHORT: d.type = VoxelType::Int16; d.bytes = toBytes<int16_t>(data, count); break;
+    case VTK_UNSIGNED_SHORT: d.type = VoxelType::UInt16; d.bytes = toBytes<uint16_t>(data, count); break;
+    case VTK_FLOAT: d.type = VoxelType::Float32; d.bytes = toBytes<float>(data, count); break;
+    default: fail(ErrorKind::Parse, prefix, unsupportedType(scalars->GetDataTypeAsString()));
+    }
+    const double* s = image->GetSpacing();
+    d.spacing = glm::dvec3(std::abs(s[0]), std::abs(s[1]), std::abs(s[2]));
+    return d;
+}
+
+Decoded readNifti(const std::string& file, const std::string& prefix) {
+    VtkCapture capture;
+    vtkNew<vtkNIFTIImageReader> reader;
+    if (!reader->CanReadFile(file.c_str())) fail(ErrorKind::Parse, prefix, "not a NIfTI-1 or NIfTI-2 file");
+    reader->SetFileName(file.c_str());
+    reader->Update();
+    Decoded d = fromVtkImage(prefix, reader->GetOutput(), capture, reader->GetErrorCode() != 0);
+    // The reader reverses the slices when qfac is -1, so the matrices are rotations here.
+    vtkMatrix4x4* m = reader->GetQFormMatrix() ? reader->GetQFormMatrix() : reader->GetSFormMatrix();
+    if (m)
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) d.direction[c][r] = m->GetElement(r, c);
+    // Scaled data (scl_slope/scl_inter) becomes float32 in real units.
+    const double slope = reader->GetRescaleSlope(), inter = reader->GetRescaleIntercept();
+    if (slope != 0.0 && (slope != 1.0 || inter != 0.0)) {
+        const Volume raw = Volume::fromData(d.dims, d.type, d.bytes);
+        std::vector<uint8_t> out(raw.voxelCount() * 4);
+        std::size_t i = 0;
+        for (int z = 0; z < d.dims.z; ++z)
+            for (int y = 0; y < d.dims.y; ++y)
+                for (int x = 0; x < d.dims.x; ++x, ++i) {
+                    const float v = static_cast<float>(raw.valueAt(x, y, z) * slope + inter);
+                    std::memcpy(out.data() + 4 * i, &v, 4);
+                }
+        d.type = VoxelType::Float32;
+        d.bytes = std::move(out);
+    }
+    return d;
+}
+
+Decoded readVti(const std::string& file, const std::string& prefix) {
+    VtkCapture capture;
+    vtkNew<vtkXMLImageDataReader> reader;
+    if (!reader->CanReadFile(file.c_str())) fail(ErrorKind::Parse, prefix, "not a VTK XML image data (.vti) file");
+    reader->SetFileName(file.c_str());
+    reader->Update();
+    Decoded d = fromVtkImage(prefix, reader->GetOutput(), capture, reader->GetErrorCode() != 0);
+    vtkMatrix3x3* m = reader->GetOutput()->GetDirectionMatrix();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) d.direction[c][r] = m->GetElement(r, c);
+    return d;
+}
+
+// vtkDICOMImageReader reads a pixel data element that ends early without complaint, and crashes
+// on some files cut inside their header. So every file with a DICOM preamble is walked element
+// by element first (framing only: tag, VR, length): each must fit in the file, and one must be
+// the pixel data (7FE0,0010). Elements of undefined length (sequences, encapsulated pixel data)
+// end the walk, since their extent needs a full parse.
+void checkDicomFraming(const std::filesystem::path& dir, const std::string& prefix) {
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        if (!entry.is_regular_file()) continue;
+        std::ifstream in(entry.path(), std::ios::binary);
+        const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (data.size() < 132 || data.compare(128, 4, "DICM") != 0) continue;
+        const std::string name = entry.path().filename().string();
+        auto u16 = [&](std::size_t at) {
+            return static_cast<uint32_t>(static_cast<uint8_t>(data[at]) | (static_cast<uint8_t>(data[at + 1]) << 8));
+        };
+        auto u32 = [&](std::size_t at) { return u16(at) | (u16(at + 2) << 16); };
+        auto upper = [](char c) { return c >= 'A' && c <= 'Z'; };
+        std::size_t pos = 132;
+        bool pixels = false, undefinedLength = false;
+        while (pos < data.size() && !pixels && !undefinedLength) {
+            if (pos + 8 > data.size())
+                fail(ErrorKind::Parse, prefix, name + ": cut off inside an element header at byte " + std::to_string(pos));
+            const uint32_t group = u16(pos), element = u16(pos + 2);
+            const bool explicitVr = upper(data[pos + 4]) && upper(data[pos + 5]);
+            const std::string vr = explicitVr ? data.substr(pos + 4, 2) : "";
+            const bool longForm = vr == "OB" || vr == "OW" || vr == "OF" || vr == "OD" || vr == "OL" || vr == "OV" ||
+                                  vr == "SQ" || vr == "UT" || vr == "UN" || vr == "UC" || vr == "UR";
+            std::size_t header = 8;
+            uint32_t length = 0;
+            if (!explicitVr) {
+                length = u32(pos + 4);
+            } else if (longForm) {
+                header = 12;
+                if (pos + 12 > data.size())
+                    fail(ErrorKind::Parse, prefix, name + ": cut off inside an element header at byte " + std::to_string(pos));
+                length = u32(pos + 8);
+            } else {
+                length = u16(pos + 6);
+            }
+            if (length == 0xffffffffu) {
+                undefinedLength = true;
+                break;
+            }
+            if (pos + header + length > data.size()) {
+                char tag[16];
+                std::snprintf(tag, sizeof tag, "(%04X,%04X)", group, element);
+                fail(ErrorKind::Parse, prefix,
+                     name + ": element " + tag + " at byte " + std::to_string(pos) + " needs " + std::to_string(length) +
+                         " bytes, the file ends after " + std::to_string(data.size() - pos - header));
+            }
+            pixels = group == 0x7FE0 && element == 0x0010;
+            pos += header + length;
+        }
+        if (!pixels && !undefinedLength) fail(ErrorKind::Parse, prefix, name + ": no pixel data element (7FE0,0010)");
+    }
+}
+
+Decoded readDicomSeries(const std::string& dir, const std::string& prefix) {
+    checkDicomFraming(dir, prefix);
+    VtkCapture capture;
+    vtkNew<vtkDICOMImageReader> reader;
+    reader->SetDirectoryName(dir.c_str());
+    reader->Update();
+    Decoded d = fromVtkImage(prefix, reader->GetOutput(), capture, reader->GetErrorCode() != 0);
+    // The reader sorts the slices by position along the normal, descending, and turns rows
+    // bottom-up (VTK's convention): its y and z axes run against the column direction and the
+    // normal (checked by the DICOM test).
+    const float* o = reader->GetImageOrientationPatient();
+    const glm::dvec3 row(o[0], o[1], o[2]), col(o[3], o[4], o[5]);
+    if (glm::length(row) > 0.5 && glm::length(col) > 0.5)
+        d.direction = glm::dmat3(row, -col, -glm::cross(row, col));
+    // The reader applies rescale slope and intercept itself (Hounsfield units out), and puts
+    // PixelSpacing's first value (the row spacing, along y) on x: swap it back.
+    std::swap(d.spacing.x, d.spacing.y);
+    return d;
+}
+
+// ---- MetaImage (MetaIO) -------------------------------------------------------------------------
+
+// MetaIO prints its complaints to std::cout/std::cerr; keep them for the message instead.
+class StreamCapture {
+public:
+    StreamCapture() : m_out(std::cout.rdbuf(m_text.rdbuf())), m_err(std::cerr.rdbuf(m_text.rdbuf())) {}
+    ~StreamCapture() {
+        std::cout.rdbuf(m_out);
+        std::cerr.rdbuf(m_err);
+    }
+    StreamCapture(const StreamCapture&) = delete;
+    StreamCapture& operator=(const StreamCapture&) = delete;
+    std::string firstLine() const {
+        std::string s = m_text.str();
+        s = s.substr(0, s.find('\n'));
+        return s;
+    }
+
+private:
+    std::ostringstream m_text;
+    std::streambuf* m_out;
+    std::streambuf* m_err;
+};
+
+// MetaIO accepts uncompressed data that ends early (the rest of the buffer stays unset), so the
+// size is checked first: the data is the file's tail after the ElementDataFile line (LOCAL) or
+// the whole named data file.
+void checkMetaImageSize(const std::string& file, const std::string& prefix, const vtkmetaio::MetaImage& image) {
+    if (image.CompressedData() || !image.BinaryData()) return;
+    int elementBytes = 0;
+    vtkmetaio::MET_SizeOfType(image.ElementType(), &elementBytes);
+    unsigned long long expected = static_cast<unsigned long long>(elementBytes) * image.ElementNumberOfChannels();
+    for (int i = 0; i < image.NDims(); ++i) expected *= static_cast<unsigned long long>(image.DimSize(i));
+    const std::string dataName = image.ElementDataFileName();
+    unsigned long long present = 0;
+    std::error_code ec;
+    if (dataName == "LOCAL") {
+        std::ifstream in(file, std::ios::binary);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::size_t key = text.find("ElementDataFile");
+        const std::size_t end = key == std::string::npos ? std::string::npos : text.find('\n', key);
+        if (end == std::string::npos) fail(ErrorKind::Parse, prefix, "the header has no ElementDataFile line");
+        present = text.size() - (end + 1);
+    } else if (dataName.find("LIST") == std::string::npos && dataName.find('%') == std::string::npos) {
+        const std::filesystem::path data = std::filesystem::path(file).parent_path() / dataName;
+        present = std::filesystem::file_size(data, ec);
+        if (ec) fail(ErrorKind::Io, prefix, "cannot read the data file " + data.string() + ": " + ec.message());
+    } else {
+        return;  // a slice list or pattern: MetaIO checks each file
+    }
+    if (present < expected)
+        fail(ErrorKind::Parse, prefix,
+             "the data is truncated: " + std::to_string(present) + " bytes where the header needs " +
+                 std::to_string(expected));
+}
+
+Decoded readMetaImage(const std::string& file, const std::string& prefix) {
+    vtkmetaio::MetaImage image;
+    image.AutoFreeElementData(true);
+    {
+        StreamCapture capture;
+        // The header first: dims are checked before MetaIO allocates the data.
+        if (!image.Read(file.c_str(), false))
+            fail(ErrorKind::Parse, prefix,
+                 "not a readable MetaImage header" + (capture.firstLine().empty() ? "" : ": " + capture.firstLine()));
+        if (image.NDims() < 2 || image.NDims() > 3)
+            fail(ErrorKind::Parse, prefix, std::to_string(image.NDims()) + " dimensions are not supported (2 or 3 are)");
+        checkDims(prefix, {image.DimSize(0), image.DimSize(1), image.NDims() == 3 ? image.DimSize(2) : 1});
+        if (image.ElementNumberOfChannels() != 1)
+            fail(ErrorKind::Parse, prefix,
+                 std::to_string(image.ElementNumberOfChannels()) +
+                     " components per voxel are not supported (only scalar volumes are)");
+        checkMetaImageSize(file, prefix, image);
+        if (!image.Read(file.c_str(), true))
+            fail(ErrorKind::Parse, prefix,
+                 "cannot read the voxels" + (capture.firstLine().empty() ? "" : ": " + capture.firstLine()));
+    }
+    const int n = image.NDims();
+    Decoded d;
+    d.dims = glm::ivec3(image.DimSize(0), image.DimSize(1), n == 3 ? image.DimSize(2) : 1);
+    const std::size_t count = static_cast<std::size_t>(d.dims.x) * d.dims.y * d.dims.z;
+    const void* data = image.ElementData();
+    if (!data) fail(ErrorKind::Parse, prefix, "the file has no voxels");
+    switch (image.ElementType()) {
+    case vtkmetaio::MET_UCHAR: d.type = VoxelType::UInt8; d.bytes = toBytes<uint8_t>(data, count); break;
+    case vtkmetaio::MET_CHAR: d.type = VoxelType::Int16; d.bytes = widenInt8(data, count); break;
+    case vtkmetaio::MET_SHORT: d.type = VoxelType::Int16; d.bytes = toBytes<int16_t>(data, count); break;
+    case vtkmetaio::MET_USHORT: d.type = VoxelType::UInt16; d.bytes = toBytes<uint16_t>(data, count); break;
+    case vtkmetaio::MET_FLOAT: d.type = VoxelType::Float32; d.bytes = toBytes<float>(data, count); break;
+    default: {
+        char name[80] = "unknown";
+        vtkmetaio::MET_TypeToString(image.ElementType(), name);
+        fail(ErrorKind::Parse, prefix, unsupportedType(name));
+    }
+    }
+    for (int i = 0; i < n; ++i) d.spacing[i] = std::abs(image.ElementSpacing(i));
+    // TransformMatrix row i is the direction of index axis i (ITK's reading of it).
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) d.direction[i][j] = image.TransformMatrix(i, j);
+    return d;
+}
+
+// ---- NRRD (teem) ---------------------------------------------------------------------------------
+
+Decoded readNrrd(const std::string& file, const std::string& prefix) {
+    std::unique_ptr<Nrrd, Nrrd* (*)(Nrrd*)> nrrd(nrrdNew(), nrrdNuke);
+    // Header only first: the dims are checked before teem allocates the data.
+    {
+        std::unique_ptr<NrrdIoState, NrrdIoState* (*)(NrrdIoState*)> io(nrrdIoStateNew(), nrrdIoStateNix);
+        nrrdIoStateSet(io.get(), nrrdIoStateSkipData, AIR_TRUE);
+        if (nrrdLoad(nrrd.get(), file.c_str(), io.get())) {
+            char* err = biffGetDone(NRRD);
+            std::string message = err ? err : "unknown error";
+            free(err);
+            while (!message.empty() && message.back() == '\n') message.pop_back();
+            if (std::size_t nl = message.rfind('\n'); nl != std::string::npos) message = message.substr(nl + 1);
+            fail(ErrorKind::Parse, prefix, "not a readable NRRD header: " + message);
+        }
+    }
+    const unsigned dim = nrrd->dim;
+    if (dim < 2 || dim > 3)
+        fail(ErrorKind::Parse, prefix,
+             std::to_string(dim) + " axes are not supported (2 or 3; multi-component volumes are not)");
+    std::array<long long, 3> size{1, 1, 1};
+    for (unsigned i = 0; i < dim; ++i)
+        size[i] = nrrd->axis[i].size > 8192 ? 8193 : static_cast<long long>(nrrd->axis[i].size);
+    checkDims(prefix, size);
+    nrrd.reset(nrrdNew());
+    if (nrrdLoad(nrrd.get(), file.c_str(), nullptr)) {
+        char* err = biffGetDone(NRRD);
+        std::string message = err ? err : "unknown error";
+        free(err);
+        while (!message.empty() && message.back() == '\n') message.pop_back();
+        // teem's first line names the outermost function; the last says what went wrong.
+        if (std::size_t nl = message.rfind('\n'); nl != std::string::npos) message = message.substr(nl + 1);
+        fail(ErrorKind::Parse, prefix, "cannot read the voxels: " + message);
+    }
+    if (nrrd->dim != dim) fail(ErrorKind::Parse, prefix, "the file changed while it was read");
+    Decoded d;
+    d.dims = glm::ivec3(int(nrrd->axis[0].size), int(nrrd->axis[1].size), dim == 3 ? int(nrrd->axis[2].size) : 1);
+    const std::size_t count = nrrdElementNumber(nrrd.get());
+    if (count != static_cast<std::size_t>(d.dims.x) * d.dims.y * d.dims.z)
+        fail(ErrorKind::Parse, prefix, "the file changed while it was read");
+    switch (nrrd->type) {
+    case nrrdTypeUChar: d.type = VoxelType::UInt8; d.bytes = toBytes<uint8_t>(nrrd->data, count); break;
+    case nrrdTypeChar: d.type = VoxelType::Int16; d.bytes = widenInt8(nrrd->data, count); break;
+    case nrrdTypeShort: d.type = VoxelType::Int16; d.bytes = toBytes<int16_t>(nrrd->data, count); break;
+    case nrrdTypeUShort: d.type = VoxelType::UInt16; d.bytes = toBytes<uint16_t>(nrrd->data, count); break;
+    case nrrdTypeFloat: d.type = VoxelType::Float32; d.bytes = toBytes<float>(nrrd->data, count); break;
+    default: fail(ErrorKind::Parse, prefix, unsupportedType(airEnumStr(nrrdType, nrrd->type)));
+    }
+    // "space directions" give spacing and orientation; else "spacings" (axis-aligned).
+    const unsigned spaceDim = nrrd->spaceDim;
+    for (unsigned i = 0; i < dim; ++i) {
+        const NrrdAxisInfo& axis = nrrd->axis[i];
+        if (spaceDim == 3 && std::isfinite(axis.spaceDirection[0])) {
+            const glm::dvec3 v(axis.spaceDirection[0], axis.spaceDirection[1], axis.spaceDirection[2]);
+            const double length = glm::length(v);
+            if (!(length > 0.0)) fail(ErrorKind::Parse, prefix, "axis " + std::to_string(i) + " has a zero space direction");
+            d.spacing[i] = length;
+            d.direction[i] = v / length;
+        } else if (std::isfinite(axis.spacing) && axis.spacing != 0.0) {
+            d.spacing[i] = std::abs(axis.spacing);
+            if (axis.spacing < 0.0) d.direction[i] = -d.direction[i];
+        }
+    }
+    return d;
+}
+
+// ---- orientation ---------------------------------------------------------------------------------
+
+// Reorders the voxels so that index axis a runs along world axis a in increasing order, when
+// the direction matrix is a signed permutation. Oblique matrices: error, or kept as they are.
+Volume orient(const std::string& prefix, Decoded d, bool allowOblique) {
+    std::array<int, 3> source{};  // source[a]: the file axis that runs along world axis a
+    std::array<bool, 3> flip{};
+    std::array<bool, 3> used{};
+    bool permutation = true;
+    for (int j = 0; j < 3 && permutation; ++j) {
+        const glm::dvec3 column = d.direction[j];
+        int axis = -1;
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(std::abs(column[a]) - 1.0) < 1e-3) axis = a;
+        for (int a = 0; a < 3; ++a)
+            if (a != axis && std::abs(column[a]) > 1e-3) axis = -1;
+        if (axis < 0 || used[axis]) {
+            permutation = false;
+            break;
+        }
+        used[axis] = true;
+        source[axis] = j;
+        flip[axis] = column[axis] < 0.0;
+    }
+    auto build = [&](glm::ivec3 dims, std::vector<uint8_t> bytes, glm::dvec3 spacing) {
+        try {
+            return Volume::fromData(dims, d.type, std::move(bytes), glm::vec3(spacing));
+        } catch (const Error& e) {
+            // fromData's message names itself; say which file it was.
+            std::string what = e.what();
+            const std::string own = "Volume::fromData: ";
+            if (what.rfind(own, 0) == 0) what = what.substr(own.size());
+            throw Error(e.kind(), prefix + what);
+        }
+    };
+    if (!permutation) {
+        std::ostringstream m;
+        m << "the direction matrix is oblique (columns";
+        for (int j = 0; j < 3; ++j)
+            m << " (" << d.direction[j].x << ", " << d.direction[j].y << ", " << d.direction[j].z << ")";
+        m << "); only axis-aligned orientations (signed permutations) are supported";
+        if (!allowOblique) fail(ErrorKind::Parse, prefix, m.str() + "; VolumeLoadOptions::allowOblique keeps file order");
+        log(LogLevel::Warning, prefix + m.str() + "; voxels kept in file order");
+        return build(d.dims, std::move(d.bytes), d.spacing);
+    }
+    const bool identity = source == std::array<int, 3>{0, 1, 2} && !flip[0] && !flip[1] && !flip[2];
+    if (identity) return build(d.dims, std::move(d.bytes), d.spacing);
+    glm::ivec3 dims;
+    glm::dvec3 spacing;
+    for (int a = 0; a < 3; ++a) {
+        dims[a] = d.dims[source[a]];
+        spacing[a] = d.spacing[source[a]];
+    }
+    const std::size_t bpv = bytesPerVoxel(d.type);
+    std::vector<uint8_t> out(d.bytes.size());
+    const std::array<std::size_t, 3> stride{1, static_cast<std::size_t>(d.dims.x),
+                                            static_cast<std::size_t>(d.dims.x) * static_cast<std::size_t>(d.dims.y)};
+    std::size_t o = 0;
+    glm::ivec3 p;
+    for (p.z = 0; p.z < dims.z; ++p.z)
+        for (p.y = 0; p.y < dims.y; ++p.y)
+            for (p.x = 0; p.x < dims.x; ++p.x, ++o) {
+                std::size_t i = 0;
+                for (int a = 0; a < 3; ++a) {
+                    const int index = flip[a] ? dims[a] - 1 - p[a] : p[a];
+                    i += static_cast<std::size_t>(index) * stride[static_cast<std::size_t>(source[a])];
+                }
+                std::memcpy(out.data() + o * bpv, d.bytes.data() + i * bpv, bpv);
+            }
+    return build(dims, std::move(out), spacing);
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+Volume Volume::load(const std::filesystem::path& path, const VolumeLoadOptions& options) {
+    const std::string file = path.string();
+    const std::string prefix = "Volume::load: " + file + ": ";
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) fail(ErrorKind::Io, prefix, "file does not exist");
+    if (std::filesystem::is_directory(path, ec)) {
+        bool any = false;
+        for (const auto& entry : std::filesystem::directory_iterator(path, ec))
+            any = any || entry.is_regular_file();
+        if (!any) fail(ErrorKind::Io, prefix, "the directory has no files (a DICOM series was expected)");
+        try {
+            return orient(prefix, readDicomSeries(file, prefix), options.allowOblique);
+        } catch (const std::bad_alloc&) {
+            fail(ErrorKind::Parse, prefix, "out of memory reading the series");
+        }
+    }
+    const std::string name = lower(path.filename().string());
+    if (endsWith(name, ".raw")) return loadRaw(path, options.raw);
+    bool known = false;
+    for (const char* ext : {".nrrd", ".nhdr", ".mhd", ".mha", ".nii", ".nii.gz", ".vti"}) known = known || endsWith(name, ext);
+    if (!known)
+        fail(ErrorKind::InvalidArgument, prefix,
+             "unknown volume format: expected .raw, .nrrd, .nhdr, .mhd, .mha, .nii, .nii.gz, .vti or a DICOM directory");
+    {
+        std::ifstream probe(path, std::ios::binary);
+        if (!probe) fail(ErrorKind::Io, prefix, "cannot be opened for reading");
+        if (std::filesystem::file_size(path, ec) == 0 || ec) fail(ErrorKind::Parse, prefix, "the file is empty");
+    }
+    try {
+        if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr"))
+            return orient(prefix, readNrrd(file, prefix), options.allowOblique);
+        if (endsWith(name, ".mhd") || endsWith(name, ".mha"))
+            return orient(prefix, readMetaImage(file, prefix), options.allowOblique);
+        if (endsWith(name, ".nii") || endsWith(name, ".nii.gz"))
+            return orient(prefix, readNifti(file, prefix), options.allowOblique);
+        return orient(prefix, readVti(file, prefix), options.allowOblique);  // the one left: .vti
+    } catch (const std::bad_alloc&) {
+        // A header can claim up to 8192^3 voxels; the libraries allocate before we can check.
+        fail(ErrorKind::Parse, prefix, "out of memory reading the voxels (are the header's sizes right?)");
+    }
+}
+
+}  // namespace sss

@@ -1,0 +1,25 @@
+# cmake -P write_nrrd.cmake -DOUT=FILE.nrrd [-DTRUNCATE=1]: writes a 16x16x8 int16 NRRD (ASCII
+# encoding, spacing 1,1,2) for the sss-render CLI tests: a ball of 1000 (bone-like Hounsfield
+# units) in -1000 (air), so a window decides what shows. TRUNCATE drops the last slice's values.
+set(text "NRRD0004\n# written by tests/cli/write_nrrd.cmake\ntype: int16\ndimension: 3\nspace: left-posterior-superior\n")
+string(APPEND text "sizes: 16 16 8\nspace directions: (1,0,0) (0,1,0) (0,0,2)\nencoding: ascii\n\n")
+set(last 7)
+if(TRUNCATE)
+  set(last 6)
+endif()
+foreach(z RANGE 0 ${last})
+  foreach(y RANGE 0 15)
+    set(row "")
+    foreach(x RANGE 0 15)
+      # Squared distance from the centre (7.5, 7.5, 3.5) in voxels, z twice as long: x2 as integers.
+      math(EXPR d "(2*${x}-15)*(2*${x}-15) + (2*${y}-15)*(2*${y}-15) + 4*(2*${z}-7)*(2*${z}-7)")
+      if(d LESS 144)
+        string(APPEND row "1000 ")
+      else()
+        string(APPEND row "-1000 ")
+      endif()
+    endforeach()
+    string(APPEND text "${row}\n")
+  endforeach()
+endforeach()
+file(WRITE "${OUT}" "${text}")
