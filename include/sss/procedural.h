@@ -38,7 +38,7 @@ struct CornellBox {
     glm::vec3 whiteColor{0.73f, 0.71f, 0.68f};
     glm::vec3 redColor{0.63f, 0.065f, 0.05f};
     glm::vec3 greenColor{0.14f, 0.45f, 0.09f};
-    Bounds bounds;   ///< the box itself
+    Bounds bounds{};  ///< the box itself
 };
 /// @throws Error InvalidArgument if `content` is empty.
 CornellBox makeCornellBox(const Bounds& content);
