@@ -285,7 +285,7 @@ std::pair<double, double> Volume::transferFunctionDataRange() const {
 }
 
 std::vector<uint32_t> Volume::histogram(int bins, std::pair<double, double> range) const {
-    const auto [lo, hi] = range;
+    const double lo = range.first, hi = range.second;  // (clang 14: lambdas cannot capture bindings)
     if (bins < 1 || bins > 65536)
         throw Error(ErrorKind::InvalidArgument,
                     "Volume::histogram: bins must be in [1, 65536], got " + std::to_string(bins));
