@@ -86,77 +86,71 @@ std::optional<ScatteringProfile> parseScatteringProfile(std::string_view name) {
     return std::nullopt;
 }
 
-double profileCalibrationScale(double reducedAlbedo, double eta, double cosIncidence) {
-    if (!std::isfinite(reducedAlbedo) || reducedAlbedo < 0.0 || reducedAlbedo > 1.0)
-        throw Error(ErrorKind::InvalidArgument,
-                    "profileCalibrationScale: reduced albedo must be in [0, 1], got " + num(reducedAlbedo));
-    if (!std::isfinite(eta))
-        throw Error(ErrorKind::InvalidArgument, "profileCalibrationScale: eta must be finite, got " + num(eta));
-    if (!std::isfinite(cosIncidence))
-        throw Error(ErrorKind::InvalidArgument,
-                    "profileCalibrationScale: cosIncidence must be finite, got " + num(cosIncidence));
-    using namespace calibration;
-    constexpr int nEta = static_cast<int>(std::size(kEta));
-    constexpr int nS = static_cast<int>(std::size(kS));
-    // Interval and weight of x on a sorted grid, held at both ends.
-    auto locate = [](const double* grid, int n, double x, int& i, double& t) {
-        i = 0;
-        while (i < n - 2 && x > grid[i + 1]) ++i;
-        t = std::clamp((x - grid[i]) / (grid[i + 1] - grid[i]), 0.0, 1.0);
-    };
+namespace {
+
+// Interval i and weight t in [0, 1] of x on a sorted grid of n >= 2 nodes, held at both ends.
+void locateOnGrid(const double* grid, int n, double x, int& i, double& t) {
+    i = 0;
+    while (i < n - 2 && x > grid[i + 1]) ++i;
+    t = std::clamp((x - grid[i]) / (grid[i + 1] - grid[i]), 0.0, 1.0);
+}
+
+// a (b / a)^t where both are positive (factors that span orders of magnitude), else linear.
+double logLerp(double a, double b, double t) {
+    if (a > 0.0 && b > 0.0) return a * std::pow(b / a, t);
+    return (1.0 - t) * a + t * b;
+}
+
+// A calibration table scale[eta][s][k] (s = sqrt(1 - alpha')) at (eta, reducedAlbedo) and node
+// position x in [0, K - 1]: linear in eta, log-linear in s (the factors fall by orders of magnitude
+// as alpha' drops), linear or log-linear along k.
+template <std::size_t E, std::size_t S, std::size_t K>
+double interpolateCalibration(const double (&etas)[E], const double (&ss)[S], const double (&scale)[E][S][K], double eta,
+                              double reducedAlbedo, double x, bool logAlongK) {
     int ie = 0, is = 0;
     double te = 0.0, ts = 0.0;
-    locate(kEta, nEta, eta, ie, te);
-    locate(kS, nS, std::sqrt(1.0 - reducedAlbedo), is, ts);
-    const double x = std::clamp((1.0 - cosIncidence) / 0.19, 0.0, static_cast<double>(kProfileIncidenceNodes - 1));
-    const int im = std::min(static_cast<int>(x), kProfileIncidenceNodes - 2);
-    const double tm = x - im;
-    // The factor falls by orders of magnitude as alpha' drops: interpolate its logarithm in s.
-    auto alongS = [&](int e, int m) {
-        const double a = kScale[e][is][m], b = kScale[e][is + 1][m];
-        if (a > 0.0 && b > 0.0) return a * std::pow(b / a, ts);
-        return (1.0 - ts) * a + ts * b;
+    locateOnGrid(etas, static_cast<int>(E), eta, ie, te);
+    locateOnGrid(ss, static_cast<int>(S), std::sqrt(1.0 - reducedAlbedo), is, ts);
+    x = std::clamp(x, 0.0, static_cast<double>(K - 1));
+    const int ik = std::min(static_cast<int>(x), static_cast<int>(K) - 2);
+    const double tk = x - ik;
+    auto alongS = [&](int e, int k) { return logLerp(scale[e][is][k], scale[e][is + 1][k], ts); };
+    auto atEta = [&](int e) {
+        const double a = alongS(e, ik), b = alongS(e, ik + 1);
+        return logAlongK ? logLerp(a, b, tk) : (1.0 - tk) * a + tk * b;
     };
-    auto atEta = [&](int e) { return (1.0 - tm) * alongS(e, im) + tm * alongS(e, im + 1); };
     return std::max(0.0, (1.0 - te) * atEta(ie) + te * atEta(ie + 1));
 }
 
-double profileTransmissionScale(double reducedAlbedo, double eta, double opticalThickness) {
+void checkReducedAlbedoAndEta(const char* where, double reducedAlbedo, double eta) {
     if (!std::isfinite(reducedAlbedo) || reducedAlbedo < 0.0 || reducedAlbedo > 1.0)
         throw Error(ErrorKind::InvalidArgument,
-                    "profileTransmissionScale: reduced albedo must be in [0, 1], got " + num(reducedAlbedo));
+                    std::string(where) + ": reduced albedo must be in [0, 1], got " + num(reducedAlbedo));
     if (!std::isfinite(eta))
-        throw Error(ErrorKind::InvalidArgument, "profileTransmissionScale: eta must be finite, got " + num(eta));
+        throw Error(ErrorKind::InvalidArgument, std::string(where) + ": eta must be finite, got " + num(eta));
+}
+
+}  // namespace
+
+double profileCalibrationScale(double reducedAlbedo, double eta, double cosIncidence) {
+    checkReducedAlbedoAndEta("profileCalibrationScale", reducedAlbedo, eta);
+    if (!std::isfinite(cosIncidence))
+        throw Error(ErrorKind::InvalidArgument,
+                    "profileCalibrationScale: cosIncidence must be finite, got " + num(cosIncidence));
+    // Entry cosines mu = 1 - 0.19 k; linear between them.
+    return interpolateCalibration(calibration::kEta, calibration::kS, calibration::kScale, eta, reducedAlbedo,
+                                  (1.0 - cosIncidence) / 0.19, false);
+}
+
+double profileTransmissionScale(double reducedAlbedo, double eta, double opticalThickness) {
+    checkReducedAlbedoAndEta("profileTransmissionScale", reducedAlbedo, eta);
     if (std::isnan(opticalThickness) || opticalThickness <= 0.0)
         throw Error(ErrorKind::InvalidArgument,
                     "profileTransmissionScale: optical thickness must be > 0, got " + num(opticalThickness));
-    using namespace transmission_calibration;
-    constexpr int nEta = static_cast<int>(std::size(kEta));
-    constexpr int nS = static_cast<int>(std::size(kS));
-    auto locate = [](const double* grid, int n, double x, int& i, double& t) {
-        i = 0;
-        while (i < n - 2 && x > grid[i + 1]) ++i;
-        t = std::clamp((x - grid[i]) / (grid[i + 1] - grid[i]), 0.0, 1.0);
-    };
-    int ie = 0, is = 0;
-    double te = 0.0, ts = 0.0;
-    locate(kEta, nEta, eta, ie, te);
-    locate(kS, nS, std::sqrt(1.0 - reducedAlbedo), is, ts);
-    const double x = std::clamp(std::log2(opticalThickness) + 2.0, 0.0, double(kProfileThicknessNodes - 1));
-    const int id = std::min(static_cast<int>(x), kProfileThicknessNodes - 2);
-    const double td = x - id;
-    auto alongS = [&](int e, int d) {
-        const double a = kScale[e][is][d], b = kScale[e][is + 1][d];
-        if (a > 0.0 && b > 0.0) return a * std::pow(b / a, ts);
-        return (1.0 - ts) * a + ts * b;
-    };
-    // Log-linear along the thickness too: the factor changes by orders of magnitude over the grid.
-    auto atEta = [&](int e) {
-        const double a = alongS(e, id), b = alongS(e, id + 1);
-        if (a > 0.0 && b > 0.0) return a * std::pow(b / a, td);
-        return (1.0 - td) * a + td * b;
-    };
-    return std::max(0.0, (1.0 - te) * atEta(ie) + te * atEta(ie + 1));
+    // Thicknesses 0.25 * 2^k; log-linear along them too (the factor spans orders of magnitude).
+    return interpolateCalibration(transmission_calibration::kEta, transmission_calibration::kS,
+                                  transmission_calibration::kScale, eta, reducedAlbedo,
+                                  std::log2(opticalThickness) + 2.0, true);
 }
 
 DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double millimetresPerUnit,
