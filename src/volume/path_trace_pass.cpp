@@ -1,5 +1,6 @@
 #include "volume/path_trace_pass.h"
 
+#include "volume/composite_over.h"
 #include "lighting/light_uniforms.h"
 #include "sss/volume_reference.h"
 
@@ -114,17 +115,8 @@ void PathTracePass::composite(const gl::Texture& sums, int samples) const {
     m_resolve.set("accumulation", 0);
     m_resolve.set("inverseSamples", samples > 0 ? 1.0f / static_cast<float>(samples) : 0.0f);
     sums.bind(0);
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    m_resolve.use();
-    m_emptyVertexArray.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glDisable(GL_BLEND);
-    glDepthMask(GL_TRUE);
+    // Premultiplied "over": the volume's colour in front of what the target already holds.
+    drawPremultipliedOver(m_resolve, m_emptyVertexArray);
 }
 
 }  // namespace sss::detail

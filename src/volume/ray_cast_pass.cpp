@@ -1,5 +1,6 @@
 #include "volume/ray_cast_pass.h"
 
+#include "volume/composite_over.h"
 #include "lighting/texture_units.h"
 
 #include "lighting/camera_uniforms.h"
@@ -138,18 +139,8 @@ void RayCastPass::run(const RayCastInputs& in) const {
     in.transferFunction.bind(1);
     in.sceneDepth.bind(2);
     if (m_emptySpaceSkipping) in.occupancy.bind(3);
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    // Premultiplied "over": the ray's colour in front of what the target already holds.
-    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    m_program.use();
-    m_emptyVertexArray.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glDisable(GL_BLEND);
-    glDepthMask(GL_TRUE);
+    // Premultiplied "over": the volume's colour in front of what the target already holds.
+    drawPremultipliedOver(m_program, m_emptyVertexArray);
 }
 
 }  // namespace sss::detail
