@@ -17,5 +17,5 @@ while read -r material; do
   tiles+=("$tmp/$material.png")
   labels+=(--label "$material")
 done < <(build/bin/sss-render --list-materials)
-build/bin/sss-montage --columns 8 --gap 4 "${labels[@]}" "${tiles[@]}" --out docs/presets-calibrated.png
+build/bin/sss-montage --columns 8 --tile 140x140 --gap 4 "${labels[@]}" "${tiles[@]}" --out docs/presets-calibrated.png
 echo "wrote docs/presets-calibrated.png"
