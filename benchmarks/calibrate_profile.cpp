@@ -53,6 +53,17 @@ std::string list(const std::vector<double>& v) {
     return line;
 }
 
+// The medium of one table node: reduced albedo 1 - s^2 in every channel, sigma_t' = 1 / mm, g = 0.
+sss::ScatteringMaterial calibrationMedium(double s, double eta) {
+    const double albedo = 1.0 - s * s;
+    sss::ScatteringMaterial m;
+    m.sigmaS = glm::dvec3(albedo);
+    m.sigmaA = glm::dvec3(1.0 - albedo);
+    m.eta = eta;
+    m.name = "calibration";
+    return m;
+}
+
 using Table = std::vector<std::vector<std::vector<double>>>;  // [eta][s][node]
 
 // Writes a generated table file: the comment (each line starting "// "), then namespace `name`
@@ -87,12 +98,7 @@ int calibrateTransmission(const std::string& out) {
     Table scale(kEta.size(), std::vector<std::vector<double>>(kTransmissionS.size(), std::vector<double>(kTau, 1.0)));
     for (size_t e = 0; e < kEta.size(); ++e) {
         for (size_t i = 0; i < kTransmissionS.size(); ++i) {
-            const double albedo = 1.0 - kTransmissionS[i] * kTransmissionS[i];
-            sss::ScatteringMaterial m;
-            m.sigmaS = glm::dvec3(albedo);
-            m.sigmaA = glm::dvec3(1.0 - albedo);
-            m.eta = kEta[e];
-            m.name = "calibration";
+            const sss::ScatteringMaterial m = calibrationMedium(kTransmissionS[i], kEta[e]);
             const sss::DipoleConstants k = sss::deriveDipoleConstants(m, 1.0, sss::ScatteringProfile::Dipole);
             for (int t = 0; t < kTau; ++t) {
                 const double tau = sss::profileThicknessNode(t);  // mm, as sigma_t' = 1 / mm
@@ -143,17 +149,12 @@ int main(int argc, char** argv) {
     const std::string out = argv[1];
     const auto start = std::chrono::steady_clock::now();
     // scale[e][s][m]
-    Table scale(kEta.size(),
-                                                        std::vector<std::vector<double>>(kS.size(), std::vector<double>(kMuNodes)));
+    Table scale(kEta.size(), std::vector<std::vector<double>>(kS.size(), std::vector<double>(kMuNodes)));
     for (size_t e = 0; e < kEta.size(); ++e) {
         const double hemisphere = sss::fresnelHemisphereIntegral(kEta[e]);
         for (size_t i = 0; i < kS.size(); ++i) {
-            const double albedo = 1.0 - kS[i] * kS[i];
-            sss::ScatteringMaterial m;
-            m.sigmaS = glm::dvec3(albedo);
-            m.sigmaA = glm::dvec3(1.0 - albedo);
-            m.eta = kEta[e];
-            m.name = "calibration";
+            const sss::ScatteringMaterial m = calibrationMedium(kS[i], kEta[e]);
+            const double albedo = m.sigmaS.x;
             const sss::DipoleConstants k = sss::deriveDipoleConstants(m, 1.0, sss::ScatteringProfile::Dipole);
             for (int j = 0; j < kMuNodes; ++j) {
                 const double mu = sss::profileIncidenceNode(j);
