@@ -5,6 +5,7 @@
 #include "sss/error.h"
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <cmath>
 #include <sstream>
@@ -38,13 +39,43 @@ void validateLight(const Light& light, std::string_view what) {
                                                         ": DirectionalLight::direction must be finite and non-zero, got " +
                                                         str(d->direction));
         checkColor(what, "DirectionalLight", d->color, d->intensity);
-    } else {
-        const auto& p = std::get<PointLight>(light);
-        if (!isFinite(p.position))
+    } else if (const auto* p = std::get_if<PointLight>(&light)) {
+        if (!isFinite(p->position))
             throw Error(ErrorKind::InvalidArgument,
-                        std::string(what) + ": PointLight::position must be finite, got " + str(p.position));
-        checkColor(what, "PointLight", p.color, p.intensity);
+                        std::string(what) + ": PointLight::position must be finite, got " + str(p->position));
+        checkColor(what, "PointLight", p->color, p->intensity);
+    } else {
+        const auto& s = std::get<SpotLight>(light);
+        if (!isFinite(s.position))
+            throw Error(ErrorKind::InvalidArgument,
+                        std::string(what) + ": SpotLight::position must be finite, got " + str(s.position));
+        const float len = glm::length(s.direction);
+        if (!isFinite(s.direction) || !std::isfinite(len) || len <= 0.0f)
+            throw Error(ErrorKind::InvalidArgument, std::string(what) +
+                                                        ": SpotLight::direction must be finite and non-zero, got " +
+                                                        str(s.direction));
+        if (!(s.coneAngle > 0.0f && s.coneAngle <= 90.0f)) {
+            std::ostringstream m;
+            m << what << ": SpotLight::coneAngle must be in (0, 90] degrees, got " << s.coneAngle;
+            throw Error(ErrorKind::InvalidArgument, m.str());
+        }
+        if (!(s.falloff >= 0.0f && s.falloff <= 1.0f)) {
+            std::ostringstream m;
+            m << what << ": SpotLight::falloff must be in [0, 1], got " << s.falloff;
+            throw Error(ErrorKind::InvalidArgument, m.str());
+        }
+        checkColor(what, "SpotLight", s.color, s.intensity);
     }
+}
+
+float spotConeFactor(const SpotLight& light, float cosAngle) {
+    const float outerAngle = glm::radians(light.coneAngle);
+    const float cosOuter = std::cos(outerAngle);
+    const float cosInner = std::cos(outerAngle * (1.0f - light.falloff));
+    if (cosAngle <= cosOuter) return 0.0f;
+    if (cosAngle >= cosInner) return 1.0f;  // also the hard edge, where cosInner == cosOuter
+    const float t = (cosAngle - cosOuter) / (cosInner - cosOuter);
+    return t * t * (3.0f - 2.0f * t);
 }
 
 }  // namespace sss
