@@ -1,7 +1,7 @@
 #include "common/scene_inputs.h"
 
 #include <sss/error.h>
-#include <sss/procedural.h>
+#include <sss/scene.h>
 
 #include <cmath>
 #include <cstdio>
@@ -16,20 +16,6 @@ namespace fs = std::filesystem;
 
 namespace examples {
 namespace {
-
-fs::path resolveInput(const std::string& path, const fs::path& dataDir, const char* subfolder) {
-    const fs::path given(path);
-    if (fs::exists(given) || given.is_absolute() || dataDir.empty()) return given;
-    for (const fs::path& candidate : {dataDir / given, dataDir / subfolder / given})
-        if (fs::exists(candidate)) return candidate;
-    return given;  // the loader reports the missing file by the name the user gave
-}
-
-std::optional<std::string> proceduralName(const std::string& path) {
-    const std::string prefix = "procedural:";
-    if (path.rfind(prefix, 0) == 0) return path.substr(prefix.size());
-    return std::nullopt;
-}
 
 }  // namespace
 
@@ -106,35 +92,13 @@ fs::path dataDirectory(const std::string& dataDirOption) {
 }
 
 sss::Mesh loadSceneMesh(const std::string& path, const fs::path& dataDir) {
-    if (auto name = proceduralName(path)) {
-        if (*name == "sphere") return sss::makeUvSphere();  // the thesis sphere, 382 v / 800 tri
-        if (*name == "torus") return sss::makeTorus();
-        if (*name == "slab") return sss::makeSlab();
-        throw UsageError("--mesh: unknown procedural mesh \"" + *name + "\" (sphere, torus, slab)");
-    }
-    if (path.empty()) throw UsageError("--mesh: empty path");
-    return sss::Mesh::load(resolveInput(path, dataDir, "meshes"));
+    const fs::path dirs[] = {dataDir};
+    return sss::loadMeshSource(path, dirs);
 }
 
 sss::Volume loadSceneVolume(const std::string& path, const fs::path& dataDir, const sss::RawLoadOptions& options) {
-    if (auto name = proceduralName(path)) {
-        if (*name == "blobs") return sss::makeBlobsVolume();
-        if (*name == "shell") return sss::makeShellVolume();
-        if (*name == "bucky") return sss::makeBuckyLikeVolume();
-        throw UsageError("--volume: unknown procedural volume \"" + *name + "\" (blobs, shell, bucky)");
-    }
-    if (path.empty()) throw UsageError("--volume: empty path");
-    const fs::path resolved = resolveInput(path, dataDir, "volumes");
-    // Headered formats and DICOM directories go to Volume::load; anything else is read as
-    // headerless raw data, as before (names other than .raw included).
-    std::string name = resolved.filename().string();
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    const bool headered = fs::is_directory(resolved);
-    bool known = headered;
-    for (const char* ext : {".nrrd", ".nhdr", ".mhd", ".mha", ".nii", ".nii.gz", ".vti"})
-        known = known || (name.size() >= std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::string::npos, ext) == 0);
-    if (!known) return sss::Volume::loadRaw(resolved, options);
-    return sss::Volume::load(resolved);
+    const fs::path dirs[] = {dataDir};
+    return sss::loadVolumeSource(path, options, dirs);
 }
 
 std::optional<std::pair<double, double>> parseRange(const std::string& option, const std::string& text) {
