@@ -122,7 +122,8 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
         volume.transform.translate = a.volumeOffset;
         volume.options = a.volume;
         volume.options.shading = volumeShading(a.mode).value_or(sss::VolumeShading::Scattering);
-        volume.options.samplesPerFrame = a.mesh.samples;  // --samples: the path tracer's paths per frame too
+        if (volume.options.multipleScattering)
+            volume.options.samplesPerFrame = a.mesh.samples;  // --samples: the path tracer's paths per frame
         scene.volumes.push_back(std::move(volume));
     }
     // A Cornell box is seen straight through its open side unless --yaw or --pitch say otherwise.

@@ -14,14 +14,18 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+// Ordered, so files list version, meshes, volumes, lights, camera, options and output in that order.
+using json = nlohmann::ordered_json;
 
 namespace sss {
 namespace {
@@ -110,6 +114,8 @@ void fields(SceneCamera& o, F&& f) {
     f("fovY", o.fovY);
     f("projection", o.projection);
     f("margin", o.margin);
+    f("target", o.target);
+    f("distance", o.distance);
 }
 
 template <class F>
@@ -227,6 +233,10 @@ public:
         if (!j.is_array() || j.size() != N)
             fail(m_file, at, "expected an array of " + std::to_string(N) + " numbers, got " + j.dump());
         for (int i = 0; i < N; ++i) read(j[i], at + "[" + std::to_string(i) + "]", out[i]);
+    }
+    template <class T>
+    void read(const json& j, const std::string& at, std::optional<T>& out) const {
+        read(j, at, out.emplace());
     }
     template <class E>
         requires kIsEnum<E>
@@ -398,21 +408,40 @@ void checkTransform(const SceneTransform& t, const std::string& path, const std:
 // ---------------------------------------------------------------------------------------------
 // Writing: every field, then those equal to a default-constructed struct's are dropped.
 
+/// The double with the fewest decimal digits that reads back as `v` ("0.05", not
+/// "0.05000000074505806"), so files stay readable and round trips exact.
+double shortest(float v) {
+    for (int digits = 6; digits < 9; ++digits) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.*g", digits, double(v));
+        const double parsed = std::strtod(text, nullptr);
+        if (static_cast<float>(parsed) == v) return parsed;
+    }
+    return double(v);
+}
+
 struct FieldWriter {
     json& out;
     void operator()(std::string_view key, bool v) { out[std::string(key)] = v; }
     void operator()(std::string_view key, int v) { out[std::string(key)] = v; }
-    void operator()(std::string_view key, float v) { out[std::string(key)] = static_cast<double>(v); }
+    void operator()(std::string_view key, float v) { out[std::string(key)] = shortest(v); }
     void operator()(std::string_view key, double v) { out[std::string(key)] = v; }
     template <int N, class T>
     void operator()(std::string_view key, const glm::vec<N, T>& v) {
         json a = json::array();
-        for (int i = 0; i < N; ++i) a.push_back(static_cast<double>(v[i]));
+        for (int i = 0; i < N; ++i) {
+            if constexpr (std::is_same_v<T, float>) a.push_back(shortest(v[i]));
+            else a.push_back(static_cast<double>(v[i]));
+        }
         out[std::string(key)] = a;
     }
     template <class E>
         requires kIsEnum<E>
     void operator()(std::string_view key, E v) { out[std::string(key)] = std::string(enumName(v)); }
+    template <class T>
+    void operator()(std::string_view key, const std::optional<T>& v) {
+        if (v) (*this)(key, *v);
+    }
 };
 
 template <class T>
@@ -454,7 +483,8 @@ json writeTransferFunction(const SceneTransferFunction& tf) {
     if (!tf.points.empty()) {
         json points = json::array();
         for (const ControlPoint& p : tf.points)
-            points.push_back({double(p.value), double(p.color.r), double(p.color.g), double(p.color.b), double(p.opacity)});
+            points.push_back({shortest(p.value), shortest(p.color.r), shortest(p.color.g), shortest(p.color.b),
+                              shortest(p.opacity)});
         j["points"] = points;
     } else {
         j["file"] = tf.file;
@@ -563,6 +593,11 @@ SceneDescription parseScene(std::string_view text, std::string_view name) {
     if (!(c.zoom > 0.0f)) fail(file, "camera.zoom", "must be > 0");
     if (!(c.fovY > 0.0f && c.fovY < 180.0f)) fail(file, "camera.fovY", "must be in (0, 180) degrees");
     if (!(c.margin >= 0.0f && c.margin <= 0.5f)) fail(file, "camera.margin", "must be in [0, 0.5]");
+    if (c.target.has_value() != c.distance.has_value())
+        fail(file, c.target ? "camera.distance" : "camera.target", "target and distance go together");
+    if (c.distance && !(*c.distance > 0.0f)) fail(file, "camera.distance", "must be > 0");
+    if (c.target && !(glm::all(glm::lessThanEqual(glm::abs(*c.target), glm::vec3(Mesh::kMaxCoordinate)))))
+        fail(file, "camera.target", "components must be within +-1e18 (scene units)");
     const SceneOutput& o = scene.output;
     if (o.width < 1 || o.width > kMaxImageSide) fail(file, "output.width", "must be in 1..16384");
     if (o.height < 1 || o.height > kMaxImageSide) fail(file, "output.height", "must be in 1..16384");
@@ -627,7 +662,19 @@ std::string sceneToJson(const SceneDescription& scene) {
     root["camera"] = writeFields(scene.camera, false);
     if (json o = writeFields(scene.options); !o.empty()) root["options"] = o;
     root["output"] = writeFields(scene.output, false);
-    return root.dump(2) + "\n";
+    // Arrays of numbers on one line each ([1, 0.5, 0]), everything else indented.
+    static const std::regex numbers(R"(\[\s*([-+0-9.eE]+(?:,\s*[-+0-9.eE]+)*)\s*\])");
+    std::string text = root.dump(2);
+    std::string compact;
+    auto begin = text.cbegin();
+    for (std::smatch m; std::regex_search(begin, text.cend(), m, numbers); begin = m.suffix().first) {
+        compact.append(m.prefix().first, m.prefix().second);
+        std::string inner = m[1].str();
+        inner = std::regex_replace(inner, std::regex(R"(,\s*)"), ", ");
+        compact += "[" + inner + "]";
+    }
+    compact.append(begin, text.cend());
+    return compact + "\n";
 }
 
 void saveSceneFile(const SceneDescription& scene, const fs::path& path) {
@@ -749,7 +796,23 @@ Camera sceneCamera(const SceneDescription& scene, const SceneAssets& assets, con
     camera.setYaw(c.yaw);
     camera.setPitch(c.pitch);
     camera.setProjectionType(c.projection);
-    camera.frameTight(framed, aspect, c.margin);
+    if (c.target && c.distance) {
+        camera.setTarget(*c.target);
+        camera.setDistance(*c.distance);
+        // Orthographic: the height the perspective view has at the target.
+        camera.setOrthoHeight(2.0f * *c.distance * std::tan(glm::radians(c.fovY) * 0.5f));
+        // Near and far enclose everything in view.
+        float nearest = std::numeric_limits<float>::max(), farthest = 0.0f;
+        for (const glm::vec3& p : framed) {
+            const float depth = glm::dot(p - camera.position(), camera.forward());
+            nearest = std::min(nearest, depth);
+            farthest = std::max(farthest, depth);
+        }
+        farthest = std::max(farthest * 1.05f, 1e-3f * *c.distance);
+        camera.setClipPlanes(std::max(nearest * 0.95f, farthest * 1e-4f), farthest);
+    } else {
+        camera.frameTight(framed, aspect, c.margin);
+    }
     if (c.zoom != 1.0f) {
         camera.zoom(c.zoom);
         camera.setClipPlanes(camera.nearPlane() * std::min(c.zoom, 1.0f), camera.farPlane() * std::max(c.zoom, 1.0f));

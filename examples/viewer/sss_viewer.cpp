@@ -3,6 +3,8 @@
 #include "present_gl.h"
 #include "tf_editor_widget.h"
 #include "viewer_options.h"
+
+#include <sss/scene.h>
 #include "viewer_state.h"
 
 #include <sss/glfw_context.h>
@@ -87,7 +89,7 @@ bool dragDvec3(const char* label, glm::dvec3& v, float speed, float lo, float hi
 class Viewer {
 public:
     Viewer(const ViewerOptions& args, std::unique_ptr<sss::GlfwContext> context)
-        : m_args(args), m_dataDir(viewer::dataDirectory(args.dataDir)), m_context(std::move(context)) {
+        : m_args(args), m_dataDir(viewer::dataDirectory(args.input.dataDir)), m_context(std::move(context)) {
         m_gl.emplace();
         m_compositor.emplace(m_hybrid);
         IMGUI_CHECKVERSION();
@@ -98,27 +100,22 @@ public:
         ImGui_ImplGlfw_InitForOpenGL(static_cast<GLFWwindow*>(m_context->nativeWindow()), true);
         ImGui_ImplOpenGL3_Init("#version 450");
 
-        m_meshPath = args.mesh;
-        m_volumePath = args.volume;
+        m_meshPath = args.input.mesh;
+        m_volumePath = args.input.volume;
+        m_volumeRaw = args.input.raw;
         m_showUi = !args.hideUi;
-        m_meshOptions.shading = args.meshScattering ? sss::MeshShading::Scattering : sss::MeshShading::BlinnPhong;
-        m_meshOptions.cameras = args.cameras;
-        m_meshOptions.profile = args.profile;
-        m_meshOptions.samples = args.samples;
-        m_meshOptions.mapResolution = m_meshOptions.lightMapResolution = args.mapResolution;
-        m_meshOptions.accumulationFrames = args.accumulation;
+        m_meshOptions = args.mesh;
         // Ambient light for the faces the light misses, as sss-render does: on in a Cornell box.
-        m_meshOptions.environment = glm::vec3(args.cornellBox ? 0.05f : 0.0f);
-        m_meshOptions.millimetresPerUnit = args.scale;
-        m_volumeScattering = args.volumeMode == "scattering" || args.volumeMode == "scattering-gradient";
-        m_volumeHighlights = args.volumeMode == "scattering-gradient";
-        m_volumeBaselineGradient = args.volumeMode != "emission-absorption";
-        m_volumeOptions.lightVolumeScale = args.lightVolumeScale;
-        m_volumeOptions.lightVolumeFallback = args.lightVolumeFallback;
+        if (args.cornellBox && m_meshOptions.environment == glm::vec3(0.0f)) m_meshOptions.environment = glm::vec3(0.05f);
+        m_volumeOptions = args.volume;
+        setVolumeShading(args.volume.shading);
+        m_volumeMultiple = args.volume.multipleScattering;
         m_displayTransform = args.display;
         m_hybrid.cornellBox = args.cornellBox;
         m_lightAzimuth = args.lightAzimuth;
         m_lightElevation = args.lightElevation;
+        m_lightColor = args.lightColor;
+        m_lightIntensity = args.lightIntensity;
         m_material = sss::materialPreset(args.material);
         const auto names = sss::materialPresetNames();
         const auto found = std::find(names.begin(), names.end(), m_material.name);
@@ -141,19 +138,118 @@ public:
     /// Shows what the command line named (loaded before the window opened, see run()).
     void setInitialScene(std::optional<sss::Mesh> mesh, std::optional<sss::Volume> volume, sss::TransferFunction tf,
                          const std::string& tfName) {
-        if (mesh) m_mesh = normalised(*mesh);
-        if (volume) setVolume(std::move(*volume), m_args.volume);
+        if (mesh) m_mesh = m_meshTransform ? *mesh : normalised(*mesh);  // a scene's mesh is sized by the scene
+        if (volume) setVolume(std::move(*volume), m_args.input.volume);
         m_tfEditor = sss::TransferFunctionEditor(std::move(tf));
         if (tfName.size() > 5 && tfName.substr(tfName.size() - 5) == ".json") m_tfPath = tfName;
         else m_tfPreset = tfName;
         rebuildScene();
         reframe();
-        m_camera.setYaw(m_args.yaw.value_or(m_hybrid.cornellBox ? 14.0f : 25.0f));
-        m_camera.setPitch(m_args.pitch.value_or(m_hybrid.cornellBox ? 12.0f : 15.0f));
+        const sss::SceneCamera& c = m_args.camera;
+        m_camera.setYaw(m_args.yawGiven || !m_hybrid.cornellBox ? c.yaw : 14.0f);
+        m_camera.setPitch(m_args.pitchGiven || !m_hybrid.cornellBox ? c.pitch : 12.0f);
+        m_camera.setFovY(c.fovY);
+        m_camera.setProjectionType(c.projection);
+        if (c.target && c.distance) {
+            m_camera.setTarget(*c.target);
+            m_camera.setDistance(*c.distance);
+            m_camera.setClipPlanes(*c.distance * 0.01f, *c.distance * 10.0f);
+        }
+        if (c.zoom != 1.0f) m_camera.zoom(c.zoom);
+    }
+
+    /// Opens a scene file's content: its mesh and volume with their placement, options and
+    /// materials, its light and camera (run() checked that the viewer can show all of it).
+    void setSceneOptions(const sss::SceneDescription& scene) {
+        m_hybrid = scene.options;
+        if (!scene.meshes.empty()) {
+            const sss::SceneMesh& m = scene.meshes.front();
+            m_meshPath = m.source;
+            m_meshTransform = m.transform;
+            m_meshSize = m.size;
+            m_meshOptions = m.options;
+            m_material = m.material;
+            m_blinnPhong = m.baseline;
+        }
+        if (!scene.volumes.empty()) {
+            const sss::SceneVolume& v = scene.volumes.front();
+            m_volumePath = v.source;
+            m_volumeRaw = v.raw;
+            m_volumeTransform = v.transform;
+            m_volumeOptions = v.options;
+            setVolumeShading(v.options.shading);
+            m_volumeMultiple = v.options.multipleScattering;
+        }
+        if (!scene.lights.empty()) {
+            const auto& d = std::get<sss::DirectionalLight>(scene.lights.front());
+            const glm::vec3 towardsLight = -glm::normalize(d.direction);
+            m_lightElevation = glm::degrees(std::asin(std::clamp(towardsLight.y, -1.0f, 1.0f)));
+            m_lightAzimuth = glm::degrees(std::atan2(towardsLight.x, towardsLight.z));
+            m_lightColor = d.color;
+            m_lightIntensity = d.intensity;
+        }
+        m_displayTransform = scene.output.display;
+    }
+
+    /// The scene shown, as a scene description (mesh and volume as opened, normalised to one
+    /// unit, placed as shown; the transfer function inline; the camera where it is).
+    sss::SceneDescription describeScene() const {
+        sss::SceneDescription scene;
+        scene.options = m_hybrid;
+        if (m_mesh) {
+            sss::SceneMesh m;
+            m.source = m_meshPath;
+            m.size = m_meshSize;
+            m.transform = meshTransform();
+            m.options = meshOptions();
+            m.options.finishEachPass = false;
+            m.material = m_material;
+            m.baseline = m_blinnPhong;
+            scene.meshes.push_back(m);
+        }
+        if (m_volume) {
+            sss::SceneVolume v;
+            v.source = m_volumeLabel;
+            v.raw = m_volumeRaw;
+            v.valueWindow = m_volume->transferFunctionRange();
+            v.transferFunction.points = m_tfEditor.transferFunction().points();
+            v.transform = volumeTransform();
+            v.options = volumeOptions();
+            v.options.finishEachPass = false;
+            scene.volumes.push_back(v);
+        }
+        scene.lights = {light()};
+        scene.camera.yaw = m_camera.yaw();
+        scene.camera.pitch = m_camera.pitch();
+        scene.camera.fovY = m_camera.fovY();
+        scene.camera.projection = m_camera.projectionType();
+        scene.camera.target = m_camera.target();
+        scene.camera.distance = m_camera.distance();
+        if (m_target) scene.output.width = m_target->width(), scene.output.height = m_target->height();
+        scene.output.antiAliasing = m_args.antiAliasing;
+        scene.output.display = m_displayTransform;
+        return scene;
+    }
+
+    void saveScene(const std::string& path) {
+        try {
+            sss::saveSceneFile(describeScene(), path);
+            showMessage("saved the scene as " + path, false);
+            std::printf("wrote %s\n", path.c_str());
+        } catch (const std::exception& e) {
+            if (m_args.exitAfter > 0) throw;  // batch: a scene that cannot be written is a failure
+            showMessage(e.what(), true);
+        }
+    }
+
+    void setVolumeShading(sss::VolumeShading shading) {
+        m_volumeScattering = shading == sss::VolumeShading::Scattering || shading == sss::VolumeShading::ScatteringGradient;
+        m_volumeHighlights = shading == sss::VolumeShading::ScatteringGradient;
+        m_volumeBaselineGradient = shading != sss::VolumeShading::EmissionAbsorption;
     }
 
     int run() {
-        const int frames = m_args.frames;
+        const int frames = m_args.exitAfter;
         const Clock::time_point start = Clock::now();
         for (int frame = 0; frames == 0 || frame < frames; ++frame) {
             if (m_context->shouldClose()) break;
@@ -166,7 +262,8 @@ public:
             drawFrame(last && !m_args.screenshot.empty());
         }
         dumpState(false);
-        if (m_args.frames > 0) {
+        if (!m_args.saveScene.empty()) saveScene(m_args.saveScene);
+        if (m_args.exitAfter > 0) {
             // Batch runs double as tests: a GL error reported through KHR_debug is a failure.
             const sss::DebugMessageCounts counts = m_context->debugMessages();
             if (counts.errors > 0) {
@@ -182,7 +279,7 @@ public:
 private:
     // ---- scene -------------------------------------------------------------------------------
     void setVolume(sss::Volume volume, const std::string& label) {
-        volume.setValueWindow(m_args.tfRange);  // --tf-range applies to every volume opened
+        if (!volume.valueWindow()) volume.setValueWindow(m_args.input.tfRange);  // --tf-range applies to every volume opened
         m_histogram.histogram = sss::TransferFunctionEditor::histogramBars(volume, 128);
         m_histogram.rawRange = volume.transferFunctionRange();
         m_volume = std::move(volume);
@@ -217,12 +314,15 @@ private:
         return sss::DirectionalLight{-towardsLight, m_lightColor, m_lightIntensity};
     }
 
-    glm::mat4 meshModel() const {
-        return glm::translate(glm::mat4(1.0f), glm::vec3(m_volume ? -0.6f : 0.0f, 0.0f, 0.0f));
+    // A scene file's placement, else side by side when both are there.
+    sss::SceneTransform meshTransform() const {
+        return m_meshTransform.value_or(sss::SceneTransform{.translate = glm::vec3(m_volume ? -0.6f : 0.0f, 0.0f, 0.0f)});
     }
-    glm::mat4 volumeModel() const {
-        return glm::translate(glm::mat4(1.0f), glm::vec3(m_mesh ? 0.6f : 0.0f, 0.0f, 0.0f));
+    sss::SceneTransform volumeTransform() const {
+        return m_volumeTransform.value_or(sss::SceneTransform{.translate = glm::vec3(m_mesh ? 0.6f : 0.0f, 0.0f, 0.0f)});
     }
+    glm::mat4 meshModel() const { return meshTransform().matrix(); }
+    glm::mat4 volumeModel() const { return volumeTransform().matrix(); }
 
     void rebuildScene() {
         m_compositor->clear();
@@ -418,7 +518,7 @@ private:
             m_screenshotsWritten.push_back(path);
             showMessage("saved " + path, false);
         } catch (const sss::Error& e) {
-            if (m_args.frames > 0) throw;  // batch: a screenshot that cannot be written is a failure
+            if (m_args.exitAfter > 0) throw;  // batch: a screenshot that cannot be written is a failure
             showMessage(e.what(), true);
         }
     }
@@ -467,7 +567,7 @@ private:
     }
 
     void showMessage(std::string text, bool error) {
-        if (error && m_args.frames > 0) std::fprintf(stderr, "sss-viewer: %s\n", text.c_str());
+        if (error && m_args.exitAfter > 0) std::fprintf(stderr, "sss-viewer: %s\n", text.c_str());
         m_message = std::move(text);
         m_messageIsError = error;
         m_messageTime = Clock::now();
@@ -557,11 +657,17 @@ private:
         ImGui::InputText("screenshot", &m_screenshotPath);
         ImGui::SameLine();
         if (ImGui::Button("Save (F12)")) m_screenshotRequested = true;
+        ImGui::InputText("scene file", &m_scenePath);
+        ImGui::SameLine();
+        if (ImGui::Button("Save scene")) saveScene(m_scenePath);
     }
 
     void openMesh() {
         try {
             m_mesh = normalised(viewer::loadSceneMesh(m_meshPath, m_dataDir));
+            m_meshSize = 1.0f;
+            m_meshTransform.reset();
+            m_volumeTransform.reset();
             m_sceneDirty = true;
             showMessage("opened " + m_meshPath, false);
         } catch (const std::exception& e) {  // sss::Error or UsageError: shown, never fatal
@@ -575,6 +681,9 @@ private:
             if (m_volumeDims.x > 0 && m_volumeDims.y > 0 && m_volumeDims.z > 0) overrides.dims = m_volumeDims;
             if (m_volume16) overrides.type = sss::VoxelType::UInt16;
             setVolume(viewer::loadSceneVolume(m_volumePath, m_dataDir, overrides), m_volumePath);
+            m_volumeRaw = overrides;
+            m_meshTransform.reset();
+            m_volumeTransform.reset();
             m_sceneDirty = true;
             showMessage("opened " + m_volumePath, false);
         } catch (const std::exception& e) {
@@ -899,7 +1008,10 @@ private:
     bool m_sceneDirty = false, m_meshDirty = false, m_volumeDirty = false, m_lightsDirty = false,
          m_hybridDirty = false, m_windowDirty = false;
     bool m_showUi = true, m_honestTimings = false, m_screenshotRequested = false;
-    std::string m_meshPath, m_volumePath, m_screenshotPath = "sss-viewer.png";
+    std::string m_meshPath, m_volumePath, m_screenshotPath = "sss-viewer.png", m_scenePath = "scene.json";
+    sss::RawLoadOptions m_volumeRaw;  // how the volume was opened, for saved scenes
+    std::optional<sss::SceneTransform> m_meshTransform, m_volumeTransform;  // from a scene file
+    std::optional<float> m_meshSize = 1.0f;  // normalised(), unless a scene file said otherwise
     glm::ivec3 m_volumeDims{0};
     bool m_volume16 = false;
 
@@ -923,18 +1035,56 @@ private:
 
 bool isJson(const std::string& name) { return name.size() > 5 && name.substr(name.size() - 5) == ".json"; }
 
-int run(const ViewerOptions& args) {
+int run(ViewerOptions args) {
     // Load and check everything before opening a window, so bad input fails fast and clearly.
-    const fs::path dataDir = viewer::dataDirectory(args.dataDir);
+    const fs::path dataDir = viewer::dataDirectory(args.input.dataDir);
+    const fs::path searchDirs[] = {dataDir};
     std::optional<sss::Mesh> mesh;
     std::optional<sss::Volume> volume;
-    if (!args.mesh.empty()) mesh = viewer::loadSceneMesh(args.mesh, dataDir);
-    if (!args.volume.empty())
-        volume = viewer::loadSceneVolume(args.volume, dataDir, {args.dims, args.type, args.spacing});
-    const std::string tfName = args.tf.empty() ? viewer::guessPreset(args.volume) : args.tf;
-    sss::TransferFunction tf =
-        isJson(tfName) ? sss::TransferFunction::loadParaViewJson(tfName) : sss::TransferFunction::preset(tfName);
-    sss::materialPreset(args.material);
+    std::optional<sss::SceneDescription> scene;
+    std::string tfName;
+    std::optional<sss::TransferFunction> tf;
+    if (!args.input.scene.empty()) {
+        scene = sss::loadSceneFile(args.input.scene);
+        // The viewer edits one mesh, one volume and one directional light; anything more would be
+        // dropped without a word, so it is refused.
+        const std::string file = args.input.scene;
+        if (scene->meshes.size() > 1 || scene->volumes.size() > 1)
+            throw sss::Error(sss::ErrorKind::InvalidArgument,
+                             file + ": sss-viewer shows at most one mesh and one volume; this scene has " +
+                                 std::to_string(scene->meshes.size()) + " and " + std::to_string(scene->volumes.size()) +
+                                 " (render it with sss-render --scene)");
+        if (scene->lights.size() > 1 ||
+            (scene->lights.size() == 1 && !std::holds_alternative<sss::DirectionalLight>(scene->lights.front())))
+            throw sss::Error(sss::ErrorKind::InvalidArgument,
+                             file + ": sss-viewer's light is one directional light; this scene has " +
+                                 std::to_string(scene->lights.size()) +
+                                 " light(s) of other kinds (render it with sss-render --scene)");
+        const sss::SceneAssets assets = sss::loadSceneAssets(*scene, searchDirs);
+        if (!assets.meshes.empty()) mesh = assets.meshes.front();
+        if (!assets.volumes.empty()) {
+            volume = assets.volumes.front();
+            tf = assets.transferFunctions.front();
+            const sss::SceneTransferFunction& t = scene->volumes.front().transferFunction;
+            tfName = t.points.empty() ? (t.file.empty() ? t.preset : t.file) : "ramp";
+        }
+        args.cornellBox = scene->options.cornellBox;
+        args.camera = scene->camera;
+        args.yawGiven = args.pitchGiven = true;
+        args.width = scene->output.width;
+        args.height = scene->output.height;
+        args.antiAliasing = scene->output.antiAliasing;
+    } else {
+        if (!args.input.mesh.empty()) mesh = viewer::loadSceneMesh(args.input.mesh, dataDir);
+        if (!args.input.volume.empty())
+            volume = viewer::loadSceneVolume(args.input.volume, dataDir, args.input.raw);
+        sss::materialPreset(args.material);
+    }
+    if (!tf) {
+        tfName = args.input.tf.empty() ? viewer::guessPreset(args.input.volume) : args.input.tf;
+        tf = isJson(tfName) ? sss::TransferFunction::loadParaViewJson(tfName, args.input.tfRange)
+                            : sss::TransferFunction::preset(tfName);
+    }
 
     auto context = sss::GlfwContext::create({.width = args.width,
                                              .height = args.height,
@@ -942,7 +1092,8 @@ int run(const ViewerOptions& args) {
                                              .visible = true,
                                              .vsync = args.vsync});
     Viewer viewer(args, std::move(context));
-    viewer.setInitialScene(std::move(mesh), std::move(volume), std::move(tf), tfName);
+    if (scene) viewer.setSceneOptions(*scene);
+    viewer.setInitialScene(std::move(mesh), std::move(volume), std::move(*tf), tfName);
     return viewer.run();
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Command line of sss-viewer, and loading what it names (shared with the UI's path fields).
 
-#include "common/scene_inputs.h"
+#include "common/cli_options.h"
 
 #include <sss/display.h>
 #include <sss/mesh.h>
@@ -23,35 +23,43 @@ using examples::loadSceneMesh;  // a path or procedural:NAME (scene_inputs.h)
 using examples::loadSceneVolume;
 
 struct ViewerOptions {
-    std::string mesh;                      ///< --mesh PATH or procedural:NAME
-    std::string volume;                    ///< --volume PATH or procedural:NAME
-    std::optional<glm::ivec3> dims;        ///< --dims XxYxZ
-    std::optional<sss::VoxelType> type;    ///< --type uint8|uint16|int16|float32
-    std::optional<std::pair<double, double>> tfRange;  ///< --tf-range LO,HI (Volume::setValueWindow)
-    std::optional<glm::vec3> spacing;      ///< --spacing X,Y,Z
-    std::string dataDir;                   ///< --data-dir DIR
-    std::string tf;                        ///< --tf NAME|FILE.json (default: guessed from the volume's name)
+    examples::InputArgs input;             ///< --mesh --volume --scene --data-dir --dims --type --spacing --tf --tf-range
     std::string material = "marble";       ///< --material NAME
-    sss::ScatteringProfile profile = sss::MeshRenderOptions{}.profile;  ///< --profile calibrated|dipole
-    double scale = 40.0;                   ///< --scale MM: millimetres per scene unit (the scene is ~1-2 units)
-    bool meshScattering = true;            ///< --mesh-mode sss|blinn-phong
-    std::string volumeMode = "scattering"; ///< --volume-mode
-    int cameras = 8, samples = 24, mapResolution = 512, accumulation = 8;
-    float lightVolumeScale = 1.0f;         ///< --light-volume-scale
-    sss::LightVolumeFallback lightVolumeFallback = sss::LightVolumeFallback::Reduce;  ///< --light-volume-fallback
+    sss::MeshRenderOptions mesh = defaultMeshOptions();        ///< --mesh-mode, --cameras, --frames, ...
+    sss::VolumeRenderOptions volume = defaultVolumeOptions();  ///< --volume-mode, --light-volume-scale, ...
     sss::DisplayTransform display;         ///< --exposure, --tonemap
+    sss::SceneCamera camera = defaultCamera();  ///< --yaw --pitch --zoom --fov --ortho
     bool cornellBox = false;               ///< --cornell-box
-    std::optional<float> yaw, pitch;       ///< --yaw/--pitch (degrees; default 25, 15; 14, 12 in a Cornell box)
     float lightAzimuth = 35.0f, lightElevation = 40.0f;  ///< --light-angles AZ,EL (degrees)
+    glm::vec3 lightColor{1.0f};            ///< --light-color
+    float lightIntensity = 1.0f;           ///< --light-intensity
     int width = 1280, height = 720;        ///< --size WxH (window)
     std::string screenshot;                ///< --screenshot FILE.png
     bool screenshotUi = false;             ///< --screenshot-ui: the window with its UI instead of the scene only
-    int frames = 0;                        ///< --frames N: exit after N frames (0: run until closed)
+    std::string saveScene;                 ///< --save-scene FILE.json: the scene at exit
+    int exitAfter = 0;                     ///< --exit-after N: exit after N frames (0: run until closed)
     bool hideUi = false;                   ///< --no-ui
     std::string dumpState;                 ///< --dump-state FILE.json: state after every frame and at exit
     double timeout = 0.0;                  ///< --timeout S: fail if still open after S seconds (0: never)
     bool vsync = true;                     ///< --no-vsync
     int antiAliasing = 8;                  ///< --aa N: jittered frames averaged while nothing moves (1: off)
+    bool yawGiven = false, pitchGiven = false;
+
+    /// The viewer's defaults where they differ from the library's: scattering on, a scene 1-2
+    /// units wide at 40 mm a unit.
+    static sss::MeshRenderOptions defaultMeshOptions() {
+        sss::MeshRenderOptions o;
+        o.shading = sss::MeshShading::Scattering;
+        o.millimetresPerUnit = 40.0;
+        return o;
+    }
+    static sss::VolumeRenderOptions defaultVolumeOptions() { return {.shading = sss::VolumeShading::Scattering}; }
+    static sss::SceneCamera defaultCamera() {
+        sss::SceneCamera camera;
+        camera.yaw = 25.0f;
+        camera.pitch = 15.0f;
+        return camera;
+    }
 };
 
 /// Parses argv. Prints the usage and exits 0 for --help.

@@ -71,7 +71,8 @@ struct SceneVolume {
 };
 
 /// The camera orbits the scene's centre and frames it tightly for the image's aspect
-/// (Camera::frameTight on the meshes' vertices, the volumes' boxes, or the Cornell box).
+/// (Camera::frameTight on the meshes' vertices, the volumes' boxes, or the Cornell box), unless
+/// `target` and `distance` place it explicitly (as the viewer saves it, panned and zoomed).
 struct SceneCamera {
     float yaw = 30.0f;    ///< degrees
     float pitch = 20.0f;  ///< degrees
@@ -79,6 +80,8 @@ struct SceneCamera {
     float fovY = 45.0f;   ///< vertical field of view, degrees, in (0, 180)
     Projection projection = Projection::Perspective;
     float margin = 0.04f;  ///< space left around the framed scene, a share of the half-size, [0, 0.5]
+    std::optional<glm::vec3> target;  ///< with `distance`: the orbit centre, no framing
+    std::optional<float> distance;    ///< with `target`: eye-to-target distance, > 0
     bool operator==(const SceneCamera&) const = default;
 };
 
