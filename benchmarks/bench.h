@@ -39,6 +39,7 @@ struct Options {
     std::optional<std::string> accuracy;    // --accuracy: "slab"
     std::optional<std::filesystem::path> plotPath;  // default: the JSON path with .png
     std::filesystem::path referenceCache;  // --reference-cache: CPU references kept as EXR (empty: none)
+    std::string scene;  // --scene: time this scene file instead of the tables
 };
 
 struct Stats {
@@ -176,6 +177,9 @@ void runTable53(BenchmarkContext& bench);
 void runTable54(BenchmarkContext& bench);
 /// Thesis Table 5.5: hybrid scenes (volume + mesh in a Cornell box), whole frame and parts.
 void runTable55(BenchmarkContext& bench);
+namespace sss { struct SceneDescription; }
+/// --scene: the "change" and "fixed" frames of a scene file (`name` labels the rows).
+void runSceneTable(BenchmarkContext& bench, const sss::SceneDescription& scene, const std::string& name);
 /// Time against error: sweeps against the CPU references; returns the plot to draw.
 struct PlotSpec;
 PlotSpec runErrorSweep(BenchmarkContext& bench, const std::string& which);

@@ -5,6 +5,10 @@
 #include "bench.h"
 #include "plot.h"
 
+#include "common/cli_options.h"
+
+#include <sss/scene.h>
+
 #include <charconv>
 #include <cstdlib>
 #include <fstream>
@@ -12,185 +16,136 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: sss-bench [options]
+using namespace examples;
+
+constexpr const char* kDescription = R"(usage: sss-bench [options]
 
 Times the libsss renderers (median of several frames, after warm-up frames) and writes
-the results as JSON and as a Markdown table (also printed to stdout).
-
-options:
-  --quick             procedural data only, small viewport, 1 warm-up + 3 runs (for ctest)
-  --gl-info           print the GL vendor, renderer and version and the timing method (one
-                      "key: value" per line), then exit; benchmarks/run-gpu.sh checks with it
-                      that the EGL device is the GPU it means to measure
-  --json FILE         write the results as JSON to FILE
-  --markdown FILE     write the Markdown table to FILE (default: the JSON path with .md)
-  --data-dir DIR      data sets (meshes/, volumes/); default $SSS_DATA_DIR, else ../shared/data
-  --runs N            timed frames per row, N >= 1 (default 10; quick 3)
-  --warmup N          untimed frames before timing, N >= 0 (default 3; quick 1)
-  --size WxH          viewport (default 1200x680, the thesis viewport; quick 320x180)
-  --only A,B,...      only these models (e.g. bunny,bonsai)
-  --note TEXT         free text about the machine, copied into the reports
-  --images DIR        save each row's verified image as DIR/<table>-<model>-<mode>.png
-  --table T[,T...]    thesis tables to reproduce: baseline (default), 5.3 (mesh scattering),
-                      5.4 (volume scattering), 5.5 (hybrid scenes)
-  --error-sweep S     time against error for S = mesh or volume, against the CPU reference;
-                      records with sweep, the swept parameters, ms and rel_rmse, and a plot
-  --accuracy A        accuracy against physical ground truth. A = slab: presets x channels x
-                      incidence 0/45/75 degrees, the random walk against the dipole, the
-                      calibrated profile and a GPU render (JSON records with material, channel,
-                      incidence_deg, random_walk, random_walk_stderr, dipole, calibrated, gpu,
-                      rel_error_gpu). A = mesh: GPU images with both profiles against the mesh
-                      random walk (records with scene, profile, rel_rmse); --size sets the image
-                      (default 96x72), --images DIR keeps them. A = volume: the light volume and
-                      physical single scattering against path-traced single and multiple
-                      scattering (records with scene, method, rel_rmse_single, rel_rmse_multiple,
-                      mean_ratio, ms). Markdown and a plot as well
-  --plot FILE         where the sweep's PNG plot goes (default: the JSON path with .png)
-  --reference-cache DIR
-                      keep the sweeps' CPU references there as OpenEXR and reuse them when the
-                      scene is the same (the file name holds every parameter)
-  --help              show this help
+the results as JSON and as a Markdown table (also printed to stdout): the thesis's tables,
+time against error, accuracy against physical ground truth, or the frames of a scene file.
 )";
 
-// Command-line mistakes: reported with the option's name, exit code 2.
-struct UsageError {
-    std::string message;
-};
-
-int parseInt(const std::string& option, const std::string& text, int minValue) {
-    int value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end || value < minValue)
-        throw UsageError{option + " expects an integer >= " + std::to_string(minValue) + ", got \"" + text + "\""};
-    return value;
-}
-
-void parseSize(const std::string& text, int& width, int& height) {
-    const std::size_t x = text.find_first_of("xX");
-    if (x == std::string::npos) throw UsageError{"--size expects WxH (e.g. 1200x680), got \"" + text + "\""};
-    try {
-        width = parseInt("--size", text.substr(0, x), 1);
-        height = parseInt("--size", text.substr(x + 1), 1);
-    } catch (const UsageError&) {
-        throw UsageError{"--size expects WxH with positive integers (e.g. 1200x680), got \"" + text + "\""};
+/// Checks a choice from a fixed list, naming the option.
+std::string oneOf(const std::string& option, const std::string& value, std::initializer_list<const char*> choices) {
+    std::string list;
+    for (const char* c : choices) {
+        if (value == c) return value;
+        list += (list.empty() ? "" : ", ") + std::string(c);
     }
-    if (width > sss::kMaxImageSide || height > sss::kMaxImageSide)
-        throw UsageError{"--size: each side must be at most " + std::to_string(sss::kMaxImageSide)};
+    throw UsageError(option + ": expected " + list + ", got \"" + value + "\"");
 }
 
 std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> out;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', start), text.size());
-        if (comma > start) out.push_back(text.substr(start, comma - start));
-        start = comma + 1;
-    }
+    for (const std::string& part : split(text, ','))
+        if (!part.empty()) out.push_back(part);
     return out;
 }
 
-std::filesystem::path defaultDataDir() {
-    if (const char* env = std::getenv("SSS_DATA_DIR"); env && *env) return env;
-    std::error_code ec;
-    if (std::filesystem::is_directory("../shared/data", ec)) return "../shared/data";
-    return {};
-}
-
-// Returns nullopt when --help was asked for.
-std::optional<Options> parseArgs(int argc, char** argv) {
+Options parseArgs(int argc, char** argv) {
     Options o;
-    std::optional<int> runs, warmup;
-    std::optional<std::pair<int, int>> size;
-    std::optional<std::filesystem::path> dataDir;
+    CLI::App app(kDescription, "sss-bench");
+    std::string dataDir;
+    int runs = o.runs, warmup = o.warmup, width = kThesisWidth, height = kThesisHeight;
+    app.add_flag("--quick", o.quick, "procedural data only, small viewport, 1 warm-up + 3 runs (for ctest)");
+    app.add_flag("--gl-info", o.glInfoOnly,
+                 "print the GL vendor, renderer and version and the timing method (one \"key: value\" per line), "
+                 "then exit; benchmarks/run-gpu.sh checks with it that the EGL device is the GPU it means to measure");
+    addParsed(app, "--json", o.jsonPath,
+              [](const std::string& name, const std::string& text) {
+                  if (text.empty()) throw UsageError(name + " needs a non-empty value");
+                  return std::optional<std::filesystem::path>(text);
+              },
+              "write the results as JSON to FILE", "FILE")
+        ->group("output");
+    addParsed(app, "--markdown", o.markdownPath,
+              [](const std::string&, const std::string& text) { return std::optional<std::filesystem::path>(text); },
+              "write the Markdown table to FILE (default: the JSON path with .md)", "FILE")
+        ->group("output");
+    addDataDirOption(app, dataDir);
+    addSceneOption(app, o.scene, "time the frames of this scene file (\"change\": its lights turn, \"fixed\": "
+                                 "nothing changes) instead of the tables; its output size unless --size");
+    addParsed(app, "--runs", runs,
+              [](const std::string& name, const std::string& text) {
+                  const int n = parseInt(name, text);
+                  if (n < 1) throw UsageError(name + " expects an integer >= 1, got \"" + text + "\"");
+                  return n;
+              },
+              "timed frames per row", "N", "10; quick 3");
+    addParsed(app, "--warmup", warmup,
+              [](const std::string& name, const std::string& text) {
+                  const int n = parseInt(name, text);
+                  if (n < 0) throw UsageError(name + " expects an integer >= 0, got \"" + text + "\"");
+                  return n;
+              },
+              "untimed frames before timing", "N", "3; quick 1");
+    addSizeOption(app, width, height, "viewport")->default_str("1200x680, the thesis viewport; quick 320x180; sweeps 128x96");
+    addParsed(app, "--only", o.only,
+              [](const std::string& name, const std::string& text) {
+                  auto models = splitList(text);
+                  if (models.empty()) throw UsageError(name + " needs at least one model name");
+                  return models;
+              },
+              "only these models (e.g. bunny,bonsai)", "A,B,...");
+    app.add_option("--note", o.note, "free text about the machine, copied into the reports")->type_name("TEXT");
+    app.add_option("--images", o.imageDir, "save each row's verified image as DIR/<table>-<model>-<mode>.png")
+        ->type_name("DIR")
+        ->group("output");
+    addParsed(app, "--table", o.tables,
+              [](const std::string& name, const std::string& text) {
+                  std::vector<std::string> tables;
+                  for (const std::string& t : splitList(text)) {
+                      if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5")
+                          throw UsageError(name + ": unknown table \"" + t + "\" (baseline, 5.3, 5.4, 5.5)");
+                      tables.push_back(t);
+                  }
+                  return tables;
+              },
+              "thesis tables to reproduce: baseline (default), 5.3 (mesh scattering), 5.4 (volume scattering), 5.5 "
+              "(hybrid scenes)",
+              "T[,T...]");
+    addParsed(app, "--error-sweep", o.errorSweep,
+              [](const std::string& name, const std::string& text) {
+                  return std::optional(oneOf(name, text, {"mesh", "volume"}));
+              },
+              "time against error for S = mesh or volume, against the CPU reference; records with sweep, the swept "
+              "parameters, ms and rel_rmse, and a plot",
+              "S");
+    addParsed(app, "--accuracy", o.accuracy,
+              [](const std::string& name, const std::string& text) {
+                  return std::optional(oneOf(name, text, {"slab", "mesh", "volume"}));
+              },
+              "accuracy against physical ground truth. A = slab: presets x channels x incidence 0/45/75 degrees, the "
+              "random walk against the dipole, the calibrated profile and a GPU render (JSON records with material, "
+              "channel, incidence_deg, random_walk, random_walk_stderr, dipole, calibrated, gpu, rel_error_gpu). A = "
+              "mesh: GPU images with both profiles against the mesh random walk (records with scene, profile, "
+              "rel_rmse); --size sets the image (default 96x72), --images DIR keeps them. A = volume: the light "
+              "volume and physical single scattering against path-traced single and multiple scattering (records "
+              "with scene, method, rel_rmse_single, rel_rmse_multiple, mean_ratio, ms). Markdown and a plot as well",
+              "A");
+    addParsed(app, "--plot", o.plotPath,
+              [](const std::string&, const std::string& text) { return std::optional<std::filesystem::path>(text); },
+              "where the sweep's PNG plot goes (default: the JSON path with .png)", "FILE")
+        ->group("output");
+    app.add_option("--reference-cache", o.referenceCache,
+                   "keep the sweeps' CPU references there as OpenEXR and reuse them when the scene is the same (the "
+                   "file name holds every parameter)")
+        ->type_name("DIR");
+    parseCommandLine(app, argc, argv);
 
-    for (int i = 1; i < argc; ++i) {
-        std::string arg = argv[i];
-        std::optional<std::string> inlineValue;  // --opt=value
-        if (const std::size_t eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos) {
-            inlineValue = arg.substr(eq + 1);
-            arg = arg.substr(0, eq);
-        }
-        auto value = [&]() -> std::string {
-            if (!inlineValue && i + 1 >= argc) throw UsageError{arg + " needs a value"};
-            std::string v = inlineValue ? *inlineValue : argv[++i];
-            if (v.empty() && arg != "--note") throw UsageError{arg + " needs a non-empty value"};
-            return v;
-        };
-        auto flag = [&] {
-            if (inlineValue) throw UsageError{arg + " takes no value"};
-        };
-
-        if (arg == "--help" || arg == "-h") {
-            flag();
-            return std::nullopt;
-        } else if (arg == "--quick") {
-            flag();
-            o.quick = true;
-        } else if (arg == "--gl-info") {
-            flag();
-            o.glInfoOnly = true;
-        } else if (arg == "--json") {
-            o.jsonPath = value();
-        } else if (arg == "--markdown") {
-            o.markdownPath = value();
-        } else if (arg == "--data-dir") {
-            dataDir = value();
-        } else if (arg == "--runs") {
-            runs = parseInt(arg, value(), 1);
-        } else if (arg == "--warmup") {
-            warmup = parseInt(arg, value(), 0);
-        } else if (arg == "--size") {
-            int w = 0, h = 0;
-            parseSize(value(), w, h);
-            size = {w, h};
-        } else if (arg == "--only") {
-            o.only = splitList(value());
-            if (o.only.empty()) throw UsageError{"--only needs at least one model name"};
-        } else if (arg == "--note") {
-            o.note = value();
-        } else if (arg == "--images") {
-            o.imageDir = value();
-        } else if (arg == "--table") {
-            for (const std::string& t : splitList(value())) {
-                if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5")
-                    throw UsageError{"--table: unknown table \"" + t + "\" (baseline, 5.3, 5.4, 5.5)"};
-                o.tables.push_back(t);
-            }
-        } else if (arg == "--error-sweep") {
-            const std::string which = value();
-            if (which != "mesh" && which != "volume")
-                throw UsageError{"--error-sweep: expected mesh or volume, got \"" + which + "\""};
-            o.errorSweep = which;
-        } else if (arg == "--accuracy") {
-            const std::string which = value();
-            if (which != "slab" && which != "mesh" && which != "volume")
-                throw UsageError{"--accuracy: expected slab, mesh or volume, got \"" + which + "\""};
-            o.accuracy = which;
-        } else if (arg == "--plot") {
-            o.plotPath = value();
-        } else if (arg == "--reference-cache") {
-            o.referenceCache = value();
-        } else {
-            throw UsageError{"unknown option \"" + arg + "\" (see --help)"};
-        }
-    }
-
-    o.sizeGiven = size.has_value();
+    o.sizeGiven = given(app, "--size");
     // Quick mode only changes defaults; explicit options still win.
-    o.runs = runs.value_or(o.quick ? 3 : 10);
-    o.warmup = warmup.value_or(o.quick ? 1 : 3);
+    o.runs = given(app, "--runs") ? runs : (o.quick ? 3 : 10);
+    o.warmup = given(app, "--warmup") ? warmup : (o.quick ? 1 : 3);
     // Error sweeps compare with CPU references, whose cost grows with the pixel count.
-    o.width = size ? size->first : (o.errorSweep ? 128 : (o.quick ? 320 : kThesisWidth));
-    o.height = size ? size->second : (o.errorSweep ? 96 : (o.quick ? 180 : kThesisHeight));
-    if (dataDir) {
+    o.width = o.sizeGiven ? width : (o.errorSweep ? 128 : (o.quick ? 320 : kThesisWidth));
+    o.height = o.sizeGiven ? height : (o.errorSweep ? 96 : (o.quick ? 180 : kThesisHeight));
+    if (!dataDir.empty()) {
         std::error_code ec;
-        if (!std::filesystem::is_directory(*dataDir, ec))
-            throw UsageError{"--data-dir: \"" + dataDir->string() + "\" is not a directory"};
-        o.dataDir = *dataDir;
-    } else {
-        o.dataDir = defaultDataDir();
+        if (!std::filesystem::is_directory(dataDir, ec))
+            throw UsageError("--data-dir: \"" + dataDir + "\" is not a directory");
     }
+    o.dataDir = dataDirectory(dataDir);
     if (o.jsonPath && !o.markdownPath) o.markdownPath = std::filesystem::path(*o.jsonPath).replace_extension(".md");
     return o;
 }
@@ -207,16 +162,16 @@ void writeFile(const std::filesystem::path& path, const std::string& text) {
 
 int main(int argc, char** argv) {
     std::optional<Options> options;
-    try {
+    std::optional<sss::SceneDescription> scene;
+    const int usage = runReportingErrors("sss-bench", [&] {
         options = parseArgs(argc, argv);
-    } catch (const UsageError& e) {
-        std::cerr << "sss-bench: " << e.message << "\n";
-        return 2;
-    }
-    if (!options) {
-        std::cout << kUsage;
+        if (!options->scene.empty()) {
+            scene = sss::loadSceneFile(options->scene);
+            if (!options->sizeGiven) options->width = scene->output.width, options->height = scene->output.height;
+        }
         return 0;
-    }
+    });
+    if (usage != 0) return usage;
 
     try {
         BenchmarkContext bench(*options);
@@ -262,7 +217,9 @@ int main(int argc, char** argv) {
             return 0;
         }
         std::optional<PlotSpec> plot;
-        if (options->errorSweep) {
+        if (scene) {
+            runSceneTable(bench, *scene, std::filesystem::path(options->scene).stem().string());
+        } else if (options->errorSweep) {
             plot = runErrorSweep(bench, *options->errorSweep);
         } else {
             const std::vector<std::string> tables =

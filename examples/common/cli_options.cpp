@@ -121,16 +121,10 @@ void addInputOptions(CLI::App& app, InputArgs& args) {
                    "bonsai_256x256x256_uint8.raw, or procedural:blobs|shell|bucky")
         ->type_name("PATH")
         ->group(group);
-    app.add_option("--scene", args.scene,
+    addSceneOption(app, args.scene,
                    "a JSON scene file (meshes, volumes, lights, camera, output; docs/scene-files.md) instead of "
-                   "--mesh/--volume and the options that describe them")
-        ->type_name("FILE.json")
-        ->group(group);
-    app.add_option("--data-dir", args.dataDir,
-                   "where relative paths are looked up (and its meshes/ and volumes/ folders); default: "
-                   "$SSS_DATA_DIR, else ../shared/data if it exists")
-        ->type_name("DIR")
-        ->group(group);
+                   "--mesh/--volume and the options that describe them");
+    addDataDirOption(app, args.dataDir);
     addParsed(app, "--dims", args.raw.dims, parseDims, "raw volume dimensions (overrides the name)", "XxYxZ")
         ->group(group);
     addParsed(app, "--type", args.raw.type, parseEnum<sss::VoxelType>,
@@ -145,6 +139,18 @@ void addInputOptions(CLI::App& app, InputArgs& args) {
               "values outside clamp to its ends (default: 0..255 for uint8, else the data's min..max)",
               "LO,HI")
         ->group(group);
+}
+
+void addDataDirOption(CLI::App& app, std::string& dataDir) {
+    app.add_option("--data-dir", dataDir,
+                   "where relative paths are looked up (and its meshes/ and volumes/ folders); default: "
+                   "$SSS_DATA_DIR, else ../shared/data if it exists")
+        ->type_name("DIR")
+        ->group("input");
+}
+
+void addSceneOption(CLI::App& app, std::string& scene, const std::string& help) {
+    app.add_option("--scene", scene, help)->type_name("FILE.json")->group("input");
 }
 
 void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string& material) {
@@ -299,8 +305,8 @@ void addLightOptions(CLI::App& app, LightArgs& light) {
         ->group(group);
 }
 
-void addSizeOption(CLI::App& app, int& width, int& height, const char* what) {
-    addParsed(app, "--size", width,
+CLI::Option* addSizeOption(CLI::App& app, int& width, int& height, const char* what) {
+    return addParsed(app, "--size", width,
               [&height](const std::string& name, const std::string& text) {
                   const auto parts = split(text, 'x');
                   if (parts.size() != 2) throw UsageError(name + ": expected WxH, got \"" + text + "\"");

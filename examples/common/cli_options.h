@@ -25,7 +25,7 @@ namespace examples {
 struct InputArgs {
     std::string mesh;       ///< --mesh PATH|procedural:NAME
     std::string volume;     ///< --volume PATH|procedural:NAME
-    std::string scene;      ///< --scene FILE.json
+    std::string scene;      ///< --scene FILE.json (registered by addSceneOption)
     std::string dataDir;    ///< --data-dir DIR
     sss::RawLoadOptions raw;  ///< --dims, --type, --spacing
     std::optional<std::pair<double, double>> tfRange;  ///< --tf-range LO,HI
@@ -56,7 +56,9 @@ void addVolumeOptions(CLI::App& app, sss::VolumeRenderOptions& options);
 void addDisplayOptions(CLI::App& app, sss::DisplayTransform& display);  ///< --exposure --tonemap
 void addCameraOptions(CLI::App& app, sss::SceneCamera& camera);  ///< --yaw --pitch --zoom --fov --ortho
 void addLightOptions(CLI::App& app, LightArgs& light);  ///< --light-dir --light-color --light-intensity --point-light --spot-light
-void addSizeOption(CLI::App& app, int& width, int& height, const char* what);  ///< --size WxH
+CLI::Option* addSizeOption(CLI::App& app, int& width, int& height, const char* what);  ///< --size WxH
+void addDataDirOption(CLI::App& app, std::string& dataDir);  ///< --data-dir DIR
+void addSceneOption(CLI::App& app, std::string& scene, const std::string& help);  ///< --scene FILE.json
 void addAntiAliasingOption(CLI::App& app, int& frames, const char* what);  ///< --aa N
 
 /// Adds an option whose value is parsed by `parse` (one of scene_inputs.h's parse functions,

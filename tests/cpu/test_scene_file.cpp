@@ -62,7 +62,7 @@ SceneDescription everyKindOfField() {
     scene.lights = {DirectionalLight{{-1.0f, -2.0f, 0.5f}, {1.0f, 0.9f, 0.8f}, 2.0f},
                     PointLight{{0.0f, 2.0f, 1.0f}, {0.5f, 0.5f, 1.0f}, 3.0f},
                     SpotLight{{1.0f, 2.0f, 3.0f}, {0.0f, -1.0f, -0.5f}, 25.0f, 0.3f, {1.0f, 1.0f, 0.5f}, 4.0f}};
-    scene.camera = {15.0f, -5.0f, 0.8f, 35.0f, Projection::Orthographic, 0.1f};
+    scene.camera = {15.0f, -5.0f, 0.8f, 35.0f, Projection::Orthographic, 0.1f, glm::vec3(0.1f, 0.2f, 0.3f), 2.5f};
     scene.options.cornellBox = true;
     scene.options.background = {0.1f, 0.2f, 0.3f, 1.0f};
     scene.options.shadowMapResolution = 512;
