@@ -22,6 +22,8 @@ packages=(
   # reads NRRD with its orientation. VTK is the only Debian library with a .vti reader; it is
   # large (156 MB download, 775 MB installed with its -dev closure; see README "Volume formats").
   libvtk9-dev libteem-dev
+  # zlib: NIfTI headers (.nii, .nii.gz) are checked before VTK reads them
+  zlib1g-dev
   # clang with libFuzzer and the sanitizer runtimes: the loader fuzz targets (tests/fuzz)
   clang-14 libclang-rt-14-dev
 )

@@ -24,6 +24,7 @@
 #include <vtkmetaio/metaImage.h>
 
 #include <glm/mat3x3.hpp>
+#include <zlib.h>
 
 #include <algorithm>
 #include <array>
@@ -37,6 +38,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -190,7 +192,78 @@ Decoded fromVtkImage(const std::string& prefix, vtkImageData* image, const VtkCa
     return d;
 }
 
+// vtkNIFTIImageReader trusts the header: an unknown datatype or a file shorter than its dims
+// say crashes it (found by tests/fuzz/fuzz_volume_formats). So the header is checked first, and
+// the (decompressed) file must hold every voxel. zlib reads .nii and .nii.gz alike.
+void checkNiftiHeader(const std::string& file, const std::string& prefix) {
+    std::unique_ptr<gzFile_s, int (*)(gzFile)> in(gzopen(file.c_str(), "rb"), gzclose);
+    if (!in) fail(ErrorKind::Io, prefix, "cannot open the file");
+    std::array<unsigned char, 540> h{};
+    const int got = gzread(in.get(), h.data(), static_cast<unsigned>(h.size()));
+    if (got < 4) fail(ErrorKind::Parse, prefix, "not a NIfTI-1 or NIfTI-2 file (shorter than its header)");
+    auto read = [&](std::size_t at, std::size_t bytes, bool swap) {
+        uint64_t v = 0;
+        for (std::size_t i = 0; i < bytes; ++i) v |= uint64_t(h[at + (swap ? bytes - 1 - i : i)]) << (8 * i);
+        return v;
+    };
+    const uint64_t sizeLe = read(0, 4, false), sizeBe = read(0, 4, true);
+    const bool swap = sizeBe == 348 || sizeBe == 540;
+    const uint64_t headerSize = swap ? sizeBe : sizeLe;
+    if (headerSize != 348 && headerSize != 540)
+        fail(ErrorKind::Parse, prefix, "not a NIfTI-1 or NIfTI-2 file (sizeof_hdr is neither 348 nor 540)");
+    if (static_cast<uint64_t>(got) < headerSize) fail(ErrorKind::Parse, prefix, "the NIfTI header is cut off");
+    const bool two = headerSize == 540;
+    const auto i16 = [&](std::size_t at) { return static_cast<int16_t>(read(at, 2, swap)); };
+    const auto i64 = [&](std::size_t at) { return static_cast<int64_t>(read(at, 8, swap)); };
+    const int datatype = i16(two ? 12 : 70), bitpix = i16(two ? 14 : 72);
+    std::array<int64_t, 8> dim{};
+    for (int i = 0; i < 8; ++i) dim[i] = two ? i64(16 + 8 * i) : i16(40 + 2 * i);
+    double voxOffset = 0.0;
+    if (two) {
+        voxOffset = double(i64(168));
+    } else {
+        const uint32_t bits = static_cast<uint32_t>(read(108, 4, swap));
+        float f = 0.0f;
+        std::memcpy(&f, &bits, 4);
+        voxOffset = f;
+    }
+    // The voxel types libsss keeps (uint8, int8 -> int16, int16, uint16, float32) and their sizes.
+    int bytes = 0;
+    switch (datatype) {
+    case 2: case 256: bytes = 1; break;
+    case 4: case 512: bytes = 2; break;
+    case 16: bytes = 4; break;
+    default: fail(ErrorKind::Parse, prefix, unsupportedType("NIfTI datatype " + std::to_string(datatype)));
+    }
+    if (bitpix != 8 * bytes)
+        fail(ErrorKind::Parse, prefix, "bitpix " + std::to_string(bitpix) + " does not match datatype " +
+                                           std::to_string(datatype));
+    if (dim[0] < 1 || dim[0] > 7) fail(ErrorKind::Parse, prefix, "dim[0] " + std::to_string(dim[0]) + " is not in 1..7");
+    uint64_t count = 1;
+    for (int i = 1; i <= dim[0]; ++i) {
+        if (dim[i] < 1 || dim[i] > 8192)
+            fail(ErrorKind::Parse, prefix, "dim[" + std::to_string(i) + "] " + std::to_string(dim[i]) + " is not in 1..8192");
+        if (i > 3 && dim[i] != 1)
+            fail(ErrorKind::Parse, prefix, std::to_string(dim[0]) + "-dimensional data (time series, vectors) is not supported");
+        count *= static_cast<uint64_t>(dim[i]);
+    }
+    if (!(voxOffset >= double(headerSize) && voxOffset < 1e12))
+        fail(ErrorKind::Parse, prefix, "vox_offset " + std::to_string(voxOffset) + " is not past the header");
+    // Count the bytes there are (all of them, for compressed files).
+    uint64_t total = static_cast<uint64_t>(got);
+    std::vector<unsigned char> chunk(1 << 16);
+    for (int n; (n = gzread(in.get(), chunk.data(), static_cast<unsigned>(chunk.size()))) > 0;) total += uint64_t(n);
+    int zerr = Z_OK;
+    gzerror(in.get(), &zerr);
+    if (zerr != Z_OK && zerr != Z_STREAM_END) fail(ErrorKind::Parse, prefix, "the compressed data is damaged");
+    const uint64_t needed = static_cast<uint64_t>(voxOffset) + count * uint64_t(bytes);
+    if (total < needed)
+        fail(ErrorKind::Parse, prefix, "the file holds " + std::to_string(total) + " bytes, its header needs " +
+                                           std::to_string(needed));
+}
+
 Decoded readNifti(const std::string& file, const std::string& prefix) {
+    checkNiftiHeader(file, prefix);
     VtkCapture capture;
     vtkNew<vtkNIFTIImageReader> reader;
     if (!reader->CanReadFile(file.c_str())) fail(ErrorKind::Parse, prefix, "not a NIfTI-1 or NIfTI-2 file");
@@ -367,7 +440,90 @@ void checkMetaImageSize(const std::string& file, const std::string& prefix, cons
                  std::to_string(expected));
 }
 
+// MetaIO trusts the header it parses: repeated or short vector fields corrupt its heap, and an
+// ElementDataFile value with a '%' goes to snprintf as a format (both found by
+// tests/fuzz/fuzz_volume_formats). So the header is checked line by line first, up to and
+// including ElementDataFile (where MetaIO's header ends): "Key = Value" lines, each key once,
+// NDims (2 or 3) before the fields sized by it, vector fields with exactly that many numbers,
+// known element types, LOCAL or a plain file name for the data.
+void checkMetaImageHeader(const std::string& file, const std::string& prefix) {
+    std::ifstream in(file, std::ios::binary);
+    std::string header(1 << 16, '\0');
+    in.read(header.data(), static_cast<std::streamsize>(header.size()));
+    header.resize(static_cast<std::size_t>(in.gcount()));
+    auto bad = [&](const std::string& what) { fail(ErrorKind::Parse, prefix, "MetaImage header: " + what); };
+    auto trim = [](std::string t) {
+        const auto first = t.find_first_not_of(" \t"), last = t.find_last_not_of(" \t");
+        return first == std::string::npos ? std::string() : t.substr(first, last - first + 1);
+    };
+    auto numbers = [&](const std::string& key, const std::string& value, std::size_t count, bool integers) {
+        std::istringstream words(value);
+        std::string word;
+        std::size_t n = 0;
+        while (words >> word) {
+            char* end = nullptr;
+            const double v = std::strtod(word.c_str(), &end);
+            if (*end != '\0' || !std::isfinite(v) || (integers && v != std::floor(v)))
+                bad(key + ": \"" + word + "\" is not " + (integers ? "an integer" : "a number"));
+            ++n;
+        }
+        if (n != count) bad(key + ": expected " + std::to_string(count) + " values, got " + std::to_string(n));
+    };
+    std::set<std::string> seen;
+    int nDims = 0;
+    std::size_t start = 0;
+    while (true) {
+        if (start >= header.size()) bad("no ElementDataFile line in its first 64 KiB");
+        const std::size_t end = std::min(header.find_first_of("\r\n", start), header.size());
+        const std::string line = header.substr(start, end - start);
+        start = end + 1;
+        if (trim(line).empty()) continue;
+        for (unsigned char c : line)
+            if (c < 0x20 && c != '\t') bad("a control character in \"" + line.substr(0, 40) + "\"");
+        const std::size_t eq = line.find('=');
+        if (eq == std::string::npos) bad("expected \"Key = Value\", got \"" + line.substr(0, 60) + "\"");
+        const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
+        if (key.empty() || key.find_first_of(" \t") != std::string::npos) bad("bad key in \"" + line.substr(0, 60) + "\"");
+        if (!seen.insert(key).second) bad(key + " appears twice");
+        const std::size_t n = static_cast<std::size_t>(nDims);
+        const bool sized = key == "DimSize" || key == "ElementSpacing" || key == "ElementSize" || key == "Offset" ||
+                           key == "Position" || key == "Origin" || key == "CenterOfRotation" ||
+                           key == "TransformMatrix" || key == "Rotation" || key == "Orientation" ||
+                           key == "AnatomicalOrientation";
+        if (sized && nDims == 0) bad(key + " comes before NDims");
+        if (key == "NDims") {
+            numbers(key, value, 1, true);
+            nDims = std::atoi(value.c_str());
+            if (nDims < 2 || nDims > 3) bad("NDims " + value + " is not supported (2 or 3 are)");
+        } else if (key == "DimSize") {
+            numbers(key, value, n, true);
+        } else if (key == "ElementSpacing" || key == "ElementSize" || key == "Offset" || key == "Position" ||
+                   key == "Origin" || key == "CenterOfRotation") {
+            numbers(key, value, n, false);
+        } else if (key == "TransformMatrix" || key == "Rotation" || key == "Orientation") {
+            numbers(key, value, n * n, false);
+        } else if (key == "AnatomicalOrientation") {
+            if (value.size() != n && value != "?" && value.find_first_not_of("?") != std::string::npos)
+                bad(key + ": expected " + std::to_string(n) + " letters, got \"" + value + "\"");
+        } else if (key == "ElementNumberOfChannels" || key == "HeaderSize" || key == "CompressedDataSize") {
+            numbers(key, value, 1, true);
+        } else if (key == "ElementMin" || key == "ElementMax") {
+            numbers(key, value, 1, false);
+        } else if (key == "ElementType") {
+            if (value.rfind("MET_", 0) != 0 || value.find_first_of(" \t") != std::string::npos)
+                bad("ElementType: \"" + value + "\" is not a MET_ type");
+        } else if (key == "ElementDataFile") {
+            if (value.empty()) bad("ElementDataFile is empty");
+            if (value.find('%') != std::string::npos || value.rfind("LIST", 0) == 0)
+                bad("ElementDataFile: file-name patterns and lists of slice files are not supported, got \"" + value +
+                    "\"");
+            return;  // MetaIO's header ends here
+        }
+    }
+}
+
 Decoded readMetaImage(const std::string& file, const std::string& prefix) {
+    checkMetaImageHeader(file, prefix);
     vtkmetaio::MetaImage image;
     image.AutoFreeElementData(true);
     {
@@ -597,6 +753,12 @@ Volume Volume::load(const std::filesystem::path& path, const VolumeLoadOptions& 
     } catch (const std::bad_alloc&) {
         // A header can claim up to 8192^3 voxels; the libraries allocate before we can check.
         fail(ErrorKind::Parse, prefix, "out of memory reading the voxels (are the header's sizes right?)");
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        // MetaIO formats some damaged header fields into a string of absurd length and throws
+        // std::length_error (tests/fuzz/fuzz_volume_formats); whatever a reader throws is a bad file.
+        fail(ErrorKind::Parse, prefix, std::string("the reader failed on a damaged header (") + e.what() + ")");
     }
 }
 
