@@ -285,7 +285,19 @@ int run(CLI::App& app, Args& a) {
     sss::Image image(1, 1);
     if (a.turntable > 0) {
         // Only the camera moves: the scattering maps and light volumes stay as they are, and each
-        // frame costs a fixed frame (the path tracer restarts at every view).
+        // frame costs a fixed frame (the path tracer restarts at every view). The camera circles
+        // the centre of the scene's bounding sphere at the distance where the sphere fits the
+        // view (Camera::frame), so the subject stays whole and the same size all the way round.
+        const sss::Bounds content =
+            scene.options.cornellBox ? sss::makeCornellBox(compositor.bounds()).bounds : compositor.bounds();
+        if (!scene.camera.target) {
+            camera.frame(content);
+            if (width < height) camera.setDistance(camera.distance() * float(height) / float(width));
+            if (scene.camera.zoom != 1.0f) camera.zoom(scene.camera.zoom);
+            const float radius = 0.5f * glm::length(content.size());
+            camera.setClipPlanes(std::max(camera.distance() - 1.2f * radius, 1e-4f * camera.distance()),
+                                 camera.distance() + 1.2f * radius);
+        }
         const float startYaw = camera.yaw();
         for (int frame = 0; frame < a.turntable; ++frame) {
             camera.setYaw(startYaw + 360.0f * float(frame) / float(a.turntable));
