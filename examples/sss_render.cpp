@@ -55,6 +55,7 @@ struct Args {
     glm::vec3 meshOffset{0.0f}, volumeOffset{0.0f};
     int repeat = 1, turntable = 0;
     bool listTf = false, listMaterials = false;
+    std::string exportTf;
 };
 
 std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
@@ -174,6 +175,12 @@ int run(CLI::App& app, Args& a) {
     if (a.listTf || a.listMaterials) {
         for (const std::string& name : a.listTf ? sss::TransferFunction::presetNames() : sss::materialPresetNames())
             std::cout << name << "\n";
+        return 0;
+    }
+    if (!a.exportTf.empty()) {
+        const std::string tf = a.input.tf.empty() ? "ramp" : a.input.tf;
+        sss::TransferFunction::preset(tf).saveParaViewJson(a.exportTf, tf);
+        std::printf("wrote %s\n", a.exportTf.c_str());
         return 0;
     }
     const std::string ext = fs::path(a.out).extension().string();
@@ -413,6 +420,11 @@ int main(int argc, char** argv) {
             ->group("output");
         app.add_flag("--list-tf", a.listTf, "print the transfer-function presets and exit")->group("lists");
         app.add_flag("--list-materials", a.listMaterials, "print the material presets and exit")->group("lists");
+        app.add_option("--export-tf", a.exportTf,
+                       "write the --tf preset as a ParaView JSON colour map (x in [0,1]) and exit (other programs, "
+                       "e.g. benchmarks/vtk_peer.py, then use the same function)")
+            ->type_name("FILE.json")
+            ->group("lists");
         parseCommandLine(app, argc, argv);
         return run(app, a);
     });
