@@ -7,7 +7,9 @@
 # Usage: benchmarks/vtk-peer.sh [--paraview] [--volume FILE] [--tf NAME] [--size WxH] [--step S] [--tag NAME]
 #   --paraview   use ParaView 5.11's pvpython (VTK 9.2, with volumetric scattering) instead of
 #                python3-vtk9 (VTK 9.1: emission-absorption and gradient shading only);
-#                installs python3-paraview (about 450 MB) if missing
+#                installs python3-paraview (about 450 MB) if missing. Debian's ParaView conflicts
+#                with libvtk9-dev, which libsss builds against: apt removes it, and this script
+#                puts it (and python3-vtk9) back when the run ends
 # Defaults: the bonsai (256^3) from the data directory, tf bonsai, 1200x680, step 0.5 voxel.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -32,12 +34,21 @@ volume=${volume:-$data/volumes/bonsai_256x256x256_uint8.raw}
 
 packages=(xvfb xauth python3-numpy)
 if [[ $paraview -eq 1 ]]; then packages+=(python3-paraview); else packages+=(python3-vtk9); fi
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+sudo=(); [[ $(id -u) -ne 0 ]] && sudo=(sudo)
+restore=()
+if [[ $paraview -eq 1 ]]; then
+  for p in libvtk9-dev python3-vtk9; do installed "$p" && restore+=("$p"); done
+  if [[ ${#restore[@]} -gt 0 ]]; then
+    echo "vtk-peer: python3-paraview conflicts with ${restore[*]}; they are reinstalled when the run ends" >&2
+    trap 'DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${restore[@]}" >/dev/null' EXIT
+  fi
+fi
 missing=()
 for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  installed "$p" || missing+=("$p")
 done
 if [[ ${#missing[@]} -gt 0 ]]; then
-  sudo=(); [[ $(id -u) -ne 0 ]] && sudo=(sudo)
   "${sudo[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
