@@ -47,8 +47,8 @@ using Light = std::variant<DirectionalLight, PointLight, SpotLight>;
 /// The GLSL twin is spotConeFactor() in shaders/common/lights.glsl.
 float spotConeFactor(const SpotLight& light, float cosAngle);
 
-/// Checks a light: finite, non-zero direction (directional), finite position (point), finite
-/// color and intensity, all >= 0. `what` names the light in messages ("SceneOptions::light").
+/// Checks a light: finite, non-zero direction (directional, spot), finite position (point,
+/// spot), coneAngle in (0, 90] and falloff in [0, 1] (spot), finite color and intensity, all >= 0. `what` names the light in messages ("SceneOptions::light").
 /// @throws Error InvalidArgument naming `what`, the field and the bad value.
 void validateLight(const Light& light, std::string_view what);
 
