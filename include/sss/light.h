@@ -48,7 +48,8 @@ using Light = std::variant<DirectionalLight, PointLight, SpotLight>;
 float spotConeFactor(const SpotLight& light, float cosAngle);
 
 /// Checks a light: finite, non-zero direction (directional, spot), finite position (point,
-/// spot), coneAngle in (0, 90] and falloff in [0, 1] (spot), finite color and intensity, all >= 0. `what` names the light in messages ("SceneOptions::light").
+/// spot), coneAngle in (0, 90] and falloff in [0, 1] (spot), finite color and intensity, all
+/// >= 0. `what` names the light in messages ("SceneOptions::light").
 /// @throws Error InvalidArgument naming `what`, the field and the bad value.
 void validateLight(const Light& light, std::string_view what);
 

@@ -125,7 +125,8 @@ struct VolumeReferenceOptions {
 struct ReferenceLightSample {
     double transmittance = 1.0;      ///< l: exp(-optical depth) along the shadow ray
     glm::dvec3 chromaticity{1.0};    ///< c: the colour the medium gave the light
-    glm::dvec3 radiance{0.0};        ///< E: colour * intensity (/ r^2 for point and spot lights, times a spot's spotConeFactor)
+    /// E: colour * intensity (/ r^2 for point and spot lights, times a spot's spotConeFactor)
+    glm::dvec3 radiance{0.0};
 };
 
 /// The reference renderer bound to one scene (volume, TF table, placement, lights). Keeps its

@@ -33,6 +33,7 @@ vec3 lightDirectionAt(int i, vec3 position, out vec3 radiance) {
     vec3 toLight = lightVector[i].xyz - position;
     float distanceSquared = max(dot(toLight, toLight), 1e-8);
     vec3 towards = toLight * inversesqrt(distanceSquared);
-    radiance = lightRadiance[i] * spotConeFactor(lightSpotCosines[i], -dot(towards, lightSpotAxis[i])) / distanceSquared;
+    float cone = spotConeFactor(lightSpotCosines[i], -dot(towards, lightSpotAxis[i]));
+    radiance = lightRadiance[i] * cone / distanceSquared;
     return towards;
 }

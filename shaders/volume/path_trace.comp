@@ -208,8 +208,8 @@ vec3 nextEvent(vec3 p, vec3 d) {
             if (!(distance > 0.0)) continue;
             vec3 toLightWorld = lightWorldPosition[i] - (modelToWorld * vec4(p, 1.0)).xyz;
             float distanceSquared = max(dot(toLightWorld, toLightWorld), 1e-8);
-            radiance = radiance / distanceSquared *
-                       spotConeFactor(lightSpotCosines[i], -dot(toLightWorld, lightSpotAxis[i]) * inversesqrt(distanceSquared));
+            float cosAxis = -dot(toLightWorld, lightSpotAxis[i]) * inversesqrt(distanceSquared);
+            radiance = radiance / distanceSquared * spotConeFactor(lightSpotCosines[i], cosAxis);
             l = toLight / distance;
             tEnd = distance;
         }
