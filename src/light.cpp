@@ -1,6 +1,7 @@
 #include "sss/light.h"
 
 #include "format.h"
+#include "light_geometry.h"
 
 #include "sss/error.h"
 
@@ -68,10 +69,14 @@ void validateLight(const Light& light, std::string_view what) {
     }
 }
 
-float spotConeFactor(const SpotLight& light, float cosAngle) {
+glm::vec2 detail::spotConeCosines(const SpotLight& light) {
     const float outerAngle = glm::radians(light.coneAngle);
-    const float cosOuter = std::cos(outerAngle);
-    const float cosInner = std::cos(outerAngle * (1.0f - light.falloff));
+    return {std::cos(outerAngle), std::cos(outerAngle * (1.0f - light.falloff))};
+}
+
+float spotConeFactor(const SpotLight& light, float cosAngle) {
+    const glm::vec2 cosines = detail::spotConeCosines(light);
+    const float cosOuter = cosines.x, cosInner = cosines.y;
     if (cosAngle <= cosOuter) return 0.0f;
     if (cosAngle >= cosInner) return 1.0f;  // also the hard edge, where cosInner == cosOuter
     const float t = (cosAngle - cosOuter) / (cosInner - cosOuter);

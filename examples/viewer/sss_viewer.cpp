@@ -311,7 +311,13 @@ private:
         // The light travels from the direction given by azimuth (around +y) and elevation.
         const float az = glm::radians(m_lightAzimuth), el = glm::radians(m_lightElevation);
         const glm::vec3 towardsLight(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
-        return sss::DirectionalLight{-towardsLight, m_lightColor, m_lightIntensity};
+        if (!m_spotLight) return sss::DirectionalLight{-towardsLight, m_lightColor, m_lightIntensity};
+        // A spot from the same direction, two content radii out, aimed at the centre; its
+        // intensity is scaled by the distance squared so the centre gets the same irradiance.
+        const sss::Bounds content = m_compositor->bounds();
+        const float distance = 2.0f * std::max(content.radius(), 0.5f);
+        return sss::SpotLight{content.center() + distance * towardsLight, -towardsLight, m_spotCone, m_spotFalloff,
+                              m_lightColor, m_lightIntensity * distance * distance};
     }
 
     // A scene file's placement, else side by side when both are there.
@@ -696,6 +702,11 @@ private:
         m_lightsDirty |= ImGui::SliderFloat("light elevation", &m_lightElevation, -89.0f, 89.0f, "%.0f deg");
         m_lightsDirty |= colorEdit("light colour", m_lightColor);
         m_lightsDirty |= ImGui::SliderFloat("light intensity", &m_lightIntensity, 0.0f, 4.0f, "%.2f");
+        m_lightsDirty |= ImGui::Checkbox("spot light", &m_spotLight);
+        if (m_spotLight) {
+            m_lightsDirty |= ImGui::SliderFloat("cone half-angle", &m_spotCone, 1.0f, 90.0f, "%.0f deg");
+            m_lightsDirty |= ImGui::SliderFloat("cone falloff", &m_spotFalloff, 0.0f, 1.0f, "%.2f");
+        }
         ImGui::SliderFloat("exposure (stops)", &m_displayTransform.exposure, -8.0f, 8.0f, "%.1f");
         int toneMap = m_displayTransform.toneMap == sss::ToneMap::Filmic ? 1 : 0;
         if (ImGui::Combo("tone mapping", &toneMap, "none (clip)\0filmic\0"))
@@ -1001,6 +1012,8 @@ private:
     bool m_volumeMultiple = false;  // the path tracer, where the options allow it (volumeOptions)
     float m_lightAzimuth = 35.0f, m_lightElevation = 40.0f, m_lightIntensity = 1.0f;
     glm::vec3 m_lightColor{1.0f};
+    bool m_spotLight = false;  // the light panel's spot: same direction, placed outside the content
+    float m_spotCone = 20.0f, m_spotFalloff = 0.3f;
     sss::TransferFunctionEditor m_tfEditor;
     std::uint64_t m_uploadedTf = 0;
     std::string m_tfPreset, m_tfPath = "transfer-function.json";

@@ -44,11 +44,12 @@ using Light = std::variant<DirectionalLight, PointLight, SpotLight>;
 /// The fraction of a spot light's intensity sent at `cosAngle`, the cosine of the angle between
 /// the cone axis and the direction of emission: 1 inside the inner cone (half-angle
 /// coneAngle * (1 - falloff)), 0 outside the outer cone, and smoothstep in the cosine between.
-/// The GLSL twin is spotConeFactor() in shaders/common/lights.glsl.
+/// The GLSL twin is spotConeFactor() in shaders/common/spot_cone.glsl.
 float spotConeFactor(const SpotLight& light, float cosAngle);
 
-/// Checks a light: finite, non-zero direction (directional), finite position (point), finite
-/// color and intensity, all >= 0. `what` names the light in messages ("SceneOptions::light").
+/// Checks a light: finite, non-zero direction (directional, spot), finite position (point,
+/// spot), coneAngle in (0, 90] and falloff in [0, 1] (spot), finite color and intensity, all
+/// >= 0. `what` names the light in messages ("SceneOptions::light").
 /// @throws Error InvalidArgument naming `what`, the field and the bad value.
 void validateLight(const Light& light, std::string_view what);
 

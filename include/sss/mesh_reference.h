@@ -38,6 +38,7 @@
 /// with T = fresnelTransmittance(), S_d = evaluateSd() (per channel, unit^-2) and
 ///  - directional light: w_i = -normalize(direction), E = color * intensity;
 ///  - point light: w_i = normalize(position - x_i), E = color * intensity / |position - x_i|^2;
+///    a spot light is a point light whose E is times spotConeFactor() at x_i;
 ///  - V_l = 1 when the segment from x_i towards the light (to infinity for a directional light,
 ///    to the light's position for a point light) meets no triangle of the mesh. The shadow ray
 ///    starts 1e-7 scene diagonals off the surface, on the geometric side facing the light.

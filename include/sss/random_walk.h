@@ -214,12 +214,13 @@ HalfSpaceReflectance isotropicHalfSpaceReflectance(double albedo, double eta, do
 /// [near, far], the first triangle hit gives x_o and w_o points back along the ray, directional
 /// lights give irradiance E = color * intensity normal to the beam from direction w_l =
 /// -normalize(direction), point lights E = color * intensity / |position - x|^2 from w_l =
-/// normalize(position - x). Normals are the interpolated vertex normals (transformed by the
-/// inverse transpose, normalised), turned to the side of the triangle's geometric normal that
-/// faces the ray that meets it; where a shading normal would send a refracted or reflected
-/// direction to the wrong side of the triangle itself (or faces away from the ray), that one
-/// event uses the geometric normal instead. Lengths are scene units; the material's mm^-1
-/// coefficients are multiplied by millimetresPerUnit. Radiance is linear RGB in the lights'
+/// normalize(position - x), spot lights that times spotConeFactor() at x. Normals are the
+/// interpolated vertex normals (transformed by the inverse transpose, normalised), turned to
+/// the side of the triangle's geometric normal that faces the ray that meets it; where a
+/// shading normal would send a refracted or reflected direction to the wrong side of the
+/// triangle itself (or faces away from the ray), that one event uses the geometric normal
+/// instead. Lengths are scene units; the material's mm^-1 coefficients are multiplied by
+/// millimetresPerUnit. Radiance is linear RGB in the lights'
 /// units (per unit E, per steradian); alpha is 1 where the camera ray hits the mesh.
 ///
 /// What is rendered: the radiance at x_o towards the eye from light that entered the medium,

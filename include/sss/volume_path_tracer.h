@@ -21,12 +21,13 @@
 /// (1 - a) sigma_t; Henyey-Greenstein phase function of mean cosine g (|g| < 1e-3 exactly
 /// isotropic, 1 / (4 pi)). No emission, no ambient term, no gradient shading.
 ///
-/// Light. Directional and point lights (sss/light.h), as the reference: a directional light is
-/// a collimated beam of irradiance E = colour * intensity normal to it, travelling along
-/// inverse(M) * direction (normalised) in model space; a point light gives E = colour *
+/// Light. Directional, point and spot lights (sss/light.h), as the reference: a directional
+/// light is a collimated beam of irradiance E = colour * intensity normal to it, travelling
+/// along inverse(M) * direction (normalised) in model space; a point light gives E = colour *
 /// intensity / max(r^2, 1e-8), r the world-space distance from M p to the light, from the
-/// light's model-space position. Lights are not seen directly and do not shine on the box's
-/// faces: the only light is what the medium scatters. The background is black (or
+/// light's model-space position; a spot light is a point light times its spotConeFactor() at
+/// M p. Lights are not seen directly and do not shine on the box's faces: the only light is
+/// what the medium scatters. The background is black (or
 /// options.background composited behind, see below); there is no environment light.
 ///
 /// What is rendered: the radiance L reaching the eye along each pixel's ray after scattering

@@ -51,7 +51,8 @@
 ///      c_i = (1 - alpha) c_{i-1} + alpha rgb; over a piece of constant sigma_t and C_tf it is
 ///      exactly that recurrence with alpha = 1 - exp(-sigma_t ds)).
 ///    E = colour * intensity for a directional light; colour * intensity / max(r^2, 1e-8)
-///    for a point light, r the world-space distance from M p to the light (as on the GPU).
+///    for a point light, r the world-space distance from M p to the light (as on the GPU); a
+///    spot light's is the point light's times spotConeFactor() at M p.
 ///  - ScatteringGradient: Scattering plus, per light, l(p) * smoothstep(0, gradientThreshold,
 ///    |g|) * E * k_s * max(n.h, 0)^shininess where n.l > 0 (n, h as in Gradient).
 ///
@@ -124,7 +125,8 @@ struct VolumeReferenceOptions {
 struct ReferenceLightSample {
     double transmittance = 1.0;      ///< l: exp(-optical depth) along the shadow ray
     glm::dvec3 chromaticity{1.0};    ///< c: the colour the medium gave the light
-    glm::dvec3 radiance{0.0};        ///< E: colour * intensity (/ r^2 for a point light)
+    /// E: colour * intensity (/ r^2 for point and spot lights, times a spot's spotConeFactor)
+    glm::dvec3 radiance{0.0};
 };
 
 /// The reference renderer bound to one scene (volume, TF table, placement, lights). Keeps its

@@ -84,9 +84,10 @@ void main() {
                 float d2 = dot(toLight, toLight);
                 // Disk area dA_p subtends dw = cos dA_p / |p - L|^2 from the light, and the surface
                 // behind it receives I dw in total (the 1/|x_i - L|^2 falloff cancels against the
-                // area growth): per unit disk area, I cos / |p - L|^2.
+                // area growth): per unit disk area, I cos / |p - L|^2. A spot light's I is
+                // what its cone sends along the ray through p (and on to x_i).
                 float cosDisk = max(dot(normalize(-toLight), axis), 0.0);
-                irradiance = lightRadiance[l] * cosDisk / d2;
+                irradiance = lightRadiance[l] * cosDisk / d2 * lightConeAt(l, p);
                 wi = normalize(lightVector[l].xyz - xi);
             } else {
                 irradiance = lightRadiance[l];

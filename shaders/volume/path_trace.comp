@@ -5,6 +5,7 @@
 // the volume's model space.
 #include "volume/ray_setup.glsl"
 #include "volume/transfer_function.glsl"
+#include "common/spot_cone.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -24,6 +25,8 @@ uniform int lightCount;
 uniform vec4 lightModel[MAX_LIGHTS];          // w 0: unit direction towards the light; w 1: position
 uniform vec3 lightWorldPosition[MAX_LIGHTS];  // point lights: falloff is in world units
 uniform vec3 lightRadiance[MAX_LIGHTS];       // colour * intensity
+uniform vec3 lightSpotAxis[MAX_LIGHTS];       // spot lights: world-space unit cone axis (as in lights.glsl)
+uniform vec2 lightSpotCosines[MAX_LIGHTS];    // spot lights: (cos outer, cos inner); (-2, -2): no cone
 
 const float kPi = 3.14159265;
 const float kRatioRoulette = 0.125;  // ratio tracking is rouletted below this transmittance
@@ -204,7 +207,9 @@ vec3 nextEvent(vec3 p, vec3 d) {
             float distance = length(toLight);
             if (!(distance > 0.0)) continue;
             vec3 toLightWorld = lightWorldPosition[i] - (modelToWorld * vec4(p, 1.0)).xyz;
-            radiance /= max(dot(toLightWorld, toLightWorld), 1e-8);
+            float distanceSquared = max(dot(toLightWorld, toLightWorld), 1e-8);
+            float cosAxis = -dot(toLightWorld, lightSpotAxis[i]) * inversesqrt(distanceSquared);
+            radiance = radiance / distanceSquared * spotConeFactor(lightSpotCosines[i], cosAxis);
             l = toLight / distance;
             tEnd = distance;
         }

@@ -45,15 +45,17 @@ Shader Shader::compileText(GLenum stage, const detail::PreprocessedShader& sourc
     return shader;
 }
 
-Shader Shader::compile(GLenum stage, std::string_view path, const detail::ShaderDefines& defines) {
-    return compileText(stage, detail::preprocessShader(path, defines));
+Shader Shader::compile(GLenum stage, std::string_view path, const detail::ShaderDefines& defines,
+                       std::string (*load)(std::string_view)) {
+    return compileText(stage, detail::preprocessShader(path, defines, load));
 }
 
-Program Program::link(std::initializer_list<ShaderStage> stages, const detail::ShaderDefines& defines) {
+Program Program::link(std::initializer_list<ShaderStage> stages, const detail::ShaderDefines& defines,
+                      std::string (*load)(std::string_view)) {
     std::vector<Shader> shaders;
     std::string names;
     for (const ShaderStage& s : stages) {
-        shaders.push_back(Shader::compile(s.stage, s.path, defines));
+        shaders.push_back(Shader::compile(s.stage, s.path, defines, load));
         names += (names.empty() ? "" : " + ") + std::string(s.path);
     }
     Program program(glCreateProgram());

@@ -24,8 +24,10 @@ struct ShaderTraits {
 class Shader : public Object<ShaderTraits> {
 public:
     Shader() = default;
-    /// Compiles shaders/<path> (after include expansion and defines) as `stage`.
-    static Shader compile(GLenum stage, std::string_view path, const detail::ShaderDefines& defines = {});
+    /// Compiles shaders/<path> (after include expansion and defines) as `stage`; `load` reads
+    /// the files (as in detail::preprocessShader; tests pass their own).
+    static Shader compile(GLenum stage, std::string_view path, const detail::ShaderDefines& defines = {},
+                          std::string (*load)(std::string_view) = &detail::loadShaderFile);
     /// Compiles already-preprocessed text; `files` maps #line source numbers to names.
     static Shader compileText(GLenum stage, const detail::PreprocessedShader& source);
 
@@ -48,7 +50,8 @@ struct ShaderStage {
 class Program : public Object<ProgramTraits> {
 public:
     Program() = default;
-    static Program link(std::initializer_list<ShaderStage> stages, const detail::ShaderDefines& defines = {});
+    static Program link(std::initializer_list<ShaderStage> stages, const detail::ShaderDefines& defines = {},
+                        std::string (*load)(std::string_view) = &detail::loadShaderFile);
 
     void use() const { glUseProgram(id()); }
     GLint uniformLocation(std::string_view name) const;

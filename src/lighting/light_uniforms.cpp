@@ -1,5 +1,7 @@
 #include "lighting/light_uniforms.h"
 
+#include "light_geometry.h"
+
 #include "sss/error.h"
 
 #include <glm/geometric.hpp>
@@ -20,15 +22,21 @@ void setLightUniforms(const gl::Program& program, const std::vector<Light>& ligh
     program.set("lightCount", static_cast<int>(lights.size()));
     for (size_t i = 0; i < lights.size(); ++i) {
         const std::string index = "[" + std::to_string(i) + "]";
-        if (const auto* d = std::get_if<DirectionalLight>(&lights[i])) {
+        if (const auto* d = std::get_if<DirectionalLight>(&lights[i]))
             program.set("lightVector" + index, glm::vec4(-glm::normalize(d->direction), 0.0f));
-            program.set("lightRadiance" + index, d->color * d->intensity);
-        } else {
-            const auto& p = std::get<PointLight>(lights[i]);
-            program.set("lightVector" + index, glm::vec4(p.position, 1.0f));
-            program.set("lightRadiance" + index, p.color * p.intensity);
-        }
+        else
+            program.set("lightVector" + index, glm::vec4(*lightPosition(lights[i]), 1.0f));
+        program.set("lightRadiance" + index, lightRadiance(lights[i]));
+        setSpotConeUniforms(program, static_cast<int>(i), lights[i]);
     }
+}
+
+void setSpotConeUniforms(const gl::Program& program, int index, const Light& light) {
+    const std::string i = "[" + std::to_string(index) + "]";
+    const auto* s = std::get_if<SpotLight>(&light);
+    // Cosines below -1: every direction is inside the "inner cone", so the factor is exactly 1.
+    program.set("lightSpotAxis" + i, s ? glm::normalize(s->direction) : glm::vec3(0.0f));
+    program.set("lightSpotCosines" + i, s ? spotConeCosines(*s) : glm::vec2(-2.0f));
 }
 
 }  // namespace sss::detail

@@ -1,5 +1,6 @@
 #include "mesh/light_buffer_pass.h"
 
+#include "light_geometry.h"
 #include "lighting/light_uniforms.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -38,7 +39,8 @@ glm::mat4 lightViewProjection(const Light& light, glm::vec3 centre, float radius
         const float r = radius * 1.01f;
         return glm::ortho(-r, r, -r, r, radius * 0.5f, radius * 3.5f) * view;
     }
-    const glm::vec3 position = std::get<PointLight>(light).position;
+    // Point and spot lights alike: the spot's cone only scales what reaches the surface.
+    const glm::vec3 position = *lightPosition(light);
     const glm::vec3 toCentre = centre - position;
     const float distance = glm::length(toCentre);
     const glm::vec3 forward = distance > 0.0f ? toCentre / distance : glm::vec3(0, 0, -1);

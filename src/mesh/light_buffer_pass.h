@@ -1,8 +1,8 @@
 #pragma once
 // Light buffer (Dal Corso et al. 2017, pass 1): for each light, the world position and normal of
 // the surface the light sees, one layer of a 2D array per light, all lights in one draw.
-// Directional lights use an orthographic view along the light, point lights a perspective view
-// from the light; both frame the object's bounding sphere.
+// Directional lights use an orthographic view along the light, point and spot lights a
+// perspective view from the light; both frame the object's bounding sphere.
 #include "gl/framebuffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"

@@ -3,7 +3,7 @@
 #include "sss/random_walk.h"
 
 #include "mesh/bvh.h"
-#include "mesh/cpu_lights.h"
+#include "lighting/cpu_lights.h"
 #include "parallel.h"
 #include "walk_sampling.h"
 
@@ -651,8 +651,8 @@ private:
     }
 
     // p_HG * T cos_out / cos_in * exp(-sigma_t |p - x|) * falloff * V for one light, per unit
-    // light radiance, divided by the probability q that the roulette by the distance bound
-    // let it be estimated. Updates `guess` to the entry point found.
+    // light radiance (the falloff includes a spot's cone), divided by the probability q that the
+    // roulette by the distance bound let it be estimated. Updates `guess` to the entry point found.
     double beam(const glm::dvec3& p, const glm::dvec3& dir, const detail::CpuLight& l, const Channel& ch, double q,
                 detail::Xoshiro256& rng, EntryGuess& guess, Stats& stats) const {
         glm::dvec3 wl = l.point ? glm::normalize(l.vector - p) : l.vector;
@@ -708,7 +708,7 @@ private:
         if (l.point) {
             shadow.direction = l.vector - shadow.origin;  // tMax 1 stops at the light
             shadow.tMax = 1.0;
-            value /= glm::dot(l.vector - x, l.vector - x);
+            value = value / glm::dot(l.vector - x, l.vector - x) * detail::emittedShare(l, x);
         } else {
             shadow.direction = wl;
         }

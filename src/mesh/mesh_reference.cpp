@@ -3,7 +3,7 @@
 #include "sss/mesh_reference.h"
 
 #include "mesh/bvh.h"
-#include "mesh/cpu_lights.h"
+#include "lighting/cpu_lights.h"
 #include "parallel.h"
 #include "sss/error.h"
 
@@ -300,7 +300,8 @@ private:
     // How much the lights see a triangle, for the sampling heuristic only: sum over lights of
     // mean radiance (at the centroid for point lights) times the largest cosine of a vertex normal
     // (flipped like n_i) to the light, times 0.01 + 0.99 * the unshadowed fraction of four
-    // probe points (the centroid and the vertices pulled a tenth towards it).
+    // probe points (the centroid and the vertices pulled a tenth towards it). A spot light counts
+    // as a point light here: its cone, sharp at one probe, must not make lit triangles unsampled.
     double lightFactor(const TriInfo& tri) const {
         if (!(tri.area > 0.0)) return 0.0;
         double f = 0.0;

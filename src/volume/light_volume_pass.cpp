@@ -1,5 +1,6 @@
 #include "volume/light_volume_pass.h"
 
+#include "light_geometry.h"
 #include "lighting/texture_units.h"
 
 #include <glm/geometric.hpp>
@@ -52,8 +53,8 @@ std::vector<LightSweep> planLightSweeps(const Light& light, const GpuVolume& vol
             sweeps.push_back({ranked[1].second, d[ranked[1].second] < 0, sum > 0 ? w2 / sum : 0.5f});
         return sweeps;
     }
-    // Point light: how far outside the box it is along each axis, in half-extents.
-    const glm::vec3 position = std::get<PointLight>(light).position;
+    // Point or spot light: how far outside the box it is along each axis, in half-extents.
+    const glm::vec3 position = *lightPosition(light);
     const glm::vec3 offset = position - volume.box.center();
     const glm::vec3 ratio = glm::abs(offset) / (0.5f * volume.box.size());
     const auto ranked = rankAxes(ratio);
@@ -112,13 +113,15 @@ void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transfer
     if (!output || output.size() != dims) {
         output = gl::Texture::create3D(GL_RGBA16F, dims, m_eyePass ? "eye-pass volume" : "light volume");
     }
-    // The light in the volume's model space, where the propagation works.
+    // The light in the volume's model space, where the propagation works. The volume holds what
+    // the medium lets through from the light's position; a spot light's cone scales the light
+    // where it is shaded (lights.glsl), so here it propagates like a point light.
     const glm::mat4 toModel = glm::inverse(model);
     Light light = worldLight;
     if (auto* d = std::get_if<DirectionalLight>(&light))
         d->direction = glm::normalize(glm::mat3(toModel) * glm::normalize(d->direction));
     else
-        std::get<PointLight>(light).position = glm::vec3(toModel * glm::vec4(std::get<PointLight>(light).position, 1.0f));
+        light = PointLight{.position = glm::vec3(toModel * glm::vec4(*lightPosition(worldLight), 1.0f))};
 
     const std::vector<LightSweep> sweeps = planLightSweeps(light, volume, dims);
     const float cone = chromaticityConeAngle(settings.anisotropy);
@@ -143,7 +146,7 @@ void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transfer
         p.set("lightDirection", d->direction);
     } else {
         p.set("isPointLight", 1);
-        p.set("lightPosition", std::get<PointLight>(light).position);
+        p.set("lightPosition", *lightPosition(light));
     }
     p.set("coneTangent", std::tan(cone));
     p.set("coneWeights", glm::vec2(centreWeight, ringWeight) / norm);

@@ -1,6 +1,7 @@
 #include "volume/path_trace_pass.h"
 
 #include "volume/composite_over.h"
+#include "light_geometry.h"
 #include "lighting/light_uniforms.h"
 #include "sss/volume_reference.h"
 
@@ -66,26 +67,25 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     const glm::ivec3 size = sums.size();
     glProgramUniform2i(p.id(), p.uniformLocation("imageSize"), size.x, size.y);
     // Lights as the CPU path tracer prepares them: directions and positions in model space,
-    // point-light falloff from world-space distances; black lights are left out.
+    // point-light falloff and spot cones from world-space vectors; black lights are left out.
     const glm::mat3 worldToModelLinear(worldToModel);
     int count = 0;
     for (const Light& light : in.lights) {
         glm::vec4 modelVector;
-        glm::vec3 worldPosition(0.0f), radiance;
+        glm::vec3 worldPosition(0.0f);
+        const glm::vec3 radiance = lightRadiance(light);
         if (const auto* d = std::get_if<DirectionalLight>(&light)) {
             modelVector = glm::vec4(glm::normalize(worldToModelLinear * -glm::normalize(d->direction)), 0.0f);
-            radiance = d->color * d->intensity;
         } else {
-            const auto& point = std::get<PointLight>(light);
-            worldPosition = point.position;
-            modelVector = glm::vec4(glm::vec3(worldToModel * glm::vec4(point.position, 1.0f)), 1.0f);
-            radiance = point.color * point.intensity;
+            worldPosition = *lightPosition(light);
+            modelVector = glm::vec4(glm::vec3(worldToModel * glm::vec4(worldPosition, 1.0f)), 1.0f);
         }
         if (!(std::max({radiance.x, radiance.y, radiance.z}) > 0.0f)) continue;
-        const std::string i = "[" + std::to_string(count++) + "]";
+        const std::string i = "[" + std::to_string(count) + "]";
         p.set("lightModel" + i, modelVector);
         p.set("lightWorldPosition" + i, worldPosition);
         p.set("lightRadiance" + i, radiance);
+        setSpotConeUniforms(p, count++, light);
     }
     p.set("lightCount", count);
 

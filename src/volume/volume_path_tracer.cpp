@@ -6,6 +6,7 @@
 #include "voxel_storage.h"
 
 #include "format.h"
+#include "lighting/cpu_lights.h"
 #include "parallel.h"
 #include "walk_sampling.h"
 
@@ -74,10 +75,9 @@ double opticalDepthPerVoxel(double alpha) {
 using detail::clipToBox;
 
 struct PreparedLight {
-    bool directional = true;
+    detail::CpuLight world;             // world space, where the falloff and a spot's cone apply
     glm::dvec3 towardsLightModel{0.0};  // directional: unit, model space
-    glm::dvec3 positionWorld{0.0}, positionModel{0.0};  // point
-    glm::dvec3 radiance{0.0};  // colour * intensity
+    glm::dvec3 positionModel{0.0};      // point and spot
 };
 
 // Per-thread counters; integers, so their sums do not depend on the thread count.
@@ -133,19 +133,13 @@ public:
         m_worldToModel = glm::inverse(m_modelToWorld);
         const glm::dmat3 worldToModelLinear(m_worldToModel);
         for (const Light& light : lights) {
-            PreparedLight p;
-            if (const auto* d = std::get_if<DirectionalLight>(&light)) {
-                p.directional = true;
-                p.towardsLightModel = glm::normalize(worldToModelLinear * -glm::normalize(glm::dvec3(d->direction)));
-                p.radiance = glm::dvec3(d->color) * static_cast<double>(d->intensity);
-            } else {
-                const auto& pl = std::get<PointLight>(light);
-                p.directional = false;
-                p.positionWorld = glm::dvec3(pl.position);
-                p.positionModel = glm::dvec3(m_worldToModel * glm::dvec4(p.positionWorld, 1.0));
-                p.radiance = glm::dvec3(pl.color) * static_cast<double>(pl.intensity);
-            }
-            if (p.radiance.x > 0.0 || p.radiance.y > 0.0 || p.radiance.z > 0.0) m_lights.push_back(p);
+            PreparedLight p{detail::toCpuLight(light)};
+            if (p.world.point)
+                p.positionModel = glm::dvec3(m_worldToModel * glm::dvec4(p.world.vector, 1.0));
+            else
+                p.towardsLightModel = glm::normalize(worldToModelLinear * p.world.vector);
+            const glm::dvec3 e = p.world.radiance;
+            if (e.x > 0.0 || e.y > 0.0 || e.z > 0.0) m_lights.push_back(p);
         }
         buildMajorants(volume, tf, tfEntries);
     }
@@ -388,15 +382,16 @@ private:
         glm::dvec3 sum(0.0);
         for (const PreparedLight& light : m_lights) {
             glm::dvec3 l = light.towardsLightModel;
-            glm::dvec3 radiance = light.radiance;
+            glm::dvec3 radiance = light.world.radiance;
             double tEnd = kInf;
-            if (!light.directional) {
+            if (light.world.point) {
                 const glm::dvec3 toLight = light.positionModel - p;
                 const double distance = glm::length(toLight);
                 if (!(distance > 0.0)) continue;  // at the light: no direction (measure zero)
                 const glm::dvec3 worldP = glm::dvec3(m_modelToWorld * glm::dvec4(p, 1.0));
-                const glm::dvec3 toLightWorld = light.positionWorld - worldP;
-                radiance /= std::max(glm::dot(toLightWorld, toLightWorld), 1e-8);
+                const glm::dvec3 toLightWorld = light.world.vector - worldP;
+                radiance = radiance / std::max(glm::dot(toLightWorld, toLightWorld), 1e-8) *
+                           detail::emittedShare(light.world, worldP);
                 l = toLight / distance;
                 tEnd = distance;
             }

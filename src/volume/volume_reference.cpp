@@ -1,6 +1,7 @@
 #include "sss/volume_reference.h"
 
 #include "format.h"
+#include "lighting/cpu_lights.h"
 #include "parallel.h"
 #include "volume/box_clip.h"
 #include "voxel_storage.h"
@@ -91,12 +92,9 @@ double smoothstep(double edge0, double edge1, double x) {
 // A light prepared for both spaces: shading happens in world space (as on the GPU), shadow
 // rays run in model space (where sigma_t is defined).
 struct PreparedLight {
-    bool directional = true;
-    glm::dvec3 towardsLightWorld{0.0};  // directional: unit, towards the light
+    detail::CpuLight world;             // as the mesh references hold it, world space
     glm::dvec3 towardsLightModel{0.0};  // directional: unit, in model space
-    glm::dvec3 positionWorld{0.0};      // point
-    glm::dvec3 positionModel{0.0};      // point
-    glm::dvec3 radiance{0.0};           // colour * intensity
+    glm::dvec3 positionModel{0.0};      // point and spot
 };
 
 }  // namespace
@@ -178,17 +176,18 @@ struct VolumeReference::Impl {
 
     ReferenceLightSample incident(glm::dvec3 p, const PreparedLight& light) const {
         ReferenceLightSample out;
-        out.radiance = light.radiance;
+        out.radiance = light.world.radiance;
         glm::dvec3 dir;
         double tEnd = std::numeric_limits<double>::infinity();
-        if (light.directional) {
+        if (!light.world.point) {
             dir = light.towardsLightModel;
         } else {
             const glm::dvec3 toLight = light.positionModel - p;
             const double distance = glm::length(toLight);
             const glm::dvec3 worldP = glm::dvec3(modelToWorld * glm::dvec4(p, 1.0));
-            const glm::dvec3 toLightWorld = light.positionWorld - worldP;
-            out.radiance = light.radiance / std::max(glm::dot(toLightWorld, toLightWorld), 1e-8);
+            const glm::dvec3 toLightWorld = light.world.vector - worldP;
+            out.radiance = light.world.radiance / std::max(glm::dot(toLightWorld, toLightWorld), 1e-8) *
+                           detail::emittedShare(light.world, worldP);
             if (!(distance > 0.0)) return out;
             dir = toLight / distance;
             tEnd = distance;
@@ -234,13 +233,13 @@ struct VolumeReference::Impl {
 
     // Unit vector towards the light and the radiance arriving at a world position (lights.glsl).
     static glm::dvec3 towardsLight(const PreparedLight& light, glm::dvec3 worldP, glm::dvec3& radiance) {
-        if (light.directional) {
-            radiance = light.radiance;
-            return light.towardsLightWorld;
+        if (!light.world.point) {
+            radiance = light.world.radiance;
+            return light.world.vector;
         }
-        const glm::dvec3 toLight = light.positionWorld - worldP;
+        const glm::dvec3 toLight = light.world.vector - worldP;
         const double d2 = std::max(glm::dot(toLight, toLight), 1e-8);
-        radiance = light.radiance / d2;
+        radiance = light.world.radiance / d2 * detail::emittedShare(light.world, worldP);
         return toLight / std::sqrt(d2);
     }
 
@@ -361,19 +360,11 @@ VolumeReference::VolumeReference(const Volume& volume, const TransferFunction& t
     impl->normalToWorld = glm::transpose(glm::inverse(glm::dmat3(m)));
     const glm::dmat3 worldToModelLinear(impl->worldToModel);
     for (const Light& light : lights) {
-        PreparedLight p;
-        if (const auto* d = std::get_if<DirectionalLight>(&light)) {
-            p.directional = true;
-            p.towardsLightWorld = -glm::normalize(glm::dvec3(d->direction));
-            p.towardsLightModel = glm::normalize(worldToModelLinear * p.towardsLightWorld);
-            p.radiance = glm::dvec3(d->color) * static_cast<double>(d->intensity);
-        } else {
-            const auto& pl = std::get<PointLight>(light);
-            p.directional = false;
-            p.positionWorld = glm::dvec3(pl.position);
-            p.positionModel = glm::dvec3(impl->worldToModel * glm::dvec4(p.positionWorld, 1.0));
-            p.radiance = glm::dvec3(pl.color) * static_cast<double>(pl.intensity);
-        }
+        PreparedLight p{detail::toCpuLight(light)};
+        if (p.world.point)
+            p.positionModel = glm::dvec3(impl->worldToModel * glm::dvec4(p.world.vector, 1.0));
+        else
+            p.towardsLightModel = glm::normalize(worldToModelLinear * p.world.vector);
         impl->lights.push_back(p);
     }
     m_impl = std::move(impl);
