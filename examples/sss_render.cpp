@@ -242,9 +242,16 @@ int run(CLI::App& app, Args& a) {
     // The path tracer's frames before the timed ones: the first volume's (--frames).
     const int pathTraceFrames = scene.meshes.empty() ? a.mesh.accumulationFrames
                                                      : scene.meshes.front().options.accumulationFrames;
+    // Every scattering mesh's maps accumulate their frames (each render() adds one to all).
     const auto convergeMeshes = [&] {
         for (std::size_t i = 0; i < compositor.meshCount(); ++i)
-            while (!compositor.mesh(i).converged()) compositor.render(camera, target);
+            if (scene.meshes[i].options.shading == sss::MeshShading::Scattering)
+                for (int frame = 0; !compositor.mesh(i).converged(); ++frame) {
+                    if (frame > scene.meshes[i].options.accumulationFrames + 8)
+                        throw sss::Error(sss::ErrorKind::Gl, "meshes[" + std::to_string(i) +
+                                                                 "]: the scattering maps did not converge");
+                    compositor.render(camera, target);
+                }
     };
 
     sss::GpuTimer timer(*context);
