@@ -251,7 +251,12 @@ void bindTransferFunction(py::module_& m) {
         .field("opacity", &sss::ControlPoint::opacity, "in [0, 1]")
         .done()
         .def(py::init([](float value, glm::vec3 color, float opacity) { return sss::ControlPoint{value, color, opacity}; }),
-             py::arg("value"), py::arg("color"), py::arg("opacity"));
+             py::arg("value"), py::arg("color"), py::arg("opacity"))
+        .def(py::init([](const py::tuple& t) {
+                 if (t.size() != 3) invalidArgument("ControlPoint: a tuple must be (value, (r, g, b), opacity)");
+                 return sss::ControlPoint{t[0].cast<float>(), t[1].cast<glm::vec3>(), t[2].cast<float>()};
+             }),
+             py::arg("point"), "From a (value, (r, g, b), opacity) tuple.");
     py::implicitly_convertible<py::tuple, sss::ControlPoint>();
 
     py::class_<sss::TransferFunction>(m, "TransferFunction",
@@ -313,12 +318,12 @@ void bindLights(py::module_& m) {
         .field("direction", &sss::DirectionalLight::direction, "direction the light travels, non-zero")
         .field("color", &sss::DirectionalLight::color, "linear RGB, each >= 0")
         .field("intensity", &sss::DirectionalLight::intensity, "scales color, >= 0")
-        .done([](const sss::DirectionalLight& l) { sss::validateLight(l, "DirectionalLight"); });
+        .done([](const sss::DirectionalLight& l) { sss::validateLight(l, "light"); });
     Struct<sss::PointLight>(m, "PointLight", "An isotropic point light.")
         .field("position", &sss::PointLight::position, "world-space position")
         .field("color", &sss::PointLight::color, "linear RGB, each >= 0")
         .field("intensity", &sss::PointLight::intensity, "scales color, >= 0")
-        .done([](const sss::PointLight& l) { sss::validateLight(l, "PointLight"); });
+        .done([](const sss::PointLight& l) { sss::validateLight(l, "light"); });
     Struct<sss::SpotLight>(m, "SpotLight", "A point light emitting into a cone around direction.")
         .field("position", &sss::SpotLight::position, "world-space position")
         .field("direction", &sss::SpotLight::direction, "axis of the cone, non-zero")
@@ -326,7 +331,7 @@ void bindLights(py::module_& m) {
         .field("falloff", &sss::SpotLight::falloff, "share of cone_angle over which the edge fades, [0, 1]")
         .field("color", &sss::SpotLight::color, "linear RGB, each >= 0")
         .field("intensity", &sss::SpotLight::intensity, "scales color, >= 0")
-        .done([](const sss::SpotLight& l) { sss::validateLight(l, "SpotLight"); })
+        .done([](const sss::SpotLight& l) { sss::validateLight(l, "light"); })
         .def("cone_factor", &sss::spotConeFactor, py::arg("cos_angle"),
              "Fraction of the intensity sent at this cosine from the axis.");
 }

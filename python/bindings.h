@@ -106,7 +106,7 @@ public:
         return *this;
     }
 
-    /// Finishes the class: __init__(**kw), __repr__, __eq__ (if T has ==), replace, validate.
+    /// Finishes the class: __init__(**kw), __repr__, __eq__, replace, validate.
     py::class_<T>& done(Validator validator = {}) {
         auto names = m_names;
         std::string typeName = m_name;
@@ -119,7 +119,20 @@ public:
                     for (const std::string& n : *names) known += (known.empty() ? "" : ", ") + n;
                     throw py::type_error(typeName + ": unknown option '" + key + "' (options: " + known + ")");
                 }
-                obj.attr(key.c_str()) = item.second;
+                py::object value = py::reinterpret_borrow<py::object>(item.second);
+                py::object current = obj.attr(key.c_str());
+                py::object fieldType = py::type::of(current);
+                // An enum field given by name: convert here so an unknown name is an
+                // InvalidArgumentError listing the valid ones, not a bare TypeError.
+                if (py::isinstance<py::str>(value) && py::hasattr(fieldType, "__members__")) value = fieldType(value);
+                try {
+                    obj.attr(key.c_str()) = value;
+                } catch (py::error_already_set& e) {
+                    if (!e.matches(PyExc_TypeError)) throw;
+                    throw py::type_error(typeName + "." + key + ": expected " +
+                                         std::string(py::str(fieldType.attr("__name__"))) + ", got " +
+                                         std::string(py::repr(value)));
+                }
             }
             T value = obj.cast<T>();
             if (validator) validator(value);
@@ -146,9 +159,15 @@ public:
             for (std::size_t i = 0; i < names->size(); ++i) t[i] = py::str((*names)[i]);
             return t;
         }, "The names of the fields, in declaration order.");
-        if constexpr (requires(const T& a, const T& b) { a == b; })
-            m_cls.def(
-                "__eq__", [](const T& a, const T& b) { return a == b; }, py::is_operator());
+        // Field by field, so structs without operator== compare by value too.
+        m_cls.def(
+            "__eq__",
+            [names](const py::object& a, const py::object& b) {
+                for (const std::string& n : *names)
+                    if (!a.attr(n.c_str()).equal(b.attr(n.c_str()))) return false;
+                return true;
+            },
+            py::is_operator());
         if (validator)
             m_cls.def("validate", [validator](const T& self) { validator(self); },
                       "Raises sss.InvalidArgumentError naming the first field outside its range.");
