@@ -20,6 +20,8 @@ packages=(
   # reads NRRD with its orientation. VTK is the only Debian library with a .vti reader; it is
   # large (156 MB download, 775 MB installed with its -dev closure; see README "Volume formats").
   libvtk9-dev libteem-dev
+  # the Python module (python/, pybind11) and its tests (pytest with NumPy)
+  pybind11-dev python3-dev python3-numpy python3-pytest
   # clang with libFuzzer and the sanitizer runtimes: the loader fuzz targets (tests/fuzz)
   clang-14 libclang-rt-14-dev
 )
