@@ -216,7 +216,11 @@ void bindVolume(py::module_& m) {
         .def_property_readonly("type", &sss::Volume::type)
         .def_property_readonly("dtype", [](const sss::Volume& v) { return dtypeOf(v.type()); })
         .def_property_readonly("data", &volumeToNumpy, "a copy of the voxels, indexed [z, y, x]")
-        .def("__array__", [](const sss::Volume& v, const py::object&) { return volumeToNumpy(v); },
+        .def("__array__",
+             [](const sss::Volume& v, const py::object& dtype) -> py::object {
+                 py::array a = volumeToNumpy(v);
+                 return dtype.is_none() ? py::object(a) : a.attr("astype")(dtype);
+             },
              py::arg("dtype") = py::none())
         .def_property_readonly("value_range", &sss::Volume::valueRange, "smallest and largest raw value")
         .def_property_readonly("transfer_function_range", &sss::Volume::transferFunctionRange,

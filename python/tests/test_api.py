@@ -112,6 +112,7 @@ def test_volume_from_numpy_keeps_values_and_layout(dtype, kind):
     assert volume.dims == (4, 3, 2) and volume.spacing == (1.0, 2.0, 0.5)
     assert volume.value_at(3, 1, 0) == data[0, 1, 3]
     assert np.array_equal(volume.data, data) and np.array_equal(np.asarray(volume), data)
+    assert np.asarray(volume, dtype=np.float64).dtype == np.float64
     assert volume.value_range == (0.0, float(data.max()))
 
 
@@ -257,3 +258,16 @@ def test_renderers_raise_library_errors(gl):
     with pytest.raises(sss.InvalidArgumentError, match="at most 8"):
         renderer.lights = [sss.PointLight()] * 9
     assert "llvmpipe" in gl.renderer or not gl.software
+
+
+def test_log_handler_receives_library_warnings(tmp_path):
+    path = tmp_path / "line.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\n")  # a two-vertex face is skipped
+    messages = []
+    sss.set_log_handler(lambda level, message: messages.append((level, message)))
+    try:
+        mesh = sss.Mesh.load(path)
+    finally:
+        sss.set_log_handler(None)
+    assert mesh.triangle_count == 1
+    assert any(level == sss.LogLevel.WARNING and "line.obj" in text for level, text in messages), messages
