@@ -375,6 +375,15 @@ void bindContext(py::module_& m) {
         .def_property_readonly("backend", [](const ContextHolder& c) { return c.context->info().backend; })
         .def_property_readonly("debug", [](const ContextHolder& c) { return c.context->info().debug; })
         .def_property_readonly("software", [](const ContextHolder& c) { return c.context->info().software; })
+        .def_property_readonly("debug_messages",
+                               [](const ContextHolder& c) {
+                                   const sss::DebugMessageCounts n = c.context->debugMessages();
+                                   return py::dict(py::arg("errors") = n.errors, py::arg("warnings") = n.warnings,
+                                                   py::arg("other") = n.other);
+                               },
+                               "KHR_debug message counts since creation or reset (all 0 unless debug)")
+        .def_property_readonly("last_debug_error", [](const ContextHolder& c) { return c.context->lastDebugError(); })
+        .def("reset_debug_messages", [](ContextHolder& c) { c.context->resetDebugMessages(); })
         .def("__repr__", [](const ContextHolder& c) {
             return "<sss.Context " + c.context->info().renderer + " (" + c.context->info().backend + ")>";
         });

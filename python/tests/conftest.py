@@ -28,6 +28,19 @@ def gl():
         pytest.skip(f"no headless GL 4.5 context: {e}")
 
 
+@pytest.fixture(autouse=True)
+def no_gl_errors(request):
+    """A GL test fails on any GL error the debug context reports (ctest sets SSS_GL_DEBUG=1)."""
+    if "gl" not in request.fixturenames:
+        yield
+        return
+    context = request.getfixturevalue("gl")
+    context.reset_debug_messages()
+    yield
+    errors = context.debug_messages["errors"]
+    assert errors == 0, f"{errors} GL error(s), the last: {context.last_debug_error}"
+
+
 @pytest.fixture(scope="session")
 def out_dir(tmp_path_factory):
     """Where tests write images: SSS_PYTHON_TEST_OUTPUT under ctest, else a temporary folder."""
