@@ -9,7 +9,6 @@
 #include <sss/render_target.h>
 #include <sss/volume_scattering_renderer.h>
 
-#include <array>
 
 namespace ssspy {
 
