@@ -6,6 +6,7 @@
 #include <sss/frame_accumulator.h>
 #include <sss/hybrid_compositor.h>
 #include <sss/mesh_scattering_renderer.h>
+#include <sss/procedural.h>
 #include <sss/render_target.h>
 #include <sss/volume_scattering_renderer.h>
 
@@ -62,14 +63,14 @@ py::array_t<float> renderPicture(ContextHolder& context, const sss::Camera& came
     return toNumpy(accumulator.result().readColor());
 }
 
-// The camera of a render() without one: yaw 30, pitch 20, the content framed tightly for the
-// image's aspect with a 4 % margin (sss-render's default view).
-sss::Camera autoCamera(const std::vector<glm::vec3>& points, int width, int height) {
+// The camera of a render() without one: yaw 30, pitch 20 (a Cornell box: 0, 0, straight in),
+// the content framed tightly for the image's aspect with a 4 % margin (sss-render's default view).
+sss::Camera autoCamera(const std::vector<glm::vec3>& points, int width, int height, bool straightIn = false) {
     if (points.empty()) invalidArgument("render: nothing to frame (no mesh or volume set); pass a camera");
     if (width <= 0 || height <= 0) invalidArgument("render: width and height must be > 0");
     sss::Camera camera;
-    camera.setYaw(30.0f);
-    camera.setPitch(20.0f);
+    camera.setYaw(straightIn ? 0.0f : 30.0f);
+    camera.setPitch(straightIn ? 0.0f : 20.0f);
     camera.frameTight(points, static_cast<float>(width) / static_cast<float>(height), 0.04f);
     return camera;
 }
@@ -107,7 +108,7 @@ Options optionsFrom(const py::object& options, const py::kwargs& kw) {
 const char* kRenderDoc =
     "Renders a picture and returns it as a float32 array (height, width, 4): linear radiance, RGBA, "
     "top row first (sss.to_display() makes it an 8-bit picture). camera=None frames the content from "
-    "yaw 30, pitch 20. With converge, scattering meshes first accumulate their maps; then `frames` "
+    "yaw 30, pitch 20 (a Scene's Cornell box straight in). With converge, scattering meshes first accumulate their maps; then `frames` "
     "frames are drawn (each adds samples to a multiple-scattering volume); antialias > 1 averages that "
     "many frames with sub-pixel camera offsets (not for multiple scattering, whose mean it would restart).";
 
@@ -568,8 +569,12 @@ void bindScene(py::module_& m) {
         .def("render",
              [](ScenePy& s, const std::optional<sss::Camera>& camera, int width, int height, int antialias, int frames,
                 bool converge) {
-                 const sss::Camera cam = camera ? *camera : autoCamera(s.framingPoints(), width, height);
                  sss::HybridCompositor& c = s.get();
+                 sss::Camera cam;
+                 if (camera) cam = *camera;
+                 else if (c.options().cornellBox && (c.meshCount() || c.volumeCount()))
+                     cam = autoCamera(boxCorners(sss::makeCornellBox(c.bounds()).bounds), width, height, true);
+                 else cam = autoCamera(s.framingPoints(), width, height);
                  auto draw = [&c](const sss::Camera& cm, sss::RenderTarget& t) { c.render(cm, t); };
                  auto converged = [&c] {
                      for (std::size_t i = 0; i < c.meshCount(); ++i)

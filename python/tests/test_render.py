@@ -159,3 +159,16 @@ def test_scene_handles_and_display(gl, out_dir):
     scene.clear()
     with pytest.raises(sss.InvalidArgumentError, match="removed by Scene.clear"):
         mesh.options
+
+
+def test_cornell_box_scene_is_seen_straight_in(gl, out_dir):
+    """A Scene with cornell_box=True and no camera looks straight into the box: the red wall on
+    the left of the picture, the green one on the right."""
+    scene = sss.Scene(cornell_box=True)
+    scene.add_mesh(sss.make_uv_sphere(radius=0.3))
+    scene.lights = [sss.PointLight(position=(0.0, 0.5, 0.0), intensity=0.5)]
+    image = scene.render(width=80, height=60)
+    sss.save_png(os.path.join(out_dir, "cornell_box.png"), image)
+    left, right = image[20:40, 8:16, :3].mean(axis=(0, 1)), image[20:40, -16:-8, :3].mean(axis=(0, 1))
+    print(f"left wall {left}, right wall {right}")
+    assert left[0] > 2 * left[1] and right[1] > 2 * right[0]
