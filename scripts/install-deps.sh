@@ -24,6 +24,8 @@ packages=(
   libvtk9-dev libteem-dev
   # zlib: NIfTI headers (.nii, .nii.gz) are checked before VTK reads them
   zlib1g-dev
+  # the Python module (python/, pybind11) and its tests (pytest with NumPy)
+  pybind11-dev python3-dev python3-numpy python3-pytest
   # clang with libFuzzer and the sanitizer runtimes: the loader fuzz targets (tests/fuzz)
   clang-14 libclang-rt-14-dev
 )
