@@ -39,17 +39,6 @@ int parseInt(const std::string& option, const std::string& text) {
     throw UsageError(option + ": expected an integer, got \"" + text + "\"");
 }
 
-sss::LightVolumeFallback parseLightVolumeFallback(const std::string& option, const std::string& text) {
-    if (text == "reduce") return sss::LightVolumeFallback::Reduce;
-    if (text == "fail") return sss::LightVolumeFallback::Fail;
-    throw UsageError(option + ": expected reduce or fail, got \"" + text + "\"");
-}
-
-sss::ToneMap parseToneMap(const std::string& option, const std::string& text) {
-    if (text == "none" || text == "filmic") return sss::parseToneMap(text);
-    throw UsageError(option + ": expected none or filmic, got \"" + text + "\"");
-}
-
 float parseExposure(const std::string& option, const std::string& text) {
     const float stops = parseFloat(option, text);
     if (!(std::abs(stops) <= 64.0f)) throw UsageError(option + ": must be within [-64, 64] stops");
@@ -74,14 +63,6 @@ glm::ivec3 parseDims(const std::string& option, const std::string& text) {
     const auto parts = split(text, 'x');
     if (parts.size() != 3) throw UsageError(option + ": expected XxYxZ, got \"" + text + "\"");
     return {parseInt(option, parts[0]), parseInt(option, parts[1]), parseInt(option, parts[2])};
-}
-
-sss::VoxelType parseVoxelType(const std::string& option, const std::string& text) {
-    if (text == "uint8") return sss::VoxelType::UInt8;
-    if (text == "uint16") return sss::VoxelType::UInt16;
-    if (text == "int16") return sss::VoxelType::Int16;
-    if (text == "float32") return sss::VoxelType::Float32;
-    throw UsageError(option + ": expected uint8, uint16, int16 or float32, got \"" + text + "\"");
 }
 
 fs::path dataDirectory(const std::string& dataDirOption) {

@@ -54,11 +54,8 @@ int parseInt(const std::string& option, const std::string& text);
 std::vector<std::string> split(const std::string& text, char separator);
 glm::vec3 parseVec3(const std::string& option, const std::string& text);  ///< "X,Y,Z"
 glm::ivec3 parseDims(const std::string& option, const std::string& text);  ///< "XxYxZ"
-sss::VoxelType parseVoxelType(const std::string& option, const std::string& text);  ///< uint8|uint16|int16|float32
 /// "LO,HI" with LO < HI (a value window, e.g. --tf-range -1000,2000).
 std::optional<std::pair<double, double>> parseRange(const std::string& option, const std::string& text);
-sss::LightVolumeFallback parseLightVolumeFallback(const std::string& option, const std::string& text);  ///< reduce|fail
-sss::ToneMap parseToneMap(const std::string& option, const std::string& text);  ///< none|filmic
 float parseExposure(const std::string& option, const std::string& text);  ///< stops in [-64, 64]
 
 /// --data-dir if given, else $SSS_DATA_DIR, else ../shared/data if it exists, else empty.
