@@ -3,6 +3,8 @@
 #include "volume/composite_over.h"
 #include "light_geometry.h"
 #include "lighting/light_uniforms.h"
+#include "sss/error.h"
+#include "sss/log.h"
 #include "sss/volume_reference.h"
 
 #include <glm/mat3x3.hpp>
@@ -10,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <variant>
 
@@ -20,6 +23,8 @@ namespace {
 // majorant below sigma_t would bias the estimate, one a little above only costs lookups (the
 // shader also clamps sigma_t to it).
 constexpr float kMajorantSlack = 1.001f;
+// sizeof(PathState) in path_trace.comp (std430: seven 16-byte vectors).
+constexpr std::size_t kPathStateBytes = 112;
 }  // namespace
 
 gl::Texture brickMajorants(const OccupancyGrid& grid, float voxelLength) {
@@ -37,14 +42,22 @@ gl::Texture brickMajorants(const OccupancyGrid& grid, float voxelLength) {
     return texture;
 }
 
-PathTracePass::PathTracePass()
+PathTracePass::PathTracePass(int stepsPerDispatch)
     : m_trace(gl::Program::link({{GL_COMPUTE_SHADER, "volume/path_trace.comp"}},
                                 {{"MAX_LIGHTS", std::to_string(kMaxLights)}})),
       m_resolve(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/path_trace_resolve.frag"}})),
-      m_emptyVertexArray(gl::VertexArray::create()) {}
+      m_emptyVertexArray(gl::VertexArray::create()),
+      m_stepsPerDispatch(stepsPerDispatch) {
+    if (stepsPerDispatch < 1 || stepsPerDispatch > kPathTraceMaxStepsPerDispatch)
+        throw Error(ErrorKind::InvalidArgument, "PathTracePass: stepsPerDispatch must be in [1, " +
+                                                    std::to_string(kPathTraceMaxStepsPerDispatch) + "], got " +
+                                                    std::to_string(stepsPerDispatch));
+    const std::uint32_t zero[2] = {0, 0};
+    m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "path-tracer status");
+}
 
-void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sums) const {
+void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sums) {
     const GpuVolume& volume = in.volume;
     const glm::mat4 viewProjection = in.camera.projection(in.aspect) * in.camera.view();
     const glm::mat4 worldToModel = glm::inverse(in.model);
@@ -89,25 +102,52 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     }
     p.set("lightCount", count);
 
+    const std::size_t pixels = static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y);
+    if (!m_paths || m_paths.size() != pixels * kPathStateBytes)
+        m_paths = gl::Buffer::create(pixels * kPathStateBytes, nullptr, 0, "path-tracer path states");
+    p.set("firstSample", in.firstSample);
+    p.set("pathsPerPixel", static_cast<unsigned>(in.options.samplesPerFrame));
+    p.set("stepsPerDispatch", m_stepsPerDispatch);
+
     volume.texture.bind(0);
     in.transferFunction.bind(1);
     in.sceneDepth.bind(2);
     in.majorants.bind(3);
     sums.bindImage(0, GL_READ_WRITE);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_paths.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_status.id());
     p.use();
-    // One path per pixel and dispatch: llvmpipe gives each invocation 65535 loop iterations in
-    // all, over all its loops (measured: two loops of 40000 ran 40000 and 25534), then leaves
-    // every loop early. With many paths in one invocation it cut them short (512 paths lost 28 %
-    // of the light and of the coverage). A single path still runs out in the engine data set,
-    // whose bright, dense medium makes long paths: its image is 3 % too bright there (see
-    // benchmarks/README.md); carrying paths over dispatches would end that.
-    for (int s = 0; s < in.options.samplesPerFrame; ++s) {
-        p.set("sampleIndex", in.firstSample + static_cast<unsigned>(s));
+    // llvmpipe gives each invocation 65535 loop iterations in all, over all its loops (measured:
+    // two loops of 40000 ran 40000 and 25534), then leaves every loop early; many paths in one
+    // invocation were cut short that way (512 paths lost 28 % of the light). So no dispatch runs
+    // a path to its end regardless of length: each spends at most m_stepsPerDispatch steps per
+    // pixel, and the paths' state carries over to the next dispatch until every pixel has
+    // finished its paths. The shader counts the invocations with work left, read back after
+    // each dispatch.
+    const std::uint32_t zero[2] = {0, 0};
+    m_status.upload(0, sizeof(zero), zero);
+    m_lastDispatches = 0;
+    std::uint32_t status[2] = {0, 0};
+    for (;;) {
+        p.set("restart", m_lastDispatches == 0 ? 1 : 0);
         glDispatchCompute(static_cast<GLuint>((size.x + 7) / 8), static_cast<GLuint>((size.y + 7) / 8), 1);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        ++m_lastDispatches;
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                        GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(m_status.id(), 0, sizeof(status), status);
+        if (status[0] == 0) break;
+        m_status.upload(0, sizeof(zero[0]), &zero[0]);  // the unfinished count; the abandoned one runs on
+    }
+    if (status[1] > 0) {
+        m_abandoned += status[1];
+        log(LogLevel::Warning, "PathTracePass: " + std::to_string(status[1]) +
+                                   " paths were given up after 2^24 steps each (degenerate rays); "
+                                   "the image is biased there");
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
 }
 

@@ -3,6 +3,9 @@
 // shaders/volume/path_trace.comp): each accumulate() adds paths per pixel to running sums of
 // (radiance, hit) in an RGBA32F texture; composite() draws their mean over the bound target.
 // The estimator and its model are renderVolumePathTraced()'s (sss/volume_path_tracer.h).
+// Paths are resumable: each dispatch advances every unfinished path by a bounded number of
+// steps, its state kept in a storage buffer, until all have finished (see accumulate()).
+#include "gl/buffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "gl/vertex_array.h"
@@ -14,6 +17,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace sss::detail {
@@ -37,18 +41,40 @@ struct PathTraceInputs {
     unsigned firstSample = 0;  ///< paths per pixel already in the sums (keys the random streams)
 };
 
+/// Units (loop iterations) one invocation may spend per dispatch by default. llvmpipe stops every
+/// loop of an invocation after 65535 iterations in all, counted per SIMD vector: a vector of L
+/// lanes runs at most L times this (path_trace.comp), 8192 for llvmpipe's 8 lanes at 256 bits.
+inline constexpr int kPathTraceStepsPerDispatch = 1024;
+inline constexpr int kPathTraceMaxStepsPerDispatch = 2048;  ///< the largest allowed (x 16 lanes < 65535)
+
 class PathTracePass {
 public:
-    PathTracePass();
-    /// Adds options.samplesPerFrame paths per pixel to `sums` (RGBA32F, the target's size).
-    void accumulate(const PathTraceInputs& in, const gl::Texture& sums) const;
+    /// @param stepsPerDispatch in [1, kPathTraceMaxStepsPerDispatch]: steps (tentative
+    ///        collisions, brick crossings, shadow-ray starts) per path and dispatch. The image
+    ///        does not depend on it, only the number of dispatches does (tests make it small).
+    explicit PathTracePass(int stepsPerDispatch = kPathTraceStepsPerDispatch);
+    /// Adds options.samplesPerFrame paths per pixel to `sums` (RGBA32F, the target's size): one
+    /// dispatch starts them, further dispatches resume the unfinished ones until none is left
+    /// (each waits for a read-back of the count). A path is given up only after 2^24 steps
+    /// (a degenerate ray); that is logged as a warning and counted in abandonedPaths().
+    void accumulate(const PathTraceInputs& in, const gl::Texture& sums);
     /// Draws sums / samples with premultiplied "over" into the bound target.
     void composite(const gl::Texture& sums, int samples) const;
+
+    /// Dispatches the last accumulate() took.
+    int lastDispatches() const { return m_lastDispatches; }
+    /// Paths given up since construction (0 unless a ray is degenerate).
+    std::uint64_t abandonedPaths() const { return m_abandoned; }
 
 private:
     gl::Program m_trace;
     gl::Program m_resolve;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
+    int m_stepsPerDispatch;
+    gl::Buffer m_paths;   // one PathState (path_trace.comp) per pixel
+    gl::Buffer m_status;  // (unfinished invocations, abandoned paths)
+    int m_lastDispatches = 0;
+    std::uint64_t m_abandoned = 0;
 };
 
 }  // namespace sss::detail
