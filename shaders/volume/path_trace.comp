@@ -19,8 +19,10 @@
 // step needs, and the rarer events wait for the event loop.
 //
 // Contract with volume/path_trace_pass.cpp:
+//   A dispatch covers the band of rows [bandFirstRow, bandFirstRow + bandRows); `paths` holds
+//   one state per pixel of the band.
 //   restart != 0: the pixel starts `pathsPerPixel` new paths, numbered from `firstSample`
-//                 (the first dispatch of an accumulate()); otherwise it resumes `paths`.
+//                 (the band's first dispatch in an accumulate()); otherwise it resumes `paths`.
 //   status.unfinished counts the invocations that still hold work after this dispatch;
 //   status.abandoned counts paths given up after kMaxStepsPerPath steps (a degenerate ray).
 #include "volume/ray_setup.glsl"
@@ -46,6 +48,8 @@ uniform vec3 lightWorldPosition[MAX_LIGHTS];  // point lights: falloff is in wor
 uniform vec3 lightRadiance[MAX_LIGHTS];       // colour * intensity
 uniform vec3 lightSpotAxis[MAX_LIGHTS];       // spot lights: world-space unit cone axis (as in lights.glsl)
 uniform vec2 lightSpotCosines[MAX_LIGHTS];    // spot lights: (cos outer, cos inner); (-2, -2): no cone
+uniform int bandFirstRow;          // this dispatch covers rows [bandFirstRow, bandFirstRow + bandRows)
+uniform int bandRows;
 uniform int restart;
 uniform uint firstSample;          // index of the first path of this run in the pixel's running mean
 uniform uint pathsPerPixel;        // paths per pixel in this run
@@ -413,9 +417,9 @@ void store(uint i) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, imageSize))) return;
-    uint index = uint(pixel.y * imageSize.x + pixel.x);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, bandFirstRow);
+    if (pixel.x >= imageSize.x || pixel.y >= min(imageSize.y, bandFirstRow + bandRows)) return;
+    uint index = uint((pixel.y - bandFirstRow) * imageSize.x + pixel.x);  // in the band's states
     if (restart != 0) {
         pathsLeft = pathsPerPixel;
         startPath(pixel);

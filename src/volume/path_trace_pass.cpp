@@ -42,17 +42,20 @@ gl::Texture brickMajorants(const OccupancyGrid& grid, float voxelLength) {
     return texture;
 }
 
-PathTracePass::PathTracePass(int stepsPerDispatch)
+PathTracePass::PathTracePass(PathTraceBounds bounds)
     : m_trace(gl::Program::link({{GL_COMPUTE_SHADER, "volume/path_trace.comp"}},
                                 {{"MAX_LIGHTS", std::to_string(kMaxLights)}})),
       m_resolve(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/path_trace_resolve.frag"}})),
       m_emptyVertexArray(gl::VertexArray::create()),
-      m_stepsPerDispatch(stepsPerDispatch) {
-    if (stepsPerDispatch < 1 || stepsPerDispatch > kPathTraceMaxStepsPerDispatch)
+      m_bounds(bounds) {
+    if (bounds.stepsPerDispatch < 1 || bounds.stepsPerDispatch > kPathTraceMaxStepsPerDispatch)
         throw Error(ErrorKind::InvalidArgument, "PathTracePass: stepsPerDispatch must be in [1, " +
                                                     std::to_string(kPathTraceMaxStepsPerDispatch) + "], got " +
-                                                    std::to_string(stepsPerDispatch));
+                                                    std::to_string(bounds.stepsPerDispatch));
+    if (bounds.maxPathStates < 1)
+        throw Error(ErrorKind::InvalidArgument,
+                    "PathTracePass: maxPathStates must be >= 1, got " + std::to_string(bounds.maxPathStates));
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "path-tracer status");
 }
@@ -102,12 +105,14 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     }
     p.set("lightCount", count);
 
-    const std::size_t pixels = static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y);
-    if (!m_paths || m_paths.size() != pixels * kPathStateBytes)
-        m_paths = gl::Buffer::create(pixels * kPathStateBytes, nullptr, 0, "path-tracer path states");
+    // Bands of whole rows, as many as the path-state budget holds (at least one row).
+    const int bandRows = std::clamp(m_bounds.maxPathStates / size.x, 1, size.y);
+    const std::size_t states = static_cast<std::size_t>(size.x) * static_cast<std::size_t>(bandRows);
+    if (!m_paths || m_paths.size() != states * kPathStateBytes)
+        m_paths = gl::Buffer::create(states * kPathStateBytes, nullptr, 0, "path-tracer path states");
     p.set("firstSample", in.firstSample);
     p.set("pathsPerPixel", static_cast<unsigned>(in.options.samplesPerFrame));
-    p.set("stepsPerDispatch", m_stepsPerDispatch);
+    p.set("stepsPerDispatch", m_bounds.stepsPerDispatch);
 
     volume.texture.bind(0);
     in.transferFunction.bind(1);
@@ -120,7 +125,7 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     // llvmpipe gives each invocation 65535 loop iterations in all, over all its loops (measured:
     // two loops of 40000 ran 40000 and 25534), then leaves every loop early; many paths in one
     // invocation were cut short that way (512 paths lost 28 % of the light). So no dispatch runs
-    // a path to its end regardless of length: each spends at most m_stepsPerDispatch steps per
+    // a path to its end regardless of length: each spends at most stepsPerDispatch steps per
     // pixel, and the paths' state carries over to the next dispatch until every pixel has
     // finished its paths. The shader counts the invocations with work left, read back after
     // each dispatch.
@@ -128,15 +133,20 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     m_status.upload(0, sizeof(zero), zero);
     m_lastDispatches = 0;
     std::uint32_t status[2] = {0, 0};
-    for (;;) {
-        p.set("restart", m_lastDispatches == 0 ? 1 : 0);
-        glDispatchCompute(static_cast<GLuint>((size.x + 7) / 8), static_cast<GLuint>((size.y + 7) / 8), 1);
-        ++m_lastDispatches;
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                        GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(m_status.id(), 0, sizeof(status), status);
-        if (status[0] == 0) break;
-        m_status.upload(0, sizeof(zero[0]), &zero[0]);  // the unfinished count; the abandoned one runs on
+    for (int firstRow = 0; firstRow < size.y; firstRow += bandRows) {
+        const int rows = std::min(bandRows, size.y - firstRow);
+        p.set("bandFirstRow", firstRow);
+        p.set("bandRows", rows);
+        for (bool restart = true;; restart = false) {
+            p.set("restart", restart ? 1 : 0);
+            glDispatchCompute(static_cast<GLuint>((size.x + 7) / 8), static_cast<GLuint>((rows + 7) / 8), 1);
+            ++m_lastDispatches;
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                            GL_BUFFER_UPDATE_BARRIER_BIT);
+            glGetNamedBufferSubData(m_status.id(), 0, sizeof(status), status);
+            if (status[0] == 0) break;
+            m_status.upload(0, sizeof(zero[0]), &zero[0]);  // the unfinished count; the abandoned one runs on
+        }
     }
     if (status[1] > 0) {
         m_abandoned += status[1];

@@ -46,17 +46,30 @@ struct PathTraceInputs {
 /// lanes runs at most L times this (path_trace.comp), 8192 for llvmpipe's 8 lanes at 256 bits.
 inline constexpr int kPathTraceStepsPerDispatch = 1024;
 inline constexpr int kPathTraceMaxStepsPerDispatch = 2048;  ///< the largest allowed (x 16 lanes < 65535)
+/// Path states held at once by default (112 bytes each: 28 MiB); larger images are traced in
+/// bands of rows.
+inline constexpr int kPathTraceMaxPathStates = 1 << 18;
+
+/// How a PathTracePass splits its work. The image does not depend on either bound, only the
+/// number of dispatches does (tests make them small).
+struct PathTraceBounds {
+    /// Steps (tentative collisions, brick crossings, events) per path and dispatch, in
+    /// [1, kPathTraceMaxStepsPerDispatch].
+    int stepsPerDispatch = kPathTraceStepsPerDispatch;
+    /// Paths in flight at once, >= 1: the image is traced in bands of rows with at most this
+    /// many pixels (at least one row each).
+    int maxPathStates = kPathTraceMaxPathStates;
+};
 
 class PathTracePass {
 public:
-    /// @param stepsPerDispatch in [1, kPathTraceMaxStepsPerDispatch]: steps (tentative
-    ///        collisions, brick crossings, shadow-ray starts) per path and dispatch. The image
-    ///        does not depend on it, only the number of dispatches does (tests make it small).
-    explicit PathTracePass(int stepsPerDispatch = kPathTraceStepsPerDispatch);
-    /// Adds options.samplesPerFrame paths per pixel to `sums` (RGBA32F, the target's size): one
-    /// dispatch starts them, further dispatches resume the unfinished ones until none is left
-    /// (each waits for a read-back of the count). A path is given up only after 2^24 steps
-    /// (a degenerate ray); that is logged as a warning and counted in abandonedPaths().
+    /// @throws Error InvalidArgument for bounds out of range.
+    explicit PathTracePass(PathTraceBounds bounds = {});
+    /// Adds options.samplesPerFrame paths per pixel to `sums` (RGBA32F, the target's size): per
+    /// band of rows, one dispatch starts them, further dispatches resume the unfinished ones
+    /// until none is left (each waits for a read-back of the count). A path is given up only
+    /// after 2^24 steps (a degenerate ray); that is logged as a warning and counted in
+    /// abandonedPaths().
     void accumulate(const PathTraceInputs& in, const gl::Texture& sums);
     /// Draws sums / samples with premultiplied "over" into the bound target.
     void composite(const gl::Texture& sums, int samples) const;
@@ -70,8 +83,8 @@ private:
     gl::Program m_trace;
     gl::Program m_resolve;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
-    int m_stepsPerDispatch;
-    gl::Buffer m_paths;   // one PathState (path_trace.comp) per pixel
+    PathTraceBounds m_bounds;
+    gl::Buffer m_paths;   // one PathState (path_trace.comp) per pixel of a band
     gl::Buffer m_status;  // (unfinished invocations, abandoned paths)
     int m_lastDispatches = 0;
     std::uint64_t m_abandoned = 0;

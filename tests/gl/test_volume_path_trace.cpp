@@ -300,9 +300,10 @@ struct PassRun {
     std::uint64_t abandoned = 0;
 };
 
-// The path-tracing pass alone, as the renderer drives it, with a given bound on steps per path
-// and dispatch: kDensePaths paths per pixel in one accumulate(), read back as their mean.
-PassRun traceDense(int stepsPerDispatch) {
+// The path-tracing pass alone, as the renderer drives it, with given bounds on steps per path
+// and dispatch and on paths in flight: kDensePaths paths per pixel in one accumulate(), read
+// back as their mean.
+PassRun traceDense(detail::PathTraceBounds bounds) {
     const Volume& volume = denseVolume();
     const detail::GpuVolume gpu = detail::GpuVolume::upload(volume);
     const std::vector<glm::vec4> table = denseTf().table(256);
@@ -321,7 +322,7 @@ PassRun traceDense(int stepsPerDispatch) {
     const VolumeRenderOptions options = pathTraced(kDensePaths);
     const glm::mat4 model(1.0f);
     const Camera camera = denseCamera();
-    detail::PathTracePass pass(stepsPerDispatch);
+    detail::PathTracePass pass(bounds);
     pass.accumulate({.volume = gpu,
                      .transferFunction = tfTexture,
                      .majorants = majorants,
@@ -351,15 +352,15 @@ PassRun traceDense(int stepsPerDispatch) {
 TEST_CASE("GPU paths carried over many dispatches give the same image and the CPU's mean",
           "[gl][volume][path-trace]") {
     test::GlTestScope gl;
-    // 2 steps per dispatch: every path spans a hundred dispatches or more; the default bound
-    // finishes each pixel's paths in one or a few.
-    const PassRun small = traceDense(2);
-    const PassRun large = traceDense(detail::kPathTraceStepsPerDispatch);
-    INFO("dispatches: " << small.dispatches << " at 2 steps, " << large.dispatches << " at the default");
+    // 2 steps per dispatch, and bands of 4 rows (100 path states for 24-pixel rows): every path
+    // spans many dispatches; the default bounds finish each pixel's paths in a few.
+    const PassRun small = traceDense({.stepsPerDispatch = 2, .maxPathStates = 100});
+    const PassRun large = traceDense({});
+    INFO("dispatches: " << small.dispatches << " at 2 steps in 4 bands, " << large.dispatches << " at the default");
     CHECK(small.abandoned == 0);
     CHECK(large.abandoned == 0);
-    // Measured: 6664 dispatches at 2 steps (26 per path: each path is cut 26 times on
-    // average), 12 at the default.
+    // Measured: 22593 dispatches at 2 steps in 4 bands (6664 in one band: each path is cut 26
+    // times on average), 12 at the default.
     CHECK(small.dispatches > 10 * kDensePaths);
     CHECK(large.dispatches < small.dispatches / 100);
     // The state carried between dispatches is complete: the same paths, bit for bit.
