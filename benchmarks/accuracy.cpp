@@ -568,3 +568,135 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
     report.plot.series = {series[0], series[1], series[2]};
     return report;
 }
+
+// The light volume against its own model, evaluated exactly: the GPU image of each volume model
+// (paper: ambient 0, diffuse 1, so only the light volume's light shows; physical: single
+// scattering) against the CPU reference of the same model (sss/volume_reference.h: shadow rays
+// at quarter-voxel steps instead of the light volume). Two GPU settings: the defaults (step 1,
+// jitter, early termination 0.99) and an exact ray (step 0.25, no jitter), which leaves the
+// light volume as the only difference.
+AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions& options) {
+    AccuracyReport report;
+    report.json = nlohmann::ordered_json::array();
+    const int width = options.quick ? 32 : (options.width == 96 ? 160 : options.width);
+    const int height = options.quick ? 18 : (options.height == 72 ? 90 : options.height);
+    constexpr float kG = 0.5f;
+    struct Scene {
+        std::string name;
+        sss::Volume volume;
+        sss::TransferFunction tf;
+    };
+    std::vector<Scene> scenes;
+    for (const std::string model : {"bucky", "bonsai", "engine"}) {
+        if (options.quick && model != "bucky") continue;
+        if (!bench.wanted(model)) continue;
+        auto loaded = loadThesisVolume(bench, "accuracy-light-volume", options.quick ? "blobs" : model);
+        if (!loaded) continue;
+        scenes.push_back({options.quick ? "blobs" : model, std::move(loaded->first), sss::TransferFunction::preset(loaded->second)});
+    }
+    std::ostringstream md;
+    md << "# The light volume against its own model, evaluated with shadow rays\n\n"
+       << width << " x " << height << ", one directional light, g = " << kG << ", " << options.renderer
+       << ". Reference: the CPU reference of the same model (view step 0.25 voxel, shadow rays at 0.25 voxel). "
+          "Paper model with ambient 0 and diffuse 1. 'default': GPU defaults (step 1, jitter, early termination "
+          "0.99); 'exact ray': step 0.25, no jitter, no early termination.\n\n"
+       << "| scene | model | GPU settings | relRMSE | mean ratio R / G / B | ms |\n|---|---|---|---:|---|---:|\n";
+    PlotSeries series[2] = {{"paper light volume", {}, 0xd62728, false}, {"physical single", {}, 0x1f77b4, false}};
+    int index = 0;
+    for (const Scene& scene : scenes) {
+        ++index;
+        sss::Camera camera;
+        camera.setYaw(30.0f);
+        camera.setPitch(20.0f);
+        camera.frameTight(scene.volume.worldBounds(), float(width) / float(height));
+        const sss::DirectionalLight light{.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.4f))};
+        for (const sss::VolumeModel model : {sss::VolumeModel::Paper, sss::VolumeModel::Physical}) {
+            const bool physical = model == sss::VolumeModel::Physical;
+            const std::string modelName = physical ? "physical" : "paper";
+            const sss::Image reference = cachedReference(
+                bench.options(),
+                "light-volume-reference-" + scene.name + "-" + modelName + "-" + std::to_string(width) + "x" +
+                    std::to_string(height) + ".exr",
+                [&] {
+                    sss::VolumeReferenceOptions ro;
+                    ro.shading = sss::ReferenceShading::Scattering;
+                    ro.model = model;
+                    ro.anisotropy = kG;
+                    ro.ambient = 0.0;
+                    ro.diffuse = 1.0;
+                    ro.stepVoxels = 0.25;
+                    ro.shadowStepVoxels = 0.25;
+                    ro.background = glm::dvec4(0.0);
+                    return sss::renderVolumeReference(scene.volume, scene.tf, 256, glm::mat4(1.0f), {light}, camera,
+                                                      width, height, ro);
+                });
+            for (const bool exactRay : {false, true}) {
+                sss::VolumeRenderOptions o;
+                o.shading = sss::VolumeShading::Scattering;
+                o.model = model;
+                o.anisotropy = kG;
+                o.ambient = 0.0f;
+                o.diffuse = 1.0f;
+                if (exactRay) {
+                    o.stepSize = 0.25f;
+                    o.jitter = false;
+                    o.earlyTermination = 1.0f;
+                }
+                sss::VolumeScatteringRenderer renderer(o);
+                renderer.setVolume(scene.volume);
+                renderer.setTransferFunction(scene.tf);
+                renderer.setLights({light});
+                sss::RenderTarget target(width, height);
+                target.clear({0, 0, 0, 0});
+                renderer.render(camera, target);  // first frame: the light volume
+                std::vector<double> times;
+                for (int r = 0; r < 3; ++r) {
+                    // A light change each time, so the light volume is rebuilt in every timed frame.
+                    renderer.setLights({r % 2 == 0 ? nudged(light) : light});
+                    target.clear({0, 0, 0, 0});
+                    const auto t0 = std::chrono::steady_clock::now();
+                    renderer.render(camera, target);
+                    sss::finishGpuWork();
+                    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+                }
+                std::sort(times.begin(), times.end());
+                const sss::Image gpu = target.readColor();  // the last frame used `light` again
+                const double e = sss::computeErrorMetrics(gpu, reference).relRmse;
+                const glm::dvec3 ratio = meanRatio(gpu, reference);
+                const std::string settings = exactRay ? "exact ray" : "default";
+                std::cerr << "sss-bench: light volume " << scene.name << " " << modelName << " " << settings
+                          << ": relRMSE " << e << "\n";
+                report.json.push_back({{"scene", scene.name},
+                                       {"method", physical ? "physical-single" : "paper-light-volume"},
+                                       {"model", modelName},
+                                       {"settings", settings},
+                                       {"rel_rmse", e},
+                                       {"mean_ratio", {ratio.x, ratio.y, ratio.z}},
+                                       {"ms", times[1]},
+                                       {"width", width},
+                                       {"height", height}});
+                md << "| " << scene.name << " | " << modelName << " | " << settings << " | " << fixed(100.0 * e, 1)
+                   << " % | " << fixed(ratio.x, 3) << " / " << fixed(ratio.y, 3) << " / " << fixed(ratio.z, 3) << " | "
+                   << fixed(times[1], 1) << " |\n";
+                if (!exactRay) series[physical ? 1 : 0].points.push_back({double(index), 100.0 * e});
+                if (!options.imageDir.empty()) {
+                    std::filesystem::create_directories(options.imageDir);
+                    sss::toDisplay(gpu, {}).savePng(options.imageDir / ("light-volume-" + scene.name + "-" + modelName + "-" +
+                                                                        (exactRay ? "exact" : "default") + ".png"));
+                    if (exactRay)
+                        sss::toDisplay(reference, {}).savePng(options.imageDir /
+                                                              ("light-volume-" + scene.name + "-" + modelName + "-reference.png"));
+                }
+            }
+        }
+    }
+    md << "\nScenes in the plot, left to right: ";
+    for (size_t i = 0; i < scenes.size(); ++i) md << (i ? ", " : "") << i + 1 << " = " << scenes[i].name;
+    md << ".\n";
+    report.markdown = md.str();
+    report.plot.title = "light volume against its own model (CPU shadow rays), GPU defaults";
+    report.plot.xLabel = "scene (see the Markdown)";
+    report.plot.yLabel = "relRMSE %";
+    report.plot.series = {series[0], series[1]};
+    return report;
+}

@@ -34,3 +34,7 @@ AccuracyReport runMeshAccuracy(BenchmarkContext& bench, const AccuracyOptions& o
 /// GPU volume images (the paper's light volume, physical single scattering) against the path
 /// tracer's single- and multiple-scattering truths: bucky, bonsai, engine, a high-albedo box.
 AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions& options);
+/// GPU light-volume images (paper model with ambient 0 and diffuse 1, physical single
+/// scattering) against the CPU reference of the same model, whose shadow rays replace the light
+/// volume: bucky, bonsai, engine; GPU defaults and an exact ray.
+AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions& options);

@@ -194,6 +194,10 @@ std::optional<sss::Mesh> loadThesisMesh(BenchmarkContext& bench, const std::stri
 std::optional<std::pair<sss::Volume, std::string>> loadThesisVolume(BenchmarkContext& bench, const std::string& table,
                                                                     const std::string& model);
 
+/// A CPU reference image: read from --reference-cache DIR/name if it is there, else rendered
+/// (timed on stderr) and kept there.
+sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render);
+
 // ---- reports ----------------------------------------------------------------------------------
 
 nlohmann::ordered_json toJson(const BenchmarkContext& bench);

@@ -4,6 +4,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <chrono>
+#include <iostream>
 #include <map>
 
 std::optional<sss::Mesh> loadThesisMesh(BenchmarkContext& bench, const std::string& table, const std::string& model) {
@@ -47,4 +49,19 @@ std::optional<std::pair<sss::Volume, std::string>> loadThesisVolume(BenchmarkCon
     const auto path = bench.findData(table, model, e.file);
     if (!path) return std::nullopt;
     return std::pair{sss::Volume::loadRaw(*path, e.options), e.preset};
+}
+
+sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render) {
+    const std::filesystem::path cached = o.referenceCache / name;
+    std::error_code ec;
+    if (!o.referenceCache.empty() && std::filesystem::is_regular_file(cached, ec)) return sss::Image::loadExr(cached);
+    const auto start = std::chrono::steady_clock::now();
+    sss::Image reference = render();
+    std::cerr << "sss-bench: " << name << " rendered in "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
+    if (!o.referenceCache.empty()) {
+        std::filesystem::create_directories(o.referenceCache);
+        reference.saveExr(cached);
+    }
+    return reference;
 }

@@ -29,21 +29,6 @@ sss::Image renderOnce(BenchmarkContext& bench, const std::function<void(sss::Ren
     return target.readColor();
 }
 
-// A CPU reference image: read from --reference-cache DIR/name if it is there, else rendered
-// (timed on stderr) and kept there.
-sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render) {
-    const std::filesystem::path cached = o.referenceCache / name;
-    std::error_code ec;
-    if (!o.referenceCache.empty() && std::filesystem::is_regular_file(cached, ec)) return sss::Image::loadExr(cached);
-    const auto start = std::chrono::steady_clock::now();
-    sss::Image reference = render();
-    std::cerr << "sss-bench: " << name << " rendered in " << secondsSince(start) << " s\n";
-    if (!o.referenceCache.empty()) {
-        std::filesystem::create_directories(o.referenceCache);
-        reference.saveExr(cached);
-    }
-    return reference;
-}
 
 // The meshes users render: bunny, Buddha and dragon at 400x226 (marble, default options, no
 // specular, linear), converged maps against a converged CPU reference. Concave models are where

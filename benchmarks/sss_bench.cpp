@@ -113,7 +113,7 @@ Options parseArgs(int argc, char** argv) {
               "S");
     addParsed(app, "--accuracy", o.accuracy,
               [](const std::string& name, const std::string& text) {
-                  return std::optional(oneOf(name, text, {"slab", "mesh", "volume"}));
+                  return std::optional(oneOf(name, text, {"slab", "mesh", "volume", "light-volume"}));
               },
               "accuracy against physical ground truth. A = slab: presets x channels x incidence 0/45/75 degrees, the "
               "random walk against the dipole, the calibrated profile and a GPU render (JSON records with material, "
@@ -121,7 +121,10 @@ Options parseArgs(int argc, char** argv) {
               "mesh: GPU images with both profiles against the mesh random walk (records with scene, profile, "
               "rel_rmse); --size sets the image (default 96x72), --images DIR keeps them. A = volume: the light "
               "volume and physical single scattering against path-traced single and multiple scattering (records "
-              "with scene, method, rel_rmse_single, rel_rmse_multiple, mean_ratio, ms). Markdown and a plot as well",
+              "with scene, method, rel_rmse_single, rel_rmse_multiple, mean_ratio, ms). A = light-volume: the light "
+              "volume (paper and physical models) against the CPU reference of the same model, whose shadow rays "
+              "replace it (records with scene, method, model, settings, rel_rmse, mean_ratio, ms). Markdown and a "
+              "plot as well",
               "A");
     addParsed(app, "--plot", o.plotPath,
               [](const std::string&, const std::string& text) { return std::optional<std::filesystem::path>(text); },
@@ -197,7 +200,8 @@ int main(int argc, char** argv) {
             }
             const AccuracyReport report = *options->accuracy == "slab"   ? runSlabAccuracy(a)
                                           : *options->accuracy == "mesh" ? runMeshAccuracy(bench, a)
-                                                                         : runVolumeAccuracy(bench, a);
+                                          : *options->accuracy == "volume" ? runVolumeAccuracy(bench, a)
+                                                                           : runLightVolumeAccuracy(bench, a);
             const nlohmann::ordered_json json = {{"accuracy", *options->accuracy},
                                                  {"renderer", bench.glInfo().renderer},
                                                  {"date", bench.startedAt()},

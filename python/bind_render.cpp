@@ -336,6 +336,7 @@ void bindOptions(py::module_& m) {
         .field("gradient_threshold", &VO::gradientThreshold, "(default 0.02)")
         .field("gradient_volume", &VO::gradientVolume, "precomputed gradients (default on)")
         .field("light_volume_scale", &VO::lightVolumeScale, "in (0, 1] (default 1)")
+        .field("light_volume_reach", &VO::lightVolumeReach, "light-volume texels towards the light, in [0, 16] (default 4)")
         .field("light_volume_fallback", &VO::lightVolumeFallback, "LightVolumeFallback (default REDUCE)")
         .field("anisotropy", &VO::anisotropy, "Henyey-Greenstein g in (-1, 1) (default 0.5)")
         .field("model", &VO::model, "VolumeModel (default PAPER)")

@@ -70,6 +70,7 @@ void fields(VolumeRenderOptions& o, F&& f) {
     f("gradientThreshold", o.gradientThreshold);
     f("gradientVolume", o.gradientVolume);
     f("lightVolumeScale", o.lightVolumeScale);
+    f("lightVolumeReach", o.lightVolumeReach);
     f("lightVolumeFallback", o.lightVolumeFallback);
     f("anisotropy", o.anisotropy);
     f("model", o.model);

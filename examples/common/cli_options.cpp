@@ -218,6 +218,11 @@ void addVolumeOptions(CLI::App& app, sss::VolumeRenderOptions& options) {
     addFloat(app, "--light-volume-scale", options.lightVolumeScale,
              "light-volume resolution relative to the data, (0,1]", "S")
         ->group(group);
+    addFloat(app, "--light-volume-reach", options.lightVolumeReach,
+             "light-volume texels towards the light at which each sample reads the light volume, then carries the "
+             "light back through the data, [0,16]",
+             "T")
+        ->group(group);
     addEnum(app, "--light-volume-fallback", options.lightVolumeFallback,
             "when the light volume does not fit the GPU: halve its resolution until it fits, with a warning, or "
             "fail")

@@ -5,10 +5,12 @@
 //   - the light arriving there is looked up where the light ray through the voxel crosses slice
 //     w-1: intensity l with one bilinear fetch (hard shadows), chromaticity c gathered over a
 //     cone whose aperture follows the Henyey-Greenstein g;
-//   - the (c, l) at the voxel centre, after half of the voxel's own path, is stored in the light
-//     volume (the light volume samples light at points, like the CPU reference);
-//   - the light leaving the voxel, c' = (1-a) c + a rgb and l' = (1-a) l, goes to the next slice,
-//     with the TF opacity a corrected for the oblique path through the slice.
+//   - along the ray across the voxel's slab the medium is sampled at data resolution, and each
+//     piece changes the light as c' = (1-a) c + a rgb, l' = (1-a) l, with the TF opacity a
+//     corrected for the piece's length;
+//   - the (c, l) at the voxel centre, after the first half of the slab, is stored in the light
+//     volume (the light volume samples light at points, like the CPU reference), and the light
+//     leaving the slab goes to the next slice.
 // Outside the volume the light is unattenuated white: (1, 1, 1, 1).
 //
 // EYE_PASS 1 (the optional second pass, towards the viewer): the same sweep carries the light the
@@ -69,9 +71,7 @@ void main() {
     // Light must travel forward along w; a point light beside the sweep gives dz -> 0.
     float dz = max(d.z, 1e-3);
 
-    vec4 sampleTf = classify(texture(volumeTexture, (vec3(voxel) + 0.5) / vec3(lightVolumeDims)).r);
     float pathLength = s.z / dz;  // model units between slices along the light ray
-    float alpha = correctOpacity(sampleTf.a, pathLength, referenceLength);
 
     // Where the light ray through this voxel crosses the previous slice, in slice texels.
     vec2 sliceSize = vec2(sliceDims.xy);
@@ -87,16 +87,30 @@ void main() {
         }
         chromaticity = coneWeights.x * centre.rgb + coneWeights.y * ring;
     }
+    // Across this voxel's slab (from plane w - 1/2 to w + 1/2) the light crosses the medium at
+    // data resolution: n samples along the ray, about one per data voxel of path and at least
+    // two (one sample at the centre let light slip past thin structures between slices; two per
+    // voxel measured no better). The light volume keeps the light at the voxel centre, after
+    // the first n/2 of them.
+    vec3 centreTc = (vec3(voxel) + 0.5) / vec3(lightVolumeDims);
+    vec3 slabTc = normalize(direction) * pathLength / (voxelSize * vec3(lightVolumeDims));
+    int n = 2 * clamp(int(ceil(0.5 * pathLength / referenceLength)), 1, 8);
+    float piece = pathLength / float(n);
+    vec4 light = vec4(chromaticity, centre.a);
+    vec4 arriving = light;
+    for (int k = 0; k < n; ++k) {
+        vec3 tcK = centreTc + ((float(k) + 0.5) / float(n) - 0.5) * slabTc;
+        vec4 medium = classify(texture(volumeTexture, tcK).r);
 #if EYE_PASS
-    vec3 source = texture(litColour, (vec3(voxel) + 0.5) / vec3(lightVolumeDims)).rgb;
+        vec3 source = texture(litColour, tcK).rgb;
 #else
-    vec3 source = sampleTf.rgb;
+        vec3 source = medium.rgb;
 #endif
-    imageStore(currentSlice, uv, vec4((1.0 - alpha) * chromaticity + alpha * source, (1.0 - alpha) * centre.a));
-    // The light volume holds the light at the voxel centre: it has crossed half of this voxel's
-    // path (the two halves compose to the full step above).
-    float halfAlpha = correctOpacity(sampleTf.a, 0.5 * pathLength, referenceLength);
-    vec4 arriving = vec4((1.0 - halfAlpha) * chromaticity + halfAlpha * source, (1.0 - halfAlpha) * centre.a);
+        float a = correctOpacity(medium.a, piece, referenceLength);
+        light = vec4((1.0 - a) * light.rgb + a * source, (1.0 - a) * light.a);
+        if (k == n / 2 - 1) arriving = light;
+    }
+    imageStore(currentSlice, uv, light);
 
     if (pyramidMask != 0) {
         // Light inside the volume: six sweeps, each owning the voxels whose light arrives

@@ -47,7 +47,7 @@ uniform float gradientThreshold;   // |gradient| (per voxel) below which shading
 #if SHADING_SCATTERING
 uniform sampler3D lightVolumes[MAX_LIGHTS];   // one per light: (c, l) arriving at each point
 uniform mat3 worldToModelDirection;           // inverse of modelToWorld's linear part
-uniform float lightVolumeOffset;              // light-volume texels towards the light (see shade)
+uniform float lightVolumeReach;               // light-volume texels towards the light (see shade)
 // Hybrid scenes: meshes between a light and the volume cast hard shadows into it (shadow maps
 // of the meshes from each light; see src/hybrid/shared_lighting.h).
 uniform int meshShadows;
@@ -119,27 +119,35 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
 #if SHADING_SCATTERING
         // Diffuse light is what the light volume says arrives here: tinted by c, dimmed by l.
-        // The light volume stores light at voxel centres; near an opaque or thin structure the
-        // light falls from lit to dark within one voxel, and interpolating across that step draws
-        // rings as the surface crosses the grid. So read it one light-volume texel towards the
-        // light, at q, and attenuate from q back to the sample here, through the data itself:
-        // L(p) = L(q) T(p, q), exact in the continuum, with T resolved at sub-voxel steps.
+        // The light volume stores light at voxel centres, and next to a dense or thin structure
+        // its trilinear interpolation mixes in the dark voxels inside it (rings as the surface
+        // crosses the grid, and too little light on every lit surface). So read it
+        // lightVolumeReach texels towards the light, at q, clear of the structure the sample sits
+        // in, and carry that light back to the sample through the data itself, c and l changing
+        // on the way as in the light volume: L(p) = L(q) T(q -> p), with T at one-voxel steps.
+        // Where the reach leaves the box or passes a point light, the light arrives there whole.
         vec3 lightTexels = vec3(textureSize(lightVolumes[i], 0));
         vec3 towardsLight = worldToModelDirection * l * lightTexels / (boxMax - boxMin);
         float towardsLength = length(towardsLight);
-        vec3 reach = towardsLength > 0.0 ? towardsLight / towardsLength * lightVolumeOffset / lightTexels : vec3(0.0);
-        vec4 arriving = texture(lightVolumes[i], tc + reach);
-        // Sub-steps of half a data voxel, at most 4 (a quarter-resolution light volume gets
-        // one-voxel steps).
-        float reachVoxels = length(reach * vec3(volumeDims));
-        int subSteps = clamp(int(ceil(2.0 * reachVoxels)), 1, 4);
-        float subVoxels = reachVoxels / float(subSteps);
-        float transmitted = 1.0;
-        for (int k = 0; k < subSteps; ++k) {
-            float a = classify(texture(volumeTexture, tc + reach * ((float(k) + 0.5) / float(subSteps))).r).a;
-            transmitted *= 1.0 - correctOpacity(a, subVoxels, 1.0);
+        vec3 reach = towardsLength > 0.0 ? towardsLight / towardsLength * lightVolumeReach / lightTexels : vec3(0.0);
+        vec3 inverseReach = safeInverse(reach);
+        vec3 exits = max(-tc * inverseReach, (1.0 - tc) * inverseReach);
+        float reachShare = min(min(exits.x, exits.y), exits.z);
+        if (lightVector[i].w != 0.0) {
+            float reachWorld = length(mat3(modelToWorld) * (reach * (boxMax - boxMin)));
+            if (reachWorld > 0.0) reachShare = min(reachShare, length(lightVector[i].xyz - worldPosition) / reachWorld);
         }
-        arriving.a *= transmitted;
+        reachShare = clamp(reachShare, 0.0, 1.0);
+        reach *= reachShare;
+        vec4 arriving = reachShare < 1.0 ? vec4(1.0) : texture(lightVolumes[i], tc + reach);
+        float reachVoxels = length(reach * vec3(volumeDims));
+        int subSteps = clamp(int(ceil(reachVoxels)), 1, 16);
+        float subVoxels = reachVoxels / float(subSteps);
+        for (int k = subSteps - 1; k >= 0; --k) {
+            vec4 medium = classify(texture(volumeTexture, tc + reach * ((float(k) + 0.5) / float(subSteps))).r);
+            float a = correctOpacity(medium.a, subVoxels, 1.0);
+            arriving = vec4((1.0 - a) * arriving.rgb + a * medium.rgb, (1.0 - a) * arriving.a);
+        }
         arriving.a *= meshVisibility(i, worldPosition);
         if (physicalModel != 0) {
             // Single scattering: albedo (TF colour) x phase function between the light's travel

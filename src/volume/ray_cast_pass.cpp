@@ -119,15 +119,9 @@ void RayCastPass::run(const RayCastInputs& in) const {
             in.eyeVolume->bind(units::kEyeVolume);
         }
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
-        // One light-volume texel towards the light, then attenuation through the data back to
-        // the sample (shaders/volume/ray_cast.frag, shade()). Measured against the CPU reference
-        // (sss-bench --error-sweep volume, llvmpipe), relRMSE for reaches of 0 / 1 / 1.5 / 2
-        // texels: shell 18.6 / 10.2 / 8.3 / 7.5 %, opaque blobs 24.5 / 13.7 / 11.6 / 10.8 %,
-        // bonsai 10.9 / 11.7 / 12.3 / 12.8 %, bonsai at scale 0.25 20.0 / 15.1 / 15.9 / 16.7 %,
-        // the reference test's translucent blobs 1.65 / 1.21 / 1.27 / 1.49 %. One texel is the
-        // cheapest and best where the light volume was already right. Cost, side by side on
-        // llvmpipe: the bonsai's fixed frame 44 -> 49 ms, at light-volume scale 0.25 34 -> 40 ms.
-        p.set("lightVolumeOffset", 1.0f);
+        // Reads the light volume this many texels towards the light and carries the light back
+        // through the data (shaders/volume/ray_cast.frag, shade()).
+        p.set("lightVolumeReach", options.lightVolumeReach);
         for (size_t i = 0; i < in.lightVolumes.size(); ++i) {
             const int unit = units::kLightVolumes + static_cast<int>(i);
             p.set("lightVolumes[" + std::to_string(i) + "]", unit);

@@ -86,6 +86,8 @@ void validate(const VolumeRenderOptions& o) {
         fail("gradientThreshold", "finite and > 0", o.gradientThreshold);
     if (!(o.lightVolumeScale > 0.0f && o.lightVolumeScale <= 1.0f))
         fail("lightVolumeScale", "in (0, 1]", o.lightVolumeScale);
+    if (!(o.lightVolumeReach >= 0.0f && o.lightVolumeReach <= 16.0f))
+        fail("lightVolumeReach", "in [0, 16]", o.lightVolumeReach);
     if (!(o.anisotropy > -1.0f && o.anisotropy < 1.0f)) fail("anisotropy", "in (-1, 1)", o.anisotropy);
     if (!(o.eyePassStrength >= 0.0f) || !std::isfinite(o.eyePassStrength))
         fail("eyePassStrength", "finite and >= 0", o.eyePassStrength);
