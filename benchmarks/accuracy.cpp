@@ -339,6 +339,42 @@ glm::dvec3 meanRatio(const sss::Image& test, const sss::Image& reference) {
     return t / glm::max(r, glm::dvec3(1e-30));
 }
 
+// A GPU volume image and its median frame time: one untimed frame (compilation, light volume),
+// then three timed ones. With `rebuild` the timed frames alternate the light with its nudged
+// twin, so each one rebuilds the light volume; the image is then rendered with `light` again.
+struct TimedImage {
+    sss::Image image;
+    double medianMs = 0.0;
+};
+
+TimedImage renderVolumeTimed(const sss::Volume& volume, const sss::TransferFunction& tf, const sss::DirectionalLight& light,
+                             const sss::VolumeRenderOptions& options, const sss::Camera& camera, int width, int height,
+                             bool rebuild) {
+    sss::VolumeScatteringRenderer renderer(options);
+    renderer.setVolume(volume);
+    renderer.setTransferFunction(tf);
+    renderer.setLights({light});
+    sss::RenderTarget target(width, height);
+    target.clear({0, 0, 0, 0});
+    renderer.render(camera, target);
+    std::vector<double> times;
+    for (int r = 0; r < 3; ++r) {
+        if (rebuild) renderer.setLights({r % 2 == 0 ? nudged(light) : light});
+        target.clear({0, 0, 0, 0});
+        const auto t0 = std::chrono::steady_clock::now();
+        renderer.render(camera, target);
+        sss::finishGpuWork();
+        times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(times.begin(), times.end());
+    if (rebuild) {
+        renderer.setLights({light});
+        target.clear({0, 0, 0, 0});
+        renderer.render(camera, target);
+    }
+    return {target.readColor(), times[1]};
+}
+
 }  // namespace
 
 AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions& options) {
@@ -427,23 +463,8 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
             o.shading = sss::VolumeShading::Scattering;
             o.anisotropy = kG;
             o.model = physical ? sss::VolumeModel::Physical : sss::VolumeModel::Paper;
-            sss::VolumeScatteringRenderer renderer(o);
-            renderer.setVolume(scene.volume);
-            renderer.setTransferFunction(scene.tf);
-            renderer.setLights({light});
-            sss::RenderTarget target(width, height);
-            target.clear({0, 0, 0, 0});
-            renderer.render(camera, target);  // first frame: light volume built
-            std::vector<double> times;
-            for (int r = 0; r < 3; ++r) {
-                target.clear({0, 0, 0, 0});
-                const auto t0 = std::chrono::steady_clock::now();
-                renderer.render(camera, target);
-                sss::finishGpuWork();
-                times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-            }
-            std::sort(times.begin(), times.end());
-            const sss::Image gpu = target.readColor();
+            const TimedImage timed = renderVolumeTimed(scene.volume, scene.tf, light, o, camera, width, height, false);
+            const sss::Image& gpu = timed.image;
             const double eSingle = sss::computeErrorMetrics(gpu, single.image).relRmse;
             const double eMultiple = sss::computeErrorMetrics(gpu, multiple.image).relRmse;
             const double eSingleScaled = sss::computeErrorMetrics(scaled(gpu, bestScale(gpu, single.image)), single.image).relRmse;
@@ -458,7 +479,7 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
                                    {"rel_rmse_multiple", eMultiple},
                                    {"rel_rmse_multiple_scaled", eMultipleScaled},
                                    {"mean_ratio", {ratio.x, ratio.y, ratio.z}},
-                                   {"ms", times[1]},
+                                   {"ms", timed.medianMs},
                                    {"width", width},
                                    {"height", height},
                                    {"truth_paths_per_pixel", spp},
@@ -467,7 +488,7 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
             md << "| " << scene.name << " | " << method << " | " << fixed(100.0 * eSingle, 1) << " % | "
                << fixed(100.0 * eSingleScaled, 1) << " % | " << fixed(100.0 * eMultiple, 1) << " % | "
                << fixed(100.0 * eMultipleScaled, 1) << " % | " << fixed(ratio.x, 3) << " / " << fixed(ratio.y, 3)
-               << " / " << fixed(ratio.z, 3) << " | " << fixed(times[1], 1) << " |\n";
+               << " / " << fixed(ratio.z, 3) << " | " << fixed(timed.medianMs, 1) << " |\n";
             series[m].points.push_back({double(index), 100.0 * (physical ? eSingle : eSingleScaled)});
             if (!options.imageDir.empty())
                 sss::toDisplay(gpu, {}).savePng(options.imageDir / ("accuracy-volume-" + scene.name + "-" + method + ".png"));
@@ -642,25 +663,8 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                     o.jitter = false;
                     o.earlyTermination = 1.0f;
                 }
-                sss::VolumeScatteringRenderer renderer(o);
-                renderer.setVolume(scene.volume);
-                renderer.setTransferFunction(scene.tf);
-                renderer.setLights({light});
-                sss::RenderTarget target(width, height);
-                target.clear({0, 0, 0, 0});
-                renderer.render(camera, target);  // first frame: the light volume
-                std::vector<double> times;
-                for (int r = 0; r < 3; ++r) {
-                    // A light change each time, so the light volume is rebuilt in every timed frame.
-                    renderer.setLights({r % 2 == 0 ? nudged(light) : light});
-                    target.clear({0, 0, 0, 0});
-                    const auto t0 = std::chrono::steady_clock::now();
-                    renderer.render(camera, target);
-                    sss::finishGpuWork();
-                    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-                }
-                std::sort(times.begin(), times.end());
-                const sss::Image gpu = target.readColor();  // the last frame used `light` again
+                const TimedImage timed = renderVolumeTimed(scene.volume, scene.tf, light, o, camera, width, height, true);
+                const sss::Image& gpu = timed.image;
                 const double e = sss::computeErrorMetrics(gpu, reference).relRmse;
                 const glm::dvec3 ratio = meanRatio(gpu, reference);
                 const std::string settings = exactRay ? "exact ray" : "default";
@@ -672,12 +676,12 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                                        {"settings", settings},
                                        {"rel_rmse", e},
                                        {"mean_ratio", {ratio.x, ratio.y, ratio.z}},
-                                       {"ms", times[1]},
+                                       {"ms", timed.medianMs},
                                        {"width", width},
                                        {"height", height}});
                 md << "| " << scene.name << " | " << modelName << " | " << settings << " | " << fixed(100.0 * e, 1)
                    << " % | " << fixed(ratio.x, 3) << " / " << fixed(ratio.y, 3) << " / " << fixed(ratio.z, 3) << " | "
-                   << fixed(times[1], 1) << " |\n";
+                   << fixed(timed.medianMs, 1) << " |\n";
                 if (!exactRay) series[physical ? 1 : 0].points.push_back({double(index), 100.0 * e});
                 if (!options.imageDir.empty()) {
                     std::filesystem::create_directories(options.imageDir);
