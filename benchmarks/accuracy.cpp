@@ -339,6 +339,20 @@ glm::dvec3 meanRatio(const sss::Image& test, const sss::Image& reference) {
     return t / glm::max(r, glm::dvec3(1e-30));
 }
 
+// The view both volume accuracy modes share: from 30 degrees aside and 20 above, framed tightly,
+// one directional light from above, behind and to the right of the viewer.
+sss::Camera volumeAccuracyCamera(const sss::Volume& volume, int width, int height) {
+    sss::Camera camera;
+    camera.setYaw(30.0f);
+    camera.setPitch(20.0f);
+    camera.frameTight(volume.worldBounds(), float(width) / float(height));
+    return camera;
+}
+
+sss::DirectionalLight volumeAccuracyLight() {
+    return {.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.4f))};
+}
+
 // A GPU volume image and its median frame time: one untimed frame (compilation, light volume),
 // then three timed ones. With `rebuild` the timed frames alternate the light with its nudged
 // twin, so each one rebuilds the light volume; the image is then rendered with `light` again.
@@ -427,11 +441,8 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
     int index = 0;
     for (const Scene& scene : scenes) {
         ++index;
-        sss::Camera camera;
-        camera.setYaw(30.0f);
-        camera.setPitch(20.0f);
-        camera.frameTight(scene.volume.worldBounds(), float(width) / float(height));
-        const sss::DirectionalLight light{.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.4f))};
+        const sss::Camera camera = volumeAccuracyCamera(scene.volume, width, height);
+        const sss::DirectionalLight light = volumeAccuracyLight();
         sss::VolumePathTracerOptions po;
         po.samplesPerPixel = spp;
         po.g = kG;
@@ -626,11 +637,8 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
     int index = 0;
     for (const Scene& scene : scenes) {
         ++index;
-        sss::Camera camera;
-        camera.setYaw(30.0f);
-        camera.setPitch(20.0f);
-        camera.frameTight(scene.volume.worldBounds(), float(width) / float(height));
-        const sss::DirectionalLight light{.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.4f))};
+        const sss::Camera camera = volumeAccuracyCamera(scene.volume, width, height);
+        const sss::DirectionalLight light = volumeAccuracyLight();
         for (const sss::VolumeModel model : {sss::VolumeModel::Paper, sss::VolumeModel::Physical}) {
             const bool physical = model == sss::VolumeModel::Physical;
             const std::string modelName = physical ? "physical" : "paper";
