@@ -418,7 +418,7 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
     std::ostringstream md;
     md << "# Volume accuracy: light volume, physical single scattering and the GPU path tracer against path-traced truth\n\n"
        << width << " x " << height << ", one directional light (intensity 1), Henyey-Greenstein g = " << kG
-       << ", GPU at default options (step 1, jitter, early termination 0.99), no anti-aliasing, "
+       << ", GPU at default options (step 0.5, pre-integrated, jitter, early termination 0.99), no anti-aliasing, "
        << options.renderer << ". Truth: renderVolumePathTraced, " << spp
        << " paths per pixel, single scattering and full multiple scattering. relRMSE over all pixels (black "
           "background); 'scaled': after the best single factor (the paper model has no physical units).\n\n"
@@ -604,9 +604,10 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
 // The light volume against its own model, evaluated exactly: the GPU image of each volume model
 // (paper: ambient 0, diffuse 1, so only the light volume's light shows; physical: single
 // scattering) against the CPU reference of the same model (sss/volume_reference.h: shadow rays
-// at quarter-voxel steps instead of the light volume). Two GPU settings: the defaults (step 1,
-// jitter, early termination 0.99) and an exact ray (step 0.25, no jitter), which leaves the
-// light volume as the only difference.
+// at quarter-voxel steps instead of the light volume). Three GPU settings: the defaults (step
+// 0.5, pre-integrated, jitter, early termination 0.99), the thesis's ray casting (step 1,
+// post-classification) and an exact ray (step 0.25, no jitter), which leaves the light volume as
+// the only difference.
 AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions& options) {
     AccuracyReport report;
     report.json = nlohmann::ordered_json::array();
@@ -630,8 +631,10 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
     md << "# The light volume against its own model, evaluated with shadow rays\n\n"
        << width << " x " << height << ", one directional light, g = " << kG << ", " << options.renderer
        << ". Reference: the CPU reference of the same model (view step 0.25 voxel, shadow rays at 0.25 voxel). "
-          "Paper model with ambient 0 and diffuse 1. 'default': GPU defaults (step 1, jitter, early termination "
-          "0.99); 'exact ray': step 0.25, no jitter, no early termination.\n\n"
+          "Paper model with ambient 0 and diffuse 1. 'default': GPU defaults (step 0.5, pre-integrated "
+          "classification, jitter, early termination 0.99); 'thesis': the thesis's ray casting (step 1, "
+          "post-classification, jitter); 'exact ray': step 0.25, post-classification, no jitter, no early "
+          "termination.\n\n"
        << "| scene | model | GPU settings | relRMSE | mean ratio R / G / B | ms |\n|---|---|---|---:|---|---:|\n";
     PlotSeries series[2] = {{"paper light volume", {}, 0xd62728, false}, {"physical single", {}, 0x1f77b4, false}};
     int index = 0;
@@ -659,8 +662,10 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                     return sss::renderVolumeReference(scene.volume, scene.tf, 256, glm::mat4(1.0f), {light}, camera,
                                                       width, height, ro);
                 });
-            for (const bool exactRay : {false, true}) {
-                sss::VolumeRenderOptions o;
+            for (const std::string settings : {"default", "thesis", "exact ray"}) {
+                const bool exactRay = settings == "exact ray";
+                sss::VolumeRenderOptions o =
+                    settings == "thesis" ? thesisVolumeOptions(sss::VolumeShading::Scattering) : sss::VolumeRenderOptions{};
                 o.shading = sss::VolumeShading::Scattering;
                 o.model = model;
                 o.anisotropy = kG;
@@ -668,6 +673,7 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                 o.diffuse = 1.0f;
                 if (exactRay) {
                     o.stepSize = 0.25f;
+                    o.preintegration = false;
                     o.jitter = false;
                     o.earlyTermination = 1.0f;
                 }
@@ -675,7 +681,6 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                 const sss::Image& gpu = timed.image;
                 const double e = sss::computeErrorMetrics(gpu, reference).relRmse;
                 const glm::dvec3 ratio = meanRatio(gpu, reference);
-                const std::string settings = exactRay ? "exact ray" : "default";
                 std::cerr << "sss-bench: light volume " << scene.name << " " << modelName << " " << settings
                           << ": relRMSE " << e << "\n";
                 report.json.push_back({{"scene", scene.name},
@@ -690,11 +695,11 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                 md << "| " << scene.name << " | " << modelName << " | " << settings << " | " << fixed(100.0 * e, 1)
                    << " % | " << fixed(ratio.x, 3) << " / " << fixed(ratio.y, 3) << " / " << fixed(ratio.z, 3) << " | "
                    << fixed(timed.medianMs, 1) << " |\n";
-                if (!exactRay) series[physical ? 1 : 0].points.push_back({double(index), 100.0 * e});
+                if (settings == "default") series[physical ? 1 : 0].points.push_back({double(index), 100.0 * e});
                 if (!options.imageDir.empty()) {
                     std::filesystem::create_directories(options.imageDir);
                     sss::toDisplay(gpu, {}).savePng(options.imageDir / ("light-volume-" + scene.name + "-" + modelName + "-" +
-                                                                        (exactRay ? "exact" : "default") + ".png"));
+                                                                        (exactRay ? "exact" : settings) + ".png"));
                     if (exactRay)
                         sss::toDisplay(reference, {}).savePng(options.imageDir /
                                                               ("light-volume-" + scene.name + "-" + modelName + "-reference.png"));

@@ -143,6 +143,9 @@ sss::DirectionalLight keyLight(const sss::Camera& camera);
 /// `light` turned 3 degrees about +y: alternating the two forces a "change" frame (every
 /// view-independent pass reruns) at almost the same image.
 sss::DirectionalLight nudged(const sss::DirectionalLight& light);
+/// The thesis's ray casting, which its tables measured: step 1 voxel, post-classification (the
+/// library's defaults since are step 0.5 with pre-integration).
+sss::VolumeRenderOptions thesisVolumeOptions(sss::VolumeShading shading);
 
 /// Times `renderer` (a mesh or volume renderer) in two ways: "change" frames alternate `key` and
 /// its nudged twin, so every view-independent pass reruns; "fixed" frames change nothing.

@@ -141,3 +141,11 @@ sss::DirectionalLight nudged(const sss::DirectionalLight& light) {
                                 glm::vec4(light.direction, 0.0f));
     return other;
 }
+
+sss::VolumeRenderOptions thesisVolumeOptions(sss::VolumeShading shading) {
+    sss::VolumeRenderOptions o;
+    o.shading = shading;
+    o.stepSize = 1.0f;
+    o.preintegration = false;
+    return o;
+}

@@ -46,9 +46,8 @@ void runTable54(BenchmarkContext& bench) {
         renderer.setLights({key});
         const std::string id = std::string(kTable) + "-" + model;
         auto withShading = [&](sss::VolumeShading shading) {
-            sss::VolumeRenderOptions o;  // library defaults: full-resolution light volume, step 1 voxel
-            o.shading = shading;
-            renderer.setOptions(o);
+            // The thesis's configuration (full-resolution light volume, step 1, post-classification).
+            renderer.setOptions(thesisVolumeOptions(shading));
         };
         withShading(sss::VolumeShading::Scattering);
         const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, id);

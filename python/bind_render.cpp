@@ -323,9 +323,10 @@ void bindOptions(py::module_& m) {
     using VO = sss::VolumeRenderOptions;
     Struct<VO>(m, "VolumeRenderOptions", "Options of the volume renderer (see sss::VolumeRenderOptions for each range).")
         .field("shading", &VO::shading, "VolumeShading (default EMISSION_ABSORPTION)")
-        .field("step_size", &VO::stepSize, "ray step in voxels, > 0 (default 1)")
+        .field("step_size", &VO::stepSize, "ray step in voxels, > 0 (default 0.5)")
         .field("early_termination", &VO::earlyTermination, "in (0, 1] (default 0.99)")
         .field("jitter", &VO::jitter, "per-pixel ray offset (default on)")
+        .field("preintegration", &VO::preintegration, "pre-integrated classification (default on)")
         .field("empty_space_skipping", &VO::emptySpaceSkipping, "(default on; same image)")
         .field("transfer_function_entries", &VO::transferFunctionEntries, "2..65536 (default 256)")
         .field("ambient", &VO::ambient, "(default 0.25)")

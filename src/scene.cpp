@@ -60,6 +60,7 @@ void fields(VolumeRenderOptions& o, F&& f) {
     f("stepSize", o.stepSize);
     f("earlyTermination", o.earlyTermination);
     f("jitter", o.jitter);
+    f("preintegration", o.preintegration);
     f("emptySpaceSkipping", o.emptySpaceSkipping);
     f("transferFunctionEntries", o.transferFunctionEntries);
     f("ambient", o.ambient);

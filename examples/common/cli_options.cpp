@@ -208,6 +208,13 @@ void addVolumeOptions(CLI::App& app, sss::VolumeRenderOptions& options) {
         ->group(group);
     app.add_flag_callback("--no-jitter", [&options] { options.jitter = false; }, "no per-pixel ray offset")
         ->group(group);
+    app.add_flag_callback("--preintegration", [&options] { options.preintegration = true; },
+                          "pre-integrated classification: each sample shades the segment since the previous one "
+                          "with the transfer function integrated over it (catches thin structures between samples)")
+        ->group(group);
+    app.add_flag_callback("--no-preintegration", [&options] { options.preintegration = false; },
+                          "classify each sample alone (the thesis's post-classification)")
+        ->group(group);
     app.add_flag_callback("--no-skipping", [&options] { options.emptySpaceSkipping = false; },
                           "no empty-space skipping (same image, slower)")
         ->group(group);

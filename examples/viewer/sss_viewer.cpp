@@ -808,6 +808,11 @@ private:
             }
         }
         m_volumeDirty |= ImGui::SliderFloat("ray step (voxels)", &m_volumeOptions.stepSize, 0.25f, 4.0f, "%.2f");
+        m_volumeDirty |= ImGui::Checkbox("pre-integrated classification", &m_volumeOptions.preintegration);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("on: each sample integrates the transfer function over the segment since the previous "
+                              "one (thin structures between samples show)\noff: the transfer function at the sample "
+                              "alone (the thesis)");
         if (m_volumeScattering) {
             m_volumeDirty |= ImGui::SliderFloat("light-volume scale", &m_volumeOptions.lightVolumeScale, 0.1f, 1.0f,
                                                 "%.2f");

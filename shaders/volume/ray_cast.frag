@@ -4,6 +4,7 @@
 //   SHADING_SCATTERING 0|1 : light from the light volumes (chromaticity c, intensity l)
 //   EMPTY_SPACE_SKIPPING 0|1 : jump over bricks the transfer function makes fully transparent
 //   EYE_PASS 0|1           : add the eye pass's blurred light from behind (scattering only)
+//   PREINTEGRATED 0|1      : classify the segment between samples from the pre-integrated table
 //   LIGHT_COUNT n          : the number of lights, fixed at compile time so the loop over the
 //                            light volumes indexes its sampler array with constants (dynamic
 //                            indices make software rasterisers fetch from every array element)
@@ -68,6 +69,7 @@ float meshVisibility(int light, vec3 worldPosition) {
     return window.z - meshShadowBias > texture(meshShadowDepth, vec3(window.xy, float(light))).r ? 0.0 : 1.0;
 }
 #endif
+
 
 layout(location = 0) out vec4 fragColor;   // premultiplied colour, alpha = opacity
 
@@ -183,6 +185,65 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
 }
 #endif
 
+#if PREINTEGRATED
+// Texel (front value, back value) of one step-long segment over which the data goes linearly
+// from front to back (src/volume/preintegration.h): layer 0 its premultiplied colour and
+// opacity, layer 1 where it adds its light (fraction from its front) x opacity.
+uniform sampler2DArray preintegrationTable;
+uniform float preintegrationSize;
+
+struct Segment {
+    vec4 premultiplied;
+    float depth;  // where the segment adds its light on average, as a fraction from its front
+};
+
+Segment classifySegment(float front, float back) {
+    vec2 x = clamp(vec2(front, back) * valueScaleOffset.x + valueScaleOffset.y, 0.0, 1.0);
+    vec2 uv = (x * (preintegrationSize - 1.0) + 0.5) / preintegrationSize;
+    vec4 c = texture(preintegrationTable, vec3(uv, 0.0));
+    float depth = texture(preintegrationTable, vec3(uv, 1.0)).r;
+    return Segment(c, c.a > 0.0 ? clamp(depth / c.a, 0.0, 1.0) : 0.5);
+}
+
+// The same for a homogeneous stretch of optical depth tau (meanContributionDepth in C++).
+float meanContributionDepth(float tau) {
+    return tau < 0.1 ? 0.5 - tau / 12.0 : 1.0 / tau - 1.0 / (exp(min(tau, 80.0)) - 1.0);
+}
+
+// A stretch shorter than a step (where the ray enters or leaves the medium) classified by one
+// value over its `voxels`.
+Segment pointSegment(float value, float voxels) {
+    vec4 tf = classify(value);
+    float a = correctOpacity(tf.a, voxels, 1.0);
+    float tau = -log(max(1.0 - min(tf.a, 1.0), 1e-7)) * voxels;
+    return Segment(vec4(tf.rgb * a, a), meanContributionDepth(tau));
+}
+#endif
+
+// Adds one sample (point classification) or segment (pre-integrated) front to back: colour
+// `albedo`, opacity `a`, shaded at p.
+void composite(vec3 p, vec3 albedo, float a, inout vec3 color, inout float alpha) {
+#if SHADING_GRADIENT || SHADING_SCATTERING
+    vec3 c = shade(p, toTexture(p), albedo);
+#else
+    vec3 c = albedo;
+#endif
+    color += (1.0 - alpha) * a * c;
+    alpha += (1.0 - alpha) * a;
+}
+
+#if PREINTEGRATED
+// A segment that ends at `end` and is `length` long (model units) along the ray. Shading goes
+// where the segment adds its light, not at its end: in dense material the end lies in the
+// shadow of the very surface the segment holds.
+void compositeSegment(Segment segment, vec3 end, float length, vec3 direction, inout vec3 color, inout float alpha) {
+    float a = segment.premultiplied.a;
+    if (a <= 0.0) return;
+    // The segment's mean colour, weighted by what each part of it adds.
+    composite(end - (1.0 - segment.depth) * length * direction, segment.premultiplied.rgb / a, a, color, alpha);
+}
+#endif
+
 void main() {
     Ray ray = pixelRay(ndc);
     vec2 span = intersectBox(ray, boxMin, boxMax);
@@ -198,16 +259,43 @@ void main() {
     float alpha = 0.0;
     if (span.x < span.y) {
         float tFirst = span.x + (jitterEnabled != 0 ? fract(pixelJitter(gl_FragCoord.xy) + jitterShift) : 0.5) * stepLength;
+#if PREINTEGRATED
+        // Each sample stands for the segment from the previous sample to it; the stretches before
+        // the first sample and after the last are classified by one value each. segmentOpen: the
+        // previous sample was taken, and `previous` is its value.
+        float previous = 0.0;
+        bool segmentOpen = false;
+#endif
         // Sample i sits at tFirst + i * step: computed from i, not accumulated, so a skip lands
         // on exactly the positions the unskipped loop would reach.
         for (int i = 0; i < maxSteps; ++i) {
             float t = tFirst + float(i) * stepLength;
-            if (t >= span.y) break;
+            if (t >= span.y) {
+#if PREINTEGRATED
+                // The rest of the ray after the last sample (the whole ray if it is shorter than
+                // the first offset).
+                float tailStart = max(t - stepLength, span.x);
+                float tail = span.y - tailStart;
+                vec3 tailEnd = ray.origin + span.y * ray.direction;
+                if (tail > 0.0)
+                    compositeSegment(pointSegment(texture(volumeTexture, toTexture(tailEnd - 0.5 * tail * ray.direction)).r,
+                                                  tail / stepLength * opacityExponent),
+                                     tailEnd, tail, ray.direction, color, alpha);
+#endif
+                break;
+            }
             vec3 p = ray.origin + t * ray.direction;
             vec3 tc = toTexture(p);
 #if EMPTY_SPACE_SKIPPING
             ivec3 brick = clamp(ivec3(tc * vec3(volumeDims)) / brickVoxels, ivec3(0), textureSize(occupancy, 0) - 1);
-            if (texelFetch(occupancy, brick, 0).r == 0.0) {
+            bool emptyBrick = texelFetch(occupancy, brick, 0).r == 0.0;
+#if PREINTEGRATED
+            // The segment from the last sample taken into an empty brick may still hold medium at
+            // its start: take this one sample to close it, and skip from the next.
+            if (emptyBrick && !segmentOpen) {
+#else
+            if (emptyBrick) {
+#endif
                 // Leave the brick in whole steps, so the samples taken are exactly those a caster
                 // without skipping would take (and the skipped ones would all be transparent).
                 vec3 brickSize = vec3(brickVoxels) / vec3(volumeDims) * (boxMax - boxMin);
@@ -220,17 +308,30 @@ void main() {
             }
 #endif
             float value = texture(volumeTexture, tc).r;
+#if PREINTEGRATED
+            if (segmentOpen) {
+                compositeSegment(classifySegment(previous, value), p, stepLength, ray.direction, color, alpha);
+            } else if (i == 0) {
+                // The ray's first stretch in the box, shorter than a step.
+                compositeSegment(pointSegment(value, (t - span.x) / stepLength * opacityExponent), p, t - span.x,
+                                 ray.direction, color, alpha);
+            } else {
+                // Just out of skipped bricks: the previous position was not sampled.
+                float before = texture(volumeTexture, toTexture(p - stepLength * ray.direction)).r;
+                compositeSegment(classifySegment(before, value), p, stepLength, ray.direction, color, alpha);
+            }
+            previous = value;
+#if EMPTY_SPACE_SKIPPING
+            segmentOpen = !emptyBrick;
+#else
+            segmentOpen = true;
+#endif
+#else
             vec4 tf = classify(value);
             if (tf.a <= 0.0) continue;
             // Opacity correction: the TF opacity is defined per voxel length.
-            float a = correctOpacity(tf.a, opacityExponent, 1.0);
-#if SHADING_GRADIENT || SHADING_SCATTERING
-            vec3 c = shade(p, tc, tf.rgb);
-#else
-            vec3 c = tf.rgb;
+            composite(p, tf.rgb, correctOpacity(tf.a, opacityExponent, 1.0), color, alpha);
 #endif
-            color += (1.0 - alpha) * a * c;
-            alpha += (1.0 - alpha) * a;
             if (alpha >= earlyTermination) break;
         }
     }

@@ -19,6 +19,7 @@ inline constexpr int kLightVolumes = 4;   // 4..11: lightVolumes[MAX_LIGHTS]
 inline constexpr int kMeshShadowDepth = 12;
 inline constexpr int kEyeVolume = 13;
 inline constexpr int kGradientVolume = 14;
+inline constexpr int kPreintegration = 15;
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

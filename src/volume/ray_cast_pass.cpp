@@ -26,12 +26,13 @@ bool usesEyePass(const VolumeRenderOptions& o) {
 }
 
 RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass,
-                         bool gradientVolume)
+                         bool gradientVolume, bool preintegration)
     : m_shading(shading),
       m_emptySpaceSkipping(emptySpaceSkipping),
       m_lightCount(lightCount),
       m_eyePass(eyePass),
       m_gradientVolume(gradientVolume),
+      m_preintegration(preintegration),
       m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
                                   {{"SHADING_GRADIENT", usesGradient(shading) ? "1" : "0"},
@@ -39,7 +40,8 @@ RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::si
                                    {"EMPTY_SPACE_SKIPPING", emptySpaceSkipping ? "1" : "0"},
                                    {"LIGHT_COUNT", std::to_string(lightCount)},
                                    {"EYE_PASS", eyePass ? "1" : "0"},
-                                   {"GRADIENT_VOLUME", gradientVolume ? "1" : "0"}})),
+                                   {"GRADIENT_VOLUME", gradientVolume ? "1" : "0"},
+                                   {"PREINTEGRATED", preintegration ? "1" : "0"}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const RayCastInputs& in) const {
@@ -133,6 +135,11 @@ void RayCastPass::run(const RayCastInputs& in) const {
     in.transferFunction.bind(1);
     in.sceneDepth.bind(2);
     if (m_emptySpaceSkipping) in.occupancy.bind(3);
+    if (m_preintegration && in.preintegration) {
+        p.set("preintegrationTable", units::kPreintegration);
+        p.set("preintegrationSize", static_cast<float>(in.preintegration->size().x));
+        in.preintegration->bind(units::kPreintegration);
+    }
     // Premultiplied "over": the volume's colour in front of what the target already holds.
     drawPremultipliedOver(m_program, m_emptyVertexArray);
 }

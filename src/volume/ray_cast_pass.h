@@ -32,6 +32,7 @@ struct RayCastInputs {
     const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights
     const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
+    const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const glm::mat4& model;
     const std::vector<Light>& lights;
     const VolumeRenderOptions& options;
@@ -42,12 +43,13 @@ struct RayCastInputs {
 class RayCastPass {
 public:
     RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass,
-                bool gradientVolume);
-    /// Whether this pass was built for these options, lights and gradient source (programs are
-    /// per variant).
-    bool matches(const VolumeRenderOptions& o, std::size_t lightCount, bool gradientVolume) const {
+                bool gradientVolume, bool preintegration);
+    /// Whether this pass was built for these options, lights, gradient source and classification
+    /// (programs are per variant).
+    bool matches(const VolumeRenderOptions& o, std::size_t lightCount, bool gradientVolume, bool preintegration) const {
         return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping && lightCount == m_lightCount &&
-               usesEyePass(o) == m_eyePass && gradientVolume == m_gradientVolume;
+               usesEyePass(o) == m_eyePass && gradientVolume == m_gradientVolume &&
+               preintegration == m_preintegration;
     }
     /// Draws into the bound target.
     void run(const RayCastInputs& in) const;
@@ -58,6 +60,7 @@ private:
     std::size_t m_lightCount;
     bool m_eyePass;
     bool m_gradientVolume;
+    bool m_preintegration;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
 };

@@ -14,6 +14,7 @@
 #include "volume/eye_pass.h"
 #include "volume/light_volume_pass.h"
 #include "volume/path_trace_pass.h"
+#include "volume/preintegration.h"
 #include "volume/ray_cast_pass.h"
 #include "volume/renderer_access.h"
 
@@ -121,6 +122,35 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<detail::GradientVolumePass> gradientPass;
     std::optional<gl::Texture> gradientVolume;  // for the current data, built on first use
     bool gradientVolumeFailed = false;          // did not fit: gradients on the fly for this data
+    // Pre-integrated classification: the table and the (TF revision, entries, step) it is for.
+    gl::Texture preintegrationTable;
+    std::optional<std::tuple<std::uint64_t, int, float>> preintegrationKey;
+
+    // Built with the data and transfer function (and when the step changes), not at the first
+    // frame, so its memory is taken when the data is set up. If it does not fit the GPU, a
+    // warning says so and rays classify each sample alone until the inputs change.
+    void updatePreintegration() {
+        if (!options.preintegration || !volume) return;
+        const auto key = std::make_tuple(transferFunction.revision(), options.transferFunctionEntries, options.stepSize);
+        if (preintegrationKey == key) return;
+        preintegrationKey = key;
+        const auto start = std::chrono::steady_clock::now();
+        const int size = detail::preintegrationSize(options.transferFunctionEntries);
+        preintegrationTable = {};  // free the old table before allocating its successor
+        try {
+            preintegrationTable = detail::uploadPreintegration(
+                detail::preintegrate(transferFunction.table(options.transferFunctionEntries), size, options.stepSize),
+                size);
+        } catch (const Error& e) {
+            if (e.kind() != ErrorKind::GpuLimit) throw;
+            log(LogLevel::Warning, std::string(e.what()) + "; each sample is classified alone instead (no pre-integration)");
+            return;
+        }
+        stats.record("preintegration",
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    // Whether the ray caster integrates segments: asked for and the table fitted.
+    bool preintegrated() const { return options.preintegration && static_cast<bool>(preintegrationTable); }
 
     // Whether the ray caster reads precomputed gradients; builds them once per data set.
     bool updateGradientVolume() {
@@ -262,6 +292,7 @@ struct VolumeScatteringRenderer::Impl {
         }
         transferFunctionTable.upload(GL_RGBA, GL_FLOAT, table.data());
         if (occupancy) occupancy->update(table, volume->valueScaleOffset);
+        updatePreintegration();
     }
 };
 
@@ -303,6 +334,7 @@ void VolumeScatteringRenderer::setOptions(const VolumeRenderOptions& options) {
     const bool tableChanged = options.transferFunctionEntries != m_impl->options.transferFunctionEntries;
     m_impl->options = options;
     if (tableChanged) m_impl->uploadTransferFunction();
+    m_impl->updatePreintegration();  // the step or the switch may have changed
 }
 
 const VolumeRenderOptions& VolumeScatteringRenderer::options() const { return m_impl->options; }
@@ -326,9 +358,11 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     // The eye pass is the paper's second-order term; the physical model leaves it out.
     const bool eyePass = detail::usesEyePass(m_impl->options);
     const bool gradients = m_impl->updateGradientVolume();
-    if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size(), gradients))
+    m_impl->updatePreintegration();
+    const bool preintegrated = m_impl->preintegrated();
+    if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size(), gradients, preintegrated))
         m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping, m_impl->lights.size(),
-                                eyePass, gradients);
+                                eyePass, gradients, preintegrated);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
     const auto start = std::chrono::steady_clock::now();
@@ -343,6 +377,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .meshShadows = r.meshShadows,
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
+                    .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .model = r.model,
                     .lights = r.lights,
                     .options = r.options,

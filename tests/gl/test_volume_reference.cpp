@@ -272,7 +272,12 @@ TEST_CASE("opaque structures: the light volume draws no rings (error against the
     ro.shading = ReferenceShading::Scattering;
     ro.background = glm::dvec4(kBackground);
     const Image reference = renderVolumeReference(volume, opaque, 256, glm::mat4(1.0f), lights, camera, w, h, ro);
-    VolumeRenderOptions options{.shading = VolumeShading::Scattering, .stepSize = 0.5f, .earlyTermination = 1.0f};
+    // Post-classification, as when the bound was measured: this test is about the light volume.
+    // (Pre-integrated, step 0.5 measures 0.179: against a reference at 1/32 voxel, both
+    // classifications at step 0.125 measure 0.20-0.21, so what is left is the light volume's own
+    // error on surfaces of opacity 1, not the ray's sampling.)
+    VolumeRenderOptions options{
+        .shading = VolumeShading::Scattering, .stepSize = 0.5f, .earlyTermination = 1.0f, .preintegration = false};
     VolumeScatteringRenderer renderer(options);
     renderer.setVolume(volume);
     renderer.setTransferFunction(opaque);
