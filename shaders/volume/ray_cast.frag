@@ -261,26 +261,29 @@ void main() {
         float tFirst = span.x + (jitterEnabled != 0 ? fract(pixelJitter(gl_FragCoord.xy) + jitterShift) : 0.5) * stepLength;
 #if PREINTEGRATED
         // Each sample stands for the segment from the previous sample to it; the stretches before
-        // the first sample and after the last are classified by one value each. segmentOpen: the
+        // the first sample and after the last are classified by one value each (outside the
+        // loop: inside it, llvmpipe ran the whole ray twice as slowly). segmentOpen: the
         // previous sample was taken, and `previous` is its value.
-        float previous = 0.0;
-        bool segmentOpen = false;
+        float firstEnd = min(tFirst, span.y);
+        vec3 firstPoint = ray.origin + firstEnd * ray.direction;
+        float previous = texture(volumeTexture, toTexture(firstPoint)).r;
+        compositeSegment(pointSegment(previous, (firstEnd - span.x) / stepLength * opacityExponent), firstPoint,
+                         firstEnd - span.x, ray.direction, color, alpha);
+        bool segmentOpen = true;
+        const int firstStep = 1;
+        bool reachedEnd = false;  // the loop left the ray at its end (not by early termination)
+        float tEnd = 0.0;         // where: the first sample position at or past span.y
+#else
+        const int firstStep = 0;
 #endif
         // Sample i sits at tFirst + i * step: computed from i, not accumulated, so a skip lands
         // on exactly the positions the unskipped loop would reach.
-        for (int i = 0; i < maxSteps; ++i) {
+        for (int i = firstStep; i < maxSteps; ++i) {
             float t = tFirst + float(i) * stepLength;
             if (t >= span.y) {
 #if PREINTEGRATED
-                // The rest of the ray after the last sample (the whole ray if it is shorter than
-                // the first offset).
-                float tailStart = max(t - stepLength, span.x);
-                float tail = span.y - tailStart;
-                vec3 tailEnd = ray.origin + span.y * ray.direction;
-                if (tail > 0.0)
-                    compositeSegment(pointSegment(texture(volumeTexture, toTexture(tailEnd - 0.5 * tail * ray.direction)).r,
-                                                  tail / stepLength * opacityExponent),
-                                     tailEnd, tail, ray.direction, color, alpha);
+                reachedEnd = true;
+                tEnd = t;
 #endif
                 break;
             }
@@ -309,17 +312,9 @@ void main() {
 #endif
             float value = texture(volumeTexture, tc).r;
 #if PREINTEGRATED
-            if (segmentOpen) {
-                compositeSegment(classifySegment(previous, value), p, stepLength, ray.direction, color, alpha);
-            } else if (i == 0) {
-                // The ray's first stretch in the box, shorter than a step.
-                compositeSegment(pointSegment(value, (t - span.x) / stepLength * opacityExponent), p, t - span.x,
-                                 ray.direction, color, alpha);
-            } else {
-                // Just out of skipped bricks: the previous position was not sampled.
-                float before = texture(volumeTexture, toTexture(p - stepLength * ray.direction)).r;
-                compositeSegment(classifySegment(before, value), p, stepLength, ray.direction, color, alpha);
-            }
+            // Just out of skipped bricks, the previous position was not sampled.
+            if (!segmentOpen) previous = texture(volumeTexture, toTexture(p - stepLength * ray.direction)).r;
+            compositeSegment(classifySegment(previous, value), p, stepLength, ray.direction, color, alpha);
             previous = value;
 #if EMPTY_SPACE_SKIPPING
             segmentOpen = !emptyBrick;
@@ -334,6 +329,17 @@ void main() {
 #endif
             if (alpha >= earlyTermination) break;
         }
+#if PREINTEGRATED
+        // The rest of the ray after its last sample, if the loop reached the ray's end.
+        float tailStart = max(tEnd - stepLength, span.x);
+        float tail = span.y - tailStart;
+        if (reachedEnd && tail > 0.0 && alpha < earlyTermination) {
+            vec3 tailEnd = ray.origin + span.y * ray.direction;
+            compositeSegment(pointSegment(texture(volumeTexture, toTexture(tailEnd - 0.5 * tail * ray.direction)).r,
+                                          tail / stepLength * opacityExponent),
+                             tailEnd, tail, ray.direction, color, alpha);
+        }
+#endif
     }
     fragColor = vec4(color, alpha);
 }
