@@ -231,10 +231,12 @@ def main():
             print(f"vtk_peer: VTK {vtk_version} has no volumetric scattering; scattering skipped "
                   "(benchmarks/vtk-peer.sh --paraview uses ParaView 5.11's VTK 9.2)", file=sys.stderr)
             continue
+        # VTK's mapper classifies each sample alone: libsss does the same here (its default,
+        # pre-integration, costs 1.3x in emission-absorption at equal step and is more accurate).
         scene = {
             "version": 1,
             "volumes": [{"source": os.path.abspath(args.volume), "transferFunction": args.tf,
-                         "options": {"shading": mode, "stepSize": args.step}}],
+                         "options": {"shading": mode, "stepSize": args.step, "preintegration": False}}],
             "lights": [{"type": "directional", "direction": [-1, -1, -1]}],
             "camera": {"yaw": args.yaw, "pitch": args.pitch, "fovY": args.fov, "target": list(target),
                        "distance": distance},

@@ -70,7 +70,6 @@ float meshVisibility(int light, vec3 worldPosition) {
 }
 #endif
 
-
 layout(location = 0) out vec4 fragColor;   // premultiplied colour, alpha = opacity
 
 vec3 toTexture(vec3 p) { return (p - boxMin) / (boxMax - boxMin); }

@@ -130,7 +130,7 @@ struct VolumeScatteringRenderer::Impl {
     // frame, so its memory is taken when the data is set up. If it does not fit the GPU, a
     // warning says so and rays classify each sample alone until the inputs change.
     void updatePreintegration() {
-        if (!options.preintegration || !volume) return;
+        if (!options.preintegration || options.multipleScattering || !volume) return;  // the path tracer needs none
         const auto key = std::make_tuple(transferFunction.revision(), options.transferFunctionEntries, options.stepSize);
         if (preintegrationKey == key) return;
         preintegrationKey = key;
@@ -150,7 +150,9 @@ struct VolumeScatteringRenderer::Impl {
                      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
     // Whether the ray caster integrates segments: asked for and the table fitted.
-    bool preintegrated() const { return options.preintegration && static_cast<bool>(preintegrationTable); }
+    bool preintegrated() const {
+        return options.preintegration && !options.multipleScattering && static_cast<bool>(preintegrationTable);
+    }
 
     // Whether the ray caster reads precomputed gradients; builds them once per data set.
     bool updateGradientVolume() {
