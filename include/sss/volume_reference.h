@@ -68,7 +68,8 @@
 /// samples at t0 + (k + 0.5) h while t < t1 with full-step opacity for every sample (so the
 /// last piece may be too long or missing by up to h/2), uses float arithmetic and the
 /// driver's filtering precision, stops rays at earlyTermination (default 0.99), and, in the
-/// scattering modes, reads c and l from a light volume (slice propagation, cone-blurred c).
+/// scattering modes, reads c and l from a light volume (slice propagation, c blurred over a cone
+/// unless chromaticityConeScale models that).
 
 #include "sss/camera.h"
 #include "sss/image.h"
@@ -113,7 +114,20 @@ struct VolumeReferenceOptions {
     /// (no ambient, no chromaticity c; w_l towards the light, v towards the viewer) (default:
     /// Paper, as VolumeRenderOptions::model).
     VolumeModel model = VolumeModel::Paper;
-    double anisotropy = 0.5;           ///< Henyey-Greenstein g of the physical model, in (-1, 1)
+    /// Henyey-Greenstein g, in (-1, 1): the physical model's phase function, and the paper
+    /// model's chromaticity cone (chromaticityConeScale).
+    double anisotropy = 0.5;
+    /// Paper model: how the chromaticity c reaches p. 0 (default): along the straight shadow ray,
+    /// as above (the limit of the light volume's cone gather as its slices get thin). s in (0, 1]:
+    /// as the light volume at resolution scale s gathers it (Ropinski et al. 2010): at every slice
+    /// plane of that light volume the light crosses (the sweep's planes, chosen as the GPU
+    /// chooses them), c is read at the crossing and at 8 points on a ring of radius tan(theta) x
+    /// the path between two planes, theta the cone half-angle of HG(anisotropy), weighted as on
+    /// the GPU. The expectation is estimated with chromaticityWalks random walks per sample, each
+    /// drawing one of the 9 points at every plane; the light's intensity l stays a straight ray.
+    double chromaticityConeScale = 0.0;
+    /// Random walks per sample for chromaticityConeScale > 0, >= 1 (noise ~ 1/sqrt(walks)).
+    int chromaticityWalks = 64;
     glm::dvec3 specular{0.3};          ///< k_s, finite and >= 0
     double shininess = 32.0;           ///< Blinn-Phong exponent, finite and > 0
     double gradientThreshold = 0.02;   ///< |g| (value per voxel) of full shading, finite and > 0

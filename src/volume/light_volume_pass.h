@@ -15,6 +15,7 @@
 #include "gl/texture.h"
 #include "sss/light.h"
 #include "volume/gpu_volume.h"
+#include "volume/light_sweep_plan.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -26,24 +27,6 @@ struct LightVolumeSettings {
     float resolutionScale = 1.0f;  ///< light-volume resolution relative to the data, (0, 1]
     float anisotropy = 0.5f;       ///< Henyey-Greenstein g: sets the chromaticity blur cone
 };
-
-/// One sweep of the propagation, as planned on the CPU (exposed for tests).
-struct LightSweep {
-    int axis = 2;           ///< data axis the sweep runs along
-    bool reversed = false;  ///< the light travels towards -axis
-    float weight = 1.0f;
-    int firstSlice = 0;     ///< sweep-frame slice the sweep starts at
-    bool pyramid = false;   ///< owns only the voxels whose dominant light axis is its own
-};
-
-/// The sweeps for `light` (already in the volume's model space) over `volume`.
-std::vector<LightSweep> planLightSweeps(const Light& modelSpaceLight, const GpuVolume& volume, glm::ivec3 dims);
-
-/// The light volume's size for a volume of `volumeDims` at `scale` (each side at least 1).
-glm::ivec3 lightVolumeDims(glm::ivec3 volumeDims, float scale);
-
-/// Cone half-angle (radians) holding half the scattered energy of HG(g), clamped to 60 degrees.
-float chromaticityConeAngle(float g);
 
 class LightVolumePass {
 public:

@@ -4,6 +4,7 @@
 #include "lighting/cpu_lights.h"
 #include "parallel.h"
 #include "volume/box_clip.h"
+#include "volume/light_sweep_plan.h"
 #include "voxel_storage.h"
 
 #include "sss/error.h"
@@ -15,7 +16,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <exception>
 #include <limits>
@@ -75,6 +78,9 @@ void validate(const VolumeReferenceOptions& o) {
     if (!std::isfinite(o.gradientThreshold) || !(o.gradientThreshold > 0.0))
         fail("gradientThreshold", "finite and > 0", str(o.gradientThreshold));
     if (o.threads < 0) fail("threads", ">= 0 (0: one per hardware thread)", str(o.threads));
+    if (!(o.chromaticityConeScale == 0.0 || (o.chromaticityConeScale > 0.0 && o.chromaticityConeScale <= 1.0)))
+        fail("chromaticityConeScale", "0 (straight) or in (0, 1]", str(o.chromaticityConeScale));
+    if (o.chromaticityWalks < 1) fail("chromaticityWalks", ">= 1", str(o.chromaticityWalks));
 }
 
 void validateSize(int width, int height, const char* who) {
@@ -95,6 +101,26 @@ struct PreparedLight {
     detail::CpuLight world;             // as the mesh references hold it, world space
     glm::dvec3 towardsLightModel{0.0};  // directional: unit, in model space
     glm::dvec3 positionModel{0.0};      // point and spot
+    std::vector<detail::LightSweep> sweeps;  // the light volume's, for chromaticityConeScale > 0
+};
+
+// Deterministic per sample, so the image does not depend on the thread that renders a row.
+struct SampleRng {
+    std::uint64_t state;
+    SampleRng(glm::dvec3 p, std::size_t light) {
+        state = 0x9e3779b97f4a7c15ull * (light + 1);
+        for (int a = 0; a < 3; ++a) state = mix(state ^ std::bit_cast<std::uint64_t>(p[a]));
+    }
+    static std::uint64_t mix(std::uint64_t z) {  // splitmix64's finaliser
+        z += 0x9e3779b97f4a7c15ull;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    }
+    double uniform() {
+        state = mix(state);
+        return static_cast<double>(state >> 11) * 0x1.0p-53;
+    }
 };
 
 }  // namespace
@@ -111,6 +137,25 @@ struct VolumeReference::Impl {
     glm::dmat3 normalToWorld{1.0};
     std::vector<PreparedLight> lights;
     VolumeReferenceOptions options;
+    glm::dvec3 coneVoxel{0.0};  // the light volume's voxel at chromaticityConeScale
+    detail::ChromaticityCone cone;
+
+    // The light volume's sweeps and cone for the options' chromaticityConeScale (none at 0).
+    void prepareCone() {
+        for (PreparedLight& light : lights) light.sweeps.clear();
+        if (!(options.chromaticityConeScale > 0.0)) return;
+        const glm::ivec3 lightDims = detail::lightVolumeDims(dims, static_cast<float>(options.chromaticityConeScale));
+        coneVoxel = boxSize / glm::dvec3(lightDims);
+        cone = detail::chromaticityCone(static_cast<float>(options.anisotropy));
+        Bounds box;
+        box.extend(glm::vec3(boxMin));
+        box.extend(glm::vec3(boxMax));
+        for (PreparedLight& light : lights) {
+            const Light modelLight = light.world.point ? Light{PointLight{.position = glm::vec3(light.positionModel)}}
+                                                       : Light{DirectionalLight{.direction = glm::vec3(-light.towardsLightModel)}};
+            light.sweeps = detail::planLightSweeps(modelLight, box, lightDims);
+        }
+    }
 
     // s(p) at texture coordinate tc: GL_LINEAR with clamp-to-edge, texel centres at (i+0.5)/n.
     double field(glm::dvec3 tc) const {
@@ -210,7 +255,83 @@ struct VolumeReference::Impl {
         }
         out.transmittance = l;
         out.chromaticity = c;
+        // The light volume's cone gather (chromaticityConeScale): only where some light arrives.
+        if (options.model == VolumeModel::Paper && !light.sweeps.empty() && l > 1e-6) {
+            SampleRng rng(p, static_cast<std::size_t>(&light - lights.data()));
+            glm::dvec3 sum(0.0);
+            for (int w = 0; w < options.chromaticityWalks; ++w) sum += coneWalk(p, light, rng);
+            out.chromaticity = sum / static_cast<double>(options.chromaticityWalks);
+        }
         return out;
+    }
+
+    // One random walk from p towards the light through the light volume's slice planes: between
+    // planes c changes as along a shadow ray; at each plane the walk moves to the crossing or to
+    // one of the 8 ring points, drawn with the cone's weights. Its c is an unbiased estimate of
+    // what the slice recurrence gives at p.
+    glm::dvec3 coneWalk(glm::dvec3 p, const PreparedLight& light, SampleRng& rng) const {
+        // The sweep that fills p's voxel: the one whose axis the light travels most along there
+        // (a point light inside the volume), else one of the blended sweeps by its weight.
+        detail::LightSweep sweep = light.sweeps.front();
+        if (sweep.pyramid) {
+            const glm::dvec3 travel = (p - light.positionModel) / coneVoxel;
+            const glm::dvec3 m = glm::abs(travel);
+            sweep.axis = m.x >= m.y && m.x >= m.z ? 0 : (m.y >= m.z ? 1 : 2);
+            sweep.reversed = travel[sweep.axis] < 0.0;
+        } else if (light.sweeps.size() > 1 && rng.uniform() >= light.sweeps.front().weight) {
+            sweep = light.sweeps[1];
+        }
+        const int a = sweep.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+        const double sign = sweep.reversed ? -1.0 : 1.0;  // the light travels towards sign * axis a
+        const double ringTexels = std::min(1.0 / coneVoxel[u], 1.0 / coneVoxel[v]);
+        const double maxPiece = options.shadowStepVoxels * voxel;
+        glm::dvec3 x = p, colour(0.0);
+        double through = 1.0;
+        // Sweep coordinate in light-volume voxels: planes at integers, the light coming from below.
+        const double w = sign > 0.0 ? (x[a] - boxMin[a]) / coneVoxel[a] : (boxMax[a] - x[a]) / coneVoxel[a];
+        double plane = std::ceil(w) - 1.0;
+        double axisDistance = (w - plane) * coneVoxel[a];  // to the next plane towards the light
+        while (plane >= 0.0) {
+            glm::dvec3 toLight = light.towardsLightModel;
+            double lightDistance = std::numeric_limits<double>::infinity();
+            if (light.world.point) {
+                toLight = light.positionModel - x;
+                lightDistance = glm::length(toLight);
+                if (!(lightDistance > 1e-12)) break;
+                toLight /= lightDistance;
+            }
+            const double dz = std::max(-sign * toLight[a], 1e-3);  // along the sweep, per unit path
+            const double pathToPlane = axisDistance / dz;
+            // The medium up to the plane, or to the box's side or the light if nearer, from p's side.
+            const double reach = std::min(pathToPlane, lightDistance);
+            double t0 = 0.0, t1 = reach;
+            if (!clip(x, toLight, t0, t1)) break;
+            const long m = pieces(t1 - t0, maxPiece);
+            const double h = (t1 - t0) / static_cast<double>(m);
+            for (long k = 0; k < m && through > 1e-4; ++k) {
+                const glm::dvec4 tf = classifySample(field(toTexture(x + (t0 + (static_cast<double>(k) + 0.5) * h) * toLight)));
+                if (!(tf.a > 0.0)) continue;
+                const double alpha = pieceOpacity(tf.a, h);
+                colour += through * alpha * glm::dvec3(tf);
+                through *= 1.0 - alpha;
+            }
+            // Done at the light, beyond the box's side, at the face the light enters by, or once
+            // nothing more can get through.
+            if (lightDistance <= pathToPlane || t1 < reach || plane <= 0.0 || through <= 1e-4) break;
+            x += pathToPlane * toLight;
+            x[a] = sign > 0.0 ? boxMin[a] + plane * coneVoxel[a] : boxMax[a] - plane * coneVoxel[a];
+            // The gather at this plane: the ring only where it spans half a texel, as on the GPU.
+            const double radius = static_cast<double>(cone.tangent) * (coneVoxel[a] / dz);
+            if (radius * ringTexels >= 0.5 && rng.uniform() >= cone.centreWeight) {
+                const double angle = std::floor(rng.uniform() * 8.0) * (std::numbers::pi / 4.0);
+                x[u] += radius * std::cos(angle);
+                x[v] += radius * std::sin(angle);
+                if (x[u] < boxMin[u] || x[u] > boxMax[u] || x[v] < boxMin[v] || x[v] > boxMax[v]) break;
+            }
+            plane -= 1.0;
+            axisDistance = coneVoxel[a];
+        }
+        return colour + through * glm::dvec3(1.0);  // what is left enters unattenuated and white
     }
 
     struct Normal {
@@ -360,13 +481,14 @@ VolumeReference::VolumeReference(const Volume& volume, const TransferFunction& t
     impl->normalToWorld = glm::transpose(glm::inverse(glm::dmat3(m)));
     const glm::dmat3 worldToModelLinear(impl->worldToModel);
     for (const Light& light : lights) {
-        PreparedLight p{detail::toCpuLight(light)};
+        PreparedLight p{detail::toCpuLight(light), {}, {}, {}};
         if (p.world.point)
             p.positionModel = glm::dvec3(impl->worldToModel * glm::dvec4(p.world.vector, 1.0));
         else
             p.towardsLightModel = glm::normalize(worldToModelLinear * p.world.vector);
         impl->lights.push_back(p);
     }
+    impl->prepareCone();
     m_impl = std::move(impl);
 }
 
@@ -377,6 +499,7 @@ VolumeReference& VolumeReference::operator=(VolumeReference&&) noexcept = defaul
 void VolumeReference::setOptions(const VolumeReferenceOptions& options) {
     validate(options);
     m_impl->options = options;
+    m_impl->prepareCone();
 }
 
 const VolumeReferenceOptions& VolumeReference::options() const { return m_impl->options; }

@@ -171,6 +171,67 @@ TEST_CASE("volume reference: light through a white medium stays white, a coloure
     }
 }
 
+TEST_CASE("volume reference: the light volume's cone gather blurs c across the light, not along it", "[cpu]") {
+    // 16^3, light travelling along -z. chromaticityConeScale = 1 gathers c as a full-resolution
+    // light volume does: at each of the 16 slice planes, from the crossing or a ring of radius
+    // tan(47 deg) x 1 voxel at g = 0.5.
+    const int n = 16;
+    const std::vector<Light> lights{DirectionalLight{.direction = {0, 0, -1}}};
+    VolumeReferenceOptions cone;
+    cone.chromaticityConeScale = 1.0;
+    cone.chromaticityWalks = 256;
+    SECTION("a uniform medium: every walk crosses the same medium, so c is the straight ray's") {
+        const Volume volume = uniformVolume(n, 200);
+        const TransferFunction tf = constantTf({1, 0.5f, 0}, 0.1f);
+        const VolumeReference straight(volume, tf, 256, glm::mat4(1.0f), lights);
+        const VolumeReference gathered(volume, tf, 256, glm::mat4(1.0f), lights, cone);
+        // (Near enough the lit face that no walk leaves by a side: there c would be white.)
+        for (glm::dvec3 p : {glm::dvec3(0.0), voxelCentre(n, 8, 8, 11.3)}) {
+            const ReferenceLightSample a = straight.incidentLight(p, 0), b = gathered.incidentLight(p, 0);
+            CHECK(glm::length(a.chromaticity - b.chromaticity) < 1e-9);
+            CHECK(a.transmittance == b.transmittance);
+        }
+    }
+    SECTION("a red rod along the light tints the light beside it and gives up some of its red") {
+        // Clear, except a rod 2 x 2 voxels wide over z >= 8 (towards the light) of red medium.
+        std::vector<uint8_t> bytes(static_cast<size_t>(n * n * n), 0);
+        for (int z = 8; z < n; ++z)
+            for (int y = 7; y <= 8; ++y)
+                for (int x = 7; x <= 8; ++x) bytes[static_cast<size_t>((z * n + y) * n + x)] = 255;
+        const Volume volume = Volume::fromData({n, n, n}, VoxelType::UInt8, std::move(bytes));
+        const TransferFunction tf({{0.0f, {1, 0, 0}, 0.0f}, {1.0f, {1, 0, 0}, 0.5f}});
+        const VolumeReference straight(volume, tf, 256, glm::mat4(1.0f), lights);
+        const VolumeReference gathered(volume, tf, 256, glm::mat4(1.0f), lights, cone);
+        cone.chromaticityConeScale = 0.5;  // slices 2 voxels thick: a ring of 2 voxels, more blur
+        const VolumeReference coarse(volume, tf, 256, glm::mat4(1.0f), lights, cone);
+        const glm::dvec3 under = voxelCentre(n, 7.5, 7.5, 4), beside = voxelCentre(n, 11.5, 7.5, 4);
+        // Straight: under the rod the light is red, beside it (3 voxels off) white.
+        CHECK(straight.incidentLight(under, 0).chromaticity.g < 0.01);  // 0.5^8 = 0.004 and the rod's end
+        CHECK(straight.incidentLight(beside, 0).chromaticity.g == Approx(1.0).margin(1e-12));
+        const ReferenceLightSample u = gathered.incidentLight(under, 0), b = gathered.incidentLight(beside, 0);
+        CHECK(u.chromaticity.g > 0.25);  // walks that wandered out of the rod (measured 0.51)
+        CHECK(b.chromaticity.g < 0.97);  // walks that wandered into it (measured 0.938)
+        CHECK(u.chromaticity.r == Approx(1.0).margin(1e-12));  // red stays red
+        CHECK(b.transmittance == Approx(1.0).margin(1e-12));   // l is the straight ray's
+        CHECK(coarse.incidentLight(beside, 0).chromaticity.g < b.chromaticity.g);
+        // One estimate per point, whichever thread asks.
+        CHECK(gathered.incidentLight(beside, 0).chromaticity == b.chromaticity);
+    }
+    SECTION("the physical model has no c to gather, and bad values are rejected") {
+        cone.model = VolumeModel::Physical;
+        const VolumeReference physical(uniformVolume(n, 200), constantTf({1, 0.5f, 0}, 0.1f), 256, glm::mat4(1.0f),
+                                       lights, cone);
+        CHECK(physical.incidentLight(glm::dvec3(0.0), 0).transmittance == Approx(std::pow(0.9, 8)).margin(1e-12));
+        using K = ErrorKind;
+        REQUIRE_SSS_ERROR(VolumeReference(uniformVolume(4, 0), TransferFunction(), 256, glm::mat4(1.0f), lights,
+                                          {.chromaticityConeScale = 1.5}),
+                          K::InvalidArgument, Contains("chromaticityConeScale must be 0 (straight) or in (0, 1]"));
+        REQUIRE_SSS_ERROR(VolumeReference(uniformVolume(4, 0), TransferFunction(), 256, glm::mat4(1.0f), lights,
+                                          {.chromaticityWalks = 0}),
+                          K::InvalidArgument, Contains("chromaticityWalks must be >= 1"));
+    }
+}
+
 TEST_CASE("volume reference: an opaque slab casts a hard shadow on a blob", "[cpu]") {
     // 32^3: an opaque slab (255) at z voxels 22..25 over the half x < 16, and a ball (128) of
     // radius 6 around voxel (16, 16, 10); light from +z. The ball's x < 16 half is in shadow.

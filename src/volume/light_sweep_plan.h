@@ -1,0 +1,43 @@
+#pragma once
+// How the light volume (light_volume_pass.h) sweeps the light through a volume and gathers its
+// chromaticity over a cone: plain CPU geometry, shared by the GPU pass and by the CPU reference
+// that evaluates the same model (sss/volume_reference.h, chromaticityConeScale).
+#include "sss/bounds.h"
+#include "sss/light.h"
+
+#include <glm/vec3.hpp>
+
+#include <vector>
+
+namespace sss::detail {
+
+/// One sweep of the propagation, as planned on the CPU.
+struct LightSweep {
+    int axis = 2;           ///< data axis the sweep runs along
+    bool reversed = false;  ///< the light travels towards -axis
+    float weight = 1.0f;
+    int firstSlice = 0;     ///< sweep-frame slice the sweep starts at
+    bool pyramid = false;   ///< owns only the voxels whose dominant light axis is its own
+};
+
+/// The sweeps for `light` (already in the volume's model space) over a volume of `box` whose
+/// light volume has `dims` voxels.
+std::vector<LightSweep> planLightSweeps(const Light& modelSpaceLight, const Bounds& box, glm::ivec3 dims);
+
+/// The light volume's size for a volume of `volumeDims` at `scale` (each side at least 1).
+glm::ivec3 lightVolumeDims(glm::ivec3 volumeDims, float scale);
+
+/// Cone half-angle (radians) holding half the scattered energy of HG(g), clamped to 60 degrees.
+float chromaticityConeAngle(float g);
+
+/// The cone gather at every slice: the previous slice's chromaticity is read at the light ray's
+/// crossing (centre) and at 8 points on a ring of radius tangent x (the path between slices),
+/// weighted by HG(g) at the centre and at the cone's edge; centre + 8 x ring = 1.
+struct ChromaticityCone {
+    float tangent = 0.0f;
+    float centreWeight = 1.0f;
+    float ringWeight = 0.0f;  ///< each of the 8 ring points
+};
+ChromaticityCone chromaticityCone(float g);
+
+}  // namespace sss::detail
