@@ -285,7 +285,9 @@ void bindOptions(py::module_& m) {
                                       {"DIPOLE", sss::ScatteringProfile::Dipole}},
                                      "The subsurface profile of the scattering mesh shading.");
     bindEnum<sss::MeshCombine>(m, "MeshCombine",
-                               {{"PER_PIXEL", sss::MeshCombine::PerPixel}, {"PER_VERTEX", sss::MeshCombine::PerVertex}},
+                               {{"PER_PIXEL", sss::MeshCombine::PerPixel},
+                                {"PER_VERTEX", sss::MeshCombine::PerVertex},
+                                {"VERTEX_ESTIMATE", sss::MeshCombine::VertexEstimate}},
                                "Where the combine pass reads the scattered light.");
     bindEnum<sss::VolumeShading>(m, "VolumeShading",
                                  {{"EMISSION_ABSORPTION", sss::VolumeShading::EmissionAbsorption},

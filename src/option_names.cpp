@@ -13,7 +13,8 @@ std::span<const EnumName<MeshShading>> enumNames<MeshShading>() {
 template <>
 std::span<const EnumName<MeshCombine>> enumNames<MeshCombine>() {
     static constexpr EnumName<MeshCombine> names[] = {{MeshCombine::PerPixel, "per-pixel"},
-                                                      {MeshCombine::PerVertex, "per-vertex"}};
+                                                      {MeshCombine::PerVertex, "per-vertex"},
+                                                      {MeshCombine::VertexEstimate, "vertex-estimate"}};
     return names;
 }
 

@@ -164,8 +164,9 @@ void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string&
             "scattering) or dipole (the paper's, as the thesis)")
         ->group(group);
     addEnum(app, "--combine", options.combine,
-            "per-pixel (the K maps looked up at every pixel) or per-vertex (resolved once per vertex after each "
-            "map update: fixed frames cost about a Blinn-Phong frame)")
+            "per-pixel (the K maps looked up at every pixel), per-vertex (resolved once per vertex after each "
+            "map update: fixed frames cost about a Blinn-Phong frame) or vertex-estimate (evaluate-once: no maps, "
+            "the radiosity estimated at each vertex; needs a finely tessellated mesh)")
         ->group(group);
     addInt(app, "--cameras", options.cameras, "scattering maps K, 1..32", "K")->group(group);
     addInt(app, "--samples", options.samples, "samples per texel and frame, 1..4096", "N")->group(group);

@@ -52,6 +52,13 @@ enum class MeshCombine {
     /// than the mesh's vertices is lost; the exit Fresnel factor, single scattering and the
     /// highlight stay per pixel.
     PerVertex,
+    /// Evaluate-once radiosity: no scattering maps. The radiosity is estimated directly at each
+    /// vertex (N samples per light and frame, accumulated over accumulationFrames like the maps)
+    /// instead of in every map texel that sees the point, and every frame interpolates it as
+    /// PerVertex does. Regenerating costs about V x N evaluations instead of K x texels x N
+    /// (cameras and mapResolution are unused); detail finer than the vertices is lost, so it
+    /// needs a mesh whose edges are short against the diffusion length.
+    VertexEstimate,
 };
 
 struct MeshRenderOptions {
@@ -61,7 +68,8 @@ struct MeshRenderOptions {
     /// Dipole reproduces the thesis). Calibrated also corrects for the part of the profile the
     /// sampling disk cuts off (exactly for a flat surface lit head-on) and adds single scattering.
     ScatteringProfile profile = ScatteringProfile::Calibrated;
-    /// Per-pixel map lookups (the paper's) or the cached per-vertex combine (default: PerPixel).
+    /// Per-pixel map lookups (the paper's), the cached per-vertex combine, or the evaluate-once
+    /// vertex estimate without maps (default: PerPixel).
     MeshCombine combine = MeshCombine::PerPixel;
     int cameras = 8;               ///< K scattering maps, 1..32 (default: 8)
     int samples = 24;              ///< N proposals per light per frame, 1..4096 (default: 24)

@@ -21,7 +21,10 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     p.set("viewProjection", in.camera.projection(in.aspect) * in.camera.view());
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
     setCameraUniforms(p, in.camera);
-    setMapLookupUniforms(p, in.cameras, in.maps, s.lookup);
+    if (in.maps)
+        setMapLookupUniforms(p, in.cameras, *in.maps, s.lookup);
+    else
+        setMapLookupUnits(p);  // never sampled (perVertex), but the samplers need their own units
     p.set("eta", s.eta);
     p.set("specularStrength", s.specularStrength);
     p.set("shininess", s.shininess);
@@ -37,7 +40,7 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     in.lightBuffer.positions().bind(units::kPassInputs + 2);
     setLightUniforms(p, in.lights);
     setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.radiosity().id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.id());
 
     in.mesh.drawOpaque(m_program);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);

@@ -24,15 +24,15 @@ struct CombineSettings {
     float shininess = 40.0f;
     glm::vec3 environment{0.0f};  ///< the environment's radiance times R_d: added as is
     DipoleConstants dipole;       ///< the profile; its single-scattering term is added per pixel
-    bool perVertex = false;       ///< MeshCombine::PerVertex: no map lookups, the vertices' radiosity
+    bool perVertex = false;       ///< no map lookups, the vertices' radiosity (MeshCombine::PerVertex, VertexEstimate)
 };
 
 struct CombineInputs {
     const GpuMesh& mesh;
     const glm::mat4& model;
     const ScatteringCameras& cameras;
-    const ScatteringMapPass& maps;
-    const VertexRadiosityPass& vertexRadiosity;  ///< where no layer sees the point
+    const ScatteringMapPass* maps;        ///< none with MeshCombine::VertexEstimate (perVertex set)
+    const gl::Buffer& vertexRadiosity;    ///< rgb per vertex: where no layer sees the point, or everywhere
     const std::vector<Light>& lights;
     const Camera& camera;
     float aspect = 1.0f;

@@ -9,6 +9,7 @@
 #include "mesh/light_buffer_pass.h"
 #include "mesh/scattering_map_pass.h"
 #include "mesh/renderer_access.h"
+#include "mesh/vertex_estimate_pass.h"
 #include "sss/error.h"
 #include "sss/timing.h"
 
@@ -40,6 +41,7 @@ struct ScatteringMapInputs {
     double millimetresPerUnit = 0.0;
     float sampleRadius = 0.0f, spread = 0.0f;
     ScatteringProfile profile = ScatteringProfile::Calibrated;
+    bool vertexEstimate = false;  // MeshCombine::VertexEstimate: per vertex, no maps
     std::uint64_t shadowRevision = 0;  // hybrid scenes: meshes and volumes between lights and mesh
     bool operator==(const ScatteringMapInputs&) const = default;
 };
@@ -99,6 +101,7 @@ struct MeshScatteringRenderer::Impl {
     std::optional<detail::ScatteringMapPass> scatteringMaps;
     std::optional<detail::CombinePass> combine;
     std::optional<detail::VertexRadiosityPass> vertexRadiosity;  // built with the mesh's scattering
+    std::optional<detail::VertexEstimatePass> vertexEstimate;    // MeshCombine::VertexEstimate
     detail::VertexAdjacency adjacency;  // of the mesh, for the vertex-radiosity pass
     int vertexRadiosityFrames = -1;
     std::optional<ScatteringMapInputs> vertexRadiosityInputs;
@@ -173,12 +176,18 @@ struct MeshScatteringRenderer::Impl {
                 options.sampleRadius,
                 options.spread,
                 options.profile,
+                options.combine == MeshCombine::VertexEstimate,
                 shadows ? shadows->revision() : 0};
     }
 
+    // Frames accumulated by whichever pass estimates the radiosity (-1: none yet).
+    int radiosityFrames() const {
+        if (options.combine == MeshCombine::VertexEstimate) return vertexEstimate ? vertexEstimate->frames() : -1;
+        return scatteringMaps ? scatteringMaps->frames() : -1;
+    }
+
     bool mapsConverged() const {
-        return scatteringMaps && scatteringMapInputs == currentMapInputs() &&
-               scatteringMaps->frames() >= options.accumulationFrames;
+        return scatteringMapInputs == currentMapInputs() && radiosityFrames() >= options.accumulationFrames;
     }
 
     // Passes 1 and 2, each only when something it depends on changed.
@@ -190,19 +199,26 @@ struct MeshScatteringRenderer::Impl {
             lightBufferInputs = inputs.lightBuffer;
         }
         if (scatteringMapInputs != inputs) {
-            if (!scatteringMaps || scatteringMaps->cameras() != options.cameras) scatteringMaps.emplace(options.cameras);
-            scatteringMaps->reset(options.mapResolution);
+            if (inputs.vertexEstimate) {
+                if (!vertexEstimate) vertexEstimate.emplace(adjacency.vertexCount());
+                vertexEstimate->reset();
+            } else {
+                if (!scatteringMaps || scatteringMaps->cameras() != options.cameras) scatteringMaps.emplace(options.cameras);
+                scatteringMaps->reset(options.mapResolution);
+            }
             cameras = detail::makeScatteringCameras(options.cameras, mesh->bounds);
             scatteringMapInputs = inputs;
             deriveProfile();
         }
-        if (scatteringMaps->frames() >= options.accumulationFrames) return;
+        if (radiosityFrames() >= options.accumulationFrames) return;
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
-        timed("scattering-maps", [&] {
-            scatteringMaps->accumulate({*mesh, model, cameras, lights, lightBuffer->viewProjections(),
-                                        lightBuffer->positions(), lightBuffer->normals(), dipole, sampling,
-                                        shadows ? &*shadows : nullptr});
-        });
+        const detail::RadiosityEstimateInputs estimate{lights,  lightBuffer->viewProjections(), lightBuffer->positions(),
+                                                       lightBuffer->normals(), dipole, sampling,
+                                                       shadows ? &*shadows : nullptr};
+        if (inputs.vertexEstimate)
+            timed("vertex-estimate", [&] { vertexEstimate->accumulate(*mesh, model, estimate); });
+        else
+            timed("scattering-maps", [&] { scatteringMaps->accumulate({*mesh, model, cameras, estimate}); });
     }
 };
 
@@ -221,6 +237,7 @@ void MeshScatteringRenderer::setMesh(const Mesh& mesh, const glm::mat4& model) {
         throw Error(ErrorKind::InvalidArgument, "MeshScatteringRenderer::setMesh: the mesh has no triangles");
     m_impl->mesh = detail::GpuMesh::upload(mesh);
     m_impl->vertexRadiosity.reset();
+    m_impl->vertexEstimate.reset();
     m_impl->adjacency = detail::buildVertexAdjacency(mesh);
     ++m_impl->meshGeneration;
     m_impl->model = model;
@@ -269,7 +286,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     }
     r.updateScattering();
     if (!r.combine) r.combine.emplace();
-    if (!r.vertexRadiosity) r.vertexRadiosity.emplace(r.adjacency);
+    const bool vertexEstimate = r.options.combine == MeshCombine::VertexEstimate;
     // Bias and shrink are given in texels of the scattering maps; convert with the maps' extent
     // (2 radii across, 3 radii of depth; see makeScatteringCameras).
     const float texels = static_cast<float>(r.options.mapResolution);
@@ -282,10 +299,12 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.shininess = r.options.shininess;
     settings.environment = r.options.environment * glm::vec3(r.environmentReflectance);
     settings.dipole = r.dipole;
-    settings.perVertex = r.options.combine == MeshCombine::PerVertex;
+    settings.perVertex = r.options.combine != MeshCombine::PerPixel;
     // The vertices' radiosity follows the maps: once per accumulated frame.
-    if (r.vertexRadiosityFrames != r.scatteringMaps->frames() || r.vertexRadiosityInputs != r.scatteringMapInputs ||
-        r.vertexRadiosityLookup != settings.lookup) {
+    if (!vertexEstimate && !r.vertexRadiosity) r.vertexRadiosity.emplace(r.adjacency);
+    if (!vertexEstimate &&
+        (r.vertexRadiosityFrames != r.scatteringMaps->frames() || r.vertexRadiosityInputs != r.scatteringMapInputs ||
+         r.vertexRadiosityLookup != settings.lookup)) {
         r.timed("vertex-radiosity", [&] { r.vertexRadiosity->run(*r.mesh, r.cameras, *r.scatteringMaps, settings.lookup); });
         r.vertexRadiosityFrames = r.scatteringMaps->frames();
         r.vertexRadiosityInputs = r.scatteringMapInputs;
@@ -293,8 +312,9 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     }
     r.timed("combine", [&] {
         target.bindForDrawing();
-        r.combine->run({*r.mesh, r.model, r.cameras, *r.scatteringMaps, *r.vertexRadiosity, r.lights, camera,
-                        target.aspect(), *r.lightBuffer, r.shadows ? &*r.shadows : nullptr},
+        r.combine->run({*r.mesh, r.model, r.cameras, vertexEstimate ? nullptr : &*r.scatteringMaps,
+                        vertexEstimate ? r.vertexEstimate->radiosity() : r.vertexRadiosity->radiosity(), r.lights,
+                        camera, target.aspect(), *r.lightBuffer, r.shadows ? &*r.shadows : nullptr},
                        settings);
     });
 }

@@ -1,7 +1,6 @@
 #include "mesh/scattering_map_pass.h"
 
 #include "lighting/light_uniforms.h"
-#include "mesh/dipole_uniforms.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
@@ -70,7 +69,6 @@ void ScatteringMapPass::reset(int resolution) {
 
 void ScatteringMapPass::accumulate(const ScatteringMapPassInputs& in) {
     const glm::mat4& model = in.model;
-    const std::vector<Light>& lights = in.lights;
     const glm::mat3 normalMatrix = glm::mat3(glm::transpose(glm::inverse(model)));
     for (const gl::Program* p : {&m_depthProgram, &m_program}) {
         p->set("model", model);
@@ -98,21 +96,7 @@ void ScatteringMapPass::accumulate(const ScatteringMapPassInputs& in) {
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
 
-    const gl::Program& p = m_program;
-    p.set("lightPositions", 0);
-    p.set("lightNormals", 1);
-    setLightUniforms(p, lights);  // lightVector/lightRadiance, as lights.glsl lays them out
-    for (size_t i = 0; i < lights.size(); ++i)
-        p.set("lightViewProjection[" + std::to_string(i) + "]", in.lightViewProjections[i]);
-    setDipoleUniforms(p, "dipole", in.dipole);
-    setSurfaceShadowUniforms(p, in.shadows, lights.size());
-    p.set("diskRadius", in.sampling.diskRadius);
-    p.set("sigmaStar", in.sampling.sigmaStar);
-    p.set("sigmaNear", in.sampling.sigmaNear);
-    p.set("samplesPerLight", in.sampling.samplesPerLight);
-    p.set("frameSeed", static_cast<unsigned>(m_frames));
-    in.lightPositions.bind(0);
-    in.lightNormals.bind(1);
+    setRadiosityEstimateUniforms(m_program, in.estimate, static_cast<unsigned>(m_frames));
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
     glEnable(GL_BLEND);

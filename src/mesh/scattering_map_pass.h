@@ -7,10 +7,8 @@
 #include "gl/framebuffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
-#include "lighting/shadows.h"
 #include "mesh/gpu_mesh.h"
-#include "sss/bssrdf.h"
-#include "sss/light.h"
+#include "mesh/radiosity_estimate.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -30,25 +28,11 @@ struct ScatteringCameras {
 glm::vec3 haltonSphereDirection(int k);
 ScatteringCameras makeScatteringCameras(int count, const Bounds& modelBounds);
 
-struct ScatteringSampling {
-    float diskRadius = 0.0f;   ///< R, scene units
-    float sigmaStar = 0.0f;    ///< far-field sampling rate, scene units^-1
-    float sigmaNear = 0.0f;    ///< near-field sampling rate, >= sigmaStar
-    int samplesPerLight = 1;   ///< proposals per light per frame
-};
-
 struct ScatteringMapPassInputs {
     const GpuMesh& mesh;
     const glm::mat4& model;
     const ScatteringCameras& cameras;
-    const std::vector<Light>& lights;
-    /// The LightBufferPass's views, positions and normals for the same lights.
-    const std::vector<glm::mat4>& lightViewProjections;
-    const gl::Texture& lightPositions;
-    const gl::Texture& lightNormals;
-    const DipoleConstants& dipole;
-    const ScatteringSampling& sampling;
-    const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes
+    const RadiosityEstimateInputs& estimate;
 };
 
 class ScatteringMapPass {

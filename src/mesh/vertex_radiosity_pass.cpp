@@ -7,10 +7,15 @@
 
 namespace sss::detail {
 
-void setMapLookupUniforms(const gl::Program& p, const ScatteringCameras& cameras, const ScatteringMapPass& maps,
-                          const MapLookupSettings& s) {
+void setMapLookupUnits(const gl::Program& p) {
     p.set("scatteringMaps", 0);
     p.set("scatteringDepth", 1);
+    p.set("cameraCount", 0);
+}
+
+void setMapLookupUniforms(const gl::Program& p, const ScatteringCameras& cameras, const ScatteringMapPass& maps,
+                          const MapLookupSettings& s) {
+    setMapLookupUnits(p);
     p.set("cameraCount", maps.cameras());
     for (int k = 0; k < maps.cameras(); ++k) {
         const std::string index = "[" + std::to_string(k) + "]";

@@ -23,6 +23,8 @@ struct MapLookupSettings {
     bool operator==(const MapLookupSettings&) const = default;
 };
 
+/// The texture units of shaders/mesh/map_lookup.glsl's samplers (0 and 1), without the maps.
+void setMapLookupUnits(const gl::Program& program);
 /// Sets the uniforms and binds the textures of shaders/mesh/map_lookup.glsl (units 0 and 1).
 void setMapLookupUniforms(const gl::Program& program, const ScatteringCameras& cameras, const ScatteringMapPass& maps,
                           const MapLookupSettings& settings);
