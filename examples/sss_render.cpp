@@ -345,12 +345,18 @@ int run(CLI::App& app, Args& a) {
                 "shader compilation\n",
                 times[times.size() / 2], times.front(), times.back(), times.size(), width, height,
                 timer.method() == sss::TimingMethod::GlTimerQuery ? "GL timer query" : "CPU clock around glFinish");
-    for (const sss::SceneMesh& m : scene.meshes)
-        if (m.options.shading == sss::MeshShading::Scattering)
+    for (const sss::SceneMesh& m : scene.meshes) {
+        if (m.options.shading != sss::MeshShading::Scattering) continue;
+        if (m.options.combine == sss::MeshCombine::VertexEstimate)
+            std::printf("scattering: %s, vertex estimate (no maps), N = %d; converging took %.2f ms (includes "
+                        "shader compilation)\n",
+                        m.material.name.c_str(), m.options.samples, convergeMs);
+        else
             std::printf("scattering: %s, K = %d, N = %d, maps %d^2; converging took %.2f ms (includes shader "
                         "compilation)\n",
                         m.material.name.c_str(), m.options.cameras, m.options.samples, m.options.mapResolution,
                         convergeMs);
+    }
     if (multipleScattering)
         for (std::size_t i = 0; i < compositor.volumeCount(); ++i)
             std::printf("multiple scattering: %d paths per pixel (%d frames took %.2f ms before the timed frames, "
