@@ -32,8 +32,9 @@ sss::Image renderOnce(BenchmarkContext& bench, const std::function<void(sss::Ren
 
 // The meshes users render: bunny, Buddha and dragon at 400x226 (marble, default options, no
 // specular, linear), converged maps against a converged CPU reference. Concave models are where
-// the combine pass's visibility test fails, which the sphere cannot show.
-void realMeshRows(BenchmarkContext& bench) {
+// the combine pass's visibility test fails, which the sphere cannot show. With `plot`, each mesh
+// adds two series of converge time against error: the maps and the vertex estimate.
+void realMeshRows(BenchmarkContext& bench, PlotSpec* plot) {
     const Options& o = bench.options();
     constexpr int kWidth = 400, kHeight = 226;
     const sss::ScatteringMaterial marble = sss::materialPreset("marble");
@@ -60,7 +61,11 @@ void realMeshRows(BenchmarkContext& bench) {
                 return vertexEstimate ? "vertex-estimate-n" + std::to_string(samples) : "k" + std::to_string(cameras);
             }
         };
-        for (const Config config : {Config{8}, Config{16}, Config{8, 24, true}, Config{8, 96, true}, Config{8, 384, true}}) {
+        PlotSeries mapsSeries{model + ": maps, K 8 / 16", {}, kPalette[(plot ? plot->series.size() : 0) % 8]};
+        PlotSeries estimateSeries{model + ": vertex estimate", {},
+                                  kPalette[(plot ? plot->series.size() + 1 : 0) % 8]};
+        for (const Config config : {Config{8}, Config{16}, Config{8, 24, true}, Config{8, 48, true}, Config{8, 96, true},
+                                    Config{8, 384, true}}) {
             const int cameras = config.cameras;
             sss::MeshRenderOptions mo;
             mo.shading = sss::MeshShading::Scattering;
@@ -122,9 +127,14 @@ void realMeshRows(BenchmarkContext& bench) {
                          {"speck_share", error.speckShare},
                          {"psnr_db", error.psnr},
                          {"material", "marble"}};
+            (config.vertexEstimate ? estimateSeries : mapsSeries).points.emplace_back(convergeMs, error.relRmse);
             std::cerr << "sss-bench: " << model << " " << config.name() << " relRMSE " << error.relRmse << " specks "
                       << error.speckShare << " converged in " << convergeMs << " ms\n";
             bench.addRecord(std::move(r));
+        }
+        if (plot) {
+            plot->series.push_back(std::move(mapsSeries));
+            plot->series.push_back(std::move(estimateSeries));
         }
     }
 }
@@ -135,7 +145,12 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
     PlotSpec plot{"mesh scattering: time against error (CPU reference)", "time per light change (ms)",
                   "relative RMSE", {}};
     if (!bench.wanted("sphere")) {
-        if (!quick) realMeshRows(bench);
+        // Real meshes only: their front is the plot (regeneration time against error).
+        if (!quick) {
+            plot = {"real meshes: regeneration time against error (CPU reference)",
+                    "time to regenerate: light buffer + 8 frames (ms)", "relative RMSE", {}};
+            realMeshRows(bench, &plot);
+        }
         return plot;
     }
     // The accuracy test's scene: a 4 cm potato sphere (20 mm per unit), one directional light.
@@ -160,59 +175,76 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
     const std::vector<int> cameraCounts = quick ? std::vector<int>{4, 8} : std::vector<int>{4, 8, 16};
     const std::vector<int> sampleCounts = quick ? std::vector<int>{8} : std::vector<int>{6, 12, 24, 48};
     const std::vector<int> resolutions = quick ? std::vector<int>{128} : std::vector<int>{256, 512};
-    for (int resolution : resolutions)
+    // One configuration: its first (single-frame) image's error on a fresh renderer, then the
+    // time of a light change and of a fixed frame.
+    auto run = [&](const sss::MeshRenderOptions& mo, const std::string& method, PlotSeries& series) {
+        const bool estimate = mo.combine == sss::MeshCombine::VertexEstimate;
+        sss::MeshScatteringRenderer renderer(mo);
+        renderer.setMesh(sphere);
+        renderer.setScatteringMaterial(potato);
+        renderer.setLights({key});
+        const std::string what = (estimate ? "vertex-estimate" : "k" + std::to_string(mo.cameras)) + "-n" +
+                                 std::to_string(mo.samples) + "-r" + std::to_string(mo.mapResolution);
+        const sss::Image image = renderOnce(bench, [&](sss::RenderTarget& t) { renderer.render(camera, t); });
+        const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference.image);
+        const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, "sweep-mesh-" + what);
+
+        Record r;
+        r.table = "error-sweep";
+        r.model = "sphere";
+        r.mode = "sss";
+        r.dataSize = std::to_string(sphere.triangleCount()) + " tri";
+        r.params = (estimate ? "vertex-estimate" : "K=" + std::to_string(mo.cameras)) + " N=" +
+                   std::to_string(mo.samples) + (estimate ? " light buffer=" : " maps=") +
+                   std::to_string(mo.mapResolution) + " relRMSE=" + std::to_string(error.relRmse);
+        r.width = o.width;
+        r.height = o.height;
+        r.measurement = change;
+        r.details = {{"sweep", "mesh"},
+                     {"method", method},
+                     {"cameras", estimate ? 0 : mo.cameras},
+                     {"samples", mo.samples},
+                     {"map_resolution", mo.mapResolution},
+                     {"ms", change.stats.medianMs},
+                     {"fixed_ms", fixed.stats.medianMs},
+                     {"rel_rmse", error.relRmse},
+                     {"psnr_db", error.psnr},
+                     {"max_abs_error", error.maxAbsError},
+                     {"reference_rel_rmse", reference.relativeRmseEstimate},
+                     {"material", "potato"},
+                     {"millimetres_per_unit", mmPerUnit}};
+        bench.addRecord(std::move(r));
+        series.points.emplace_back(change.stats.medianMs, error.relRmse);
+    };
+    for (int resolution : resolutions) {
+        sss::MeshRenderOptions mo;
+        mo.shading = sss::MeshShading::Scattering;
+        mo.mapResolution = mo.lightMapResolution = resolution;
+        mo.accumulationFrames = 1;
+        mo.millimetresPerUnit = mmPerUnit;
+        mo.specular = 0.0f;
         for (int cameras : cameraCounts) {
             PlotSeries series{"K " + std::to_string(cameras) + ", maps " + std::to_string(resolution), {},
                               kPalette[plot.series.size() % 8]};
             for (int samples : sampleCounts) {
-                sss::MeshRenderOptions mo;
-                mo.shading = sss::MeshShading::Scattering;
                 mo.cameras = cameras;
                 mo.samples = samples;
-                mo.mapResolution = mo.lightMapResolution = resolution;
-                mo.accumulationFrames = 1;
-                mo.millimetresPerUnit = mmPerUnit;
-                mo.specular = 0.0f;
-                sss::MeshScatteringRenderer renderer(mo);
-                renderer.setMesh(sphere);
-                renderer.setScatteringMaterial(potato);
-                renderer.setLights({key});
-                const std::string id = "sweep-mesh-k" + std::to_string(cameras) + "-n" + std::to_string(samples) +
-                                       "-r" + std::to_string(resolution);
-                // Error first, on a fresh renderer's first (single-frame) result.
-                const sss::Image image = renderOnce(bench, [&](sss::RenderTarget& t) { renderer.render(camera, t); });
-                const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference.image);
-                const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, id);
-
-                Record r;
-                r.table = "error-sweep";
-                r.model = "sphere";
-                r.mode = "sss";
-                r.dataSize = std::to_string(sphere.triangleCount()) + " tri";
-                r.params = "K=" + std::to_string(cameras) + " N=" + std::to_string(samples) + " maps=" +
-                           std::to_string(resolution) + " relRMSE=" + std::to_string(error.relRmse);
-                r.width = o.width;
-                r.height = o.height;
-                r.measurement = change;
-                r.details = {{"sweep", "mesh"},
-                             {"method", "maps"},
-                             {"cameras", cameras},
-                             {"samples", samples},
-                             {"map_resolution", resolution},
-                             {"ms", change.stats.medianMs},
-                             {"fixed_ms", fixed.stats.medianMs},
-                             {"rel_rmse", error.relRmse},
-                             {"psnr_db", error.psnr},
-                             {"max_abs_error", error.maxAbsError},
-                             {"reference_rel_rmse", reference.relativeRmseEstimate},
-                             {"material", "potato"},
-                             {"millimetres_per_unit", mmPerUnit}};
-                bench.addRecord(std::move(r));
-                series.points.emplace_back(change.stats.medianMs, error.relRmse);
+                run(mo, "maps", series);
             }
             plot.series.push_back(std::move(series));
         }
-    if (!quick) realMeshRows(bench);
+        // Evaluate-once: the radiosity at the sphere's vertices, no maps (the resolution is the
+        // light buffer's).
+        PlotSeries series{"vertex estimate, light buffer " + std::to_string(resolution), {},
+                          kPalette[plot.series.size() % 8]};
+        mo.combine = sss::MeshCombine::VertexEstimate;
+        for (int samples : quick ? std::vector<int>{8} : std::vector<int>{24, 96, 384}) {
+            mo.samples = samples;
+            run(mo, "vertex-estimate", series);
+        }
+        plot.series.push_back(std::move(series));
+    }
+    if (!quick) realMeshRows(bench, nullptr);  // other axes than the sphere's: records only
     return plot;
 }
 

@@ -33,6 +33,18 @@ struct LightBufferInputs {
     bool operator==(const LightBufferInputs&) const = default;
 };
 
+// What the profile's constants and the disk sampling depend on: not the lights, so a light change
+// skips their plane integrals (about 0.3 s of CPU for the calibrated profile).
+struct ProfileInputs {
+    std::uint64_t meshGeneration = 0, materialGeneration = 0;
+    glm::mat4 model{1.0f};
+    double millimetresPerUnit = 0.0;
+    float sampleRadius = 0.0f, spread = 0.0f;
+    int lightMapResolution = 0;
+    ScatteringProfile profile = ScatteringProfile::Calibrated;
+    bool operator==(const ProfileInputs&) const = default;
+};
+
 // What the scattering maps depend on (besides the light buffer).
 struct ScatteringMapInputs {
     LightBufferInputs lightBuffer;
@@ -113,6 +125,7 @@ struct MeshScatteringRenderer::Impl {
     // Derived with the maps' inputs (the profile's plane integrals are too slow for every frame).
     DipoleConstants dipole;
     detail::ScatteringSampling sampling;
+    std::optional<ProfileInputs> profileInputs;  // what dipole and sampling were derived for
     glm::dvec3 environmentReflectance{0.0};
 
     // The profile's constants and the disk sampling for the current inputs.
@@ -156,6 +169,15 @@ struct MeshScatteringRenderer::Impl {
         environmentReflectance = options.profile == ScatteringProfile::Calibrated
                                      ? profileDiffuseReflectanceUniform(dipole)
                                      : dipoleDiffuseReflectance(dipole);
+    }
+
+    void updateProfile() {
+        const ProfileInputs inputs{meshGeneration,       materialGeneration, model,
+                                   options.millimetresPerUnit, options.sampleRadius, options.spread,
+                                   options.lightMapResolution, options.profile};
+        if (profileInputs == inputs) return;
+        timed("profile", [&] { deriveProfile(); });  // CPU: the profile's plane integrals
+        profileInputs = inputs;
     }
 
     template <typename Work>
@@ -208,7 +230,7 @@ struct MeshScatteringRenderer::Impl {
             }
             cameras = detail::makeScatteringCameras(options.cameras, mesh->bounds);
             scatteringMapInputs = inputs;
-            deriveProfile();
+            updateProfile();
         }
         if (radiosityFrames() >= options.accumulationFrames) return;
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));

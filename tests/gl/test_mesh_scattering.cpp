@@ -125,6 +125,7 @@ TEST_CASE("a camera-only change reruns only the combine pass", "[gl][mesh][scatt
     while (!renderer.converged());
     CHECK(runs("light-buffer") == 1);
     CHECK(runs("scattering-maps") == 4);  // accumulationFrames
+    CHECK(runs("profile") == 1);
     for (int i = 0; i < 3; ++i) {
         camera.orbit(20.0f, 5.0f);
         frame();
@@ -137,18 +138,27 @@ TEST_CASE("a camera-only change reruns only the combine pass", "[gl][mesh][scatt
         frame();
         CHECK(runs("light-buffer") == 1);
         CHECK(runs("scattering-maps") == 5);
+        CHECK(runs("profile") == 2);
     }
-    SECTION("a light change reruns both") {
+    SECTION("a light change reruns both, not the profile's derivation") {
         renderer.setLights({DirectionalLight{.direction = {1, 0, 0}}});
         frame();
         CHECK(runs("light-buffer") == 2);
         CHECK(runs("scattering-maps") == 5);
+        CHECK(runs("profile") == 1);
+        // The same image as a renderer that starts with that light.
+        const Image changed = renderConverged(renderer, camera, 64, 36);
+        MeshScatteringRenderer fresh(testOptions());
+        fresh.setMesh(sphere);
+        fresh.setLights({DirectionalLight{.direction = {1, 0, 0}}});
+        CHECK(computeErrorMetrics(changed, renderConverged(fresh, camera, 64, 36)).maxAbsError == 0.0f);
     }
-    SECTION("an object transform change reruns both") {
+    SECTION("an object transform change reruns both and the profile (its disk follows the size)") {
         renderer.setModelTransform(glm::translate(glm::mat4(1.0f), {0.1f, 0, 0}));
         frame();
         CHECK(runs("light-buffer") == 2);
         CHECK(runs("scattering-maps") == 5);
+        CHECK(runs("profile") == 2);
     }
     SECTION("changing only the specular term reruns nothing but the combine pass") {
         MeshRenderOptions o = renderer.options();
