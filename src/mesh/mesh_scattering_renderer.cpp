@@ -122,7 +122,7 @@ struct MeshScatteringRenderer::Impl {
     std::optional<LightBufferInputs> lightBufferInputs;
     std::optional<ScatteringMapInputs> scatteringMapInputs;
     std::optional<detail::SurfaceShadows> shadows;  // set by HybridCompositor
-    // Derived with the maps' inputs (the profile's plane integrals are too slow for every frame).
+    // Derived when ProfileInputs change (the profile's plane integrals are too slow for every frame).
     DipoleConstants dipole;
     detail::ScatteringSampling sampling;
     std::optional<ProfileInputs> profileInputs;  // what dipole and sampling were derived for
