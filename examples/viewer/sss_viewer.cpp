@@ -4,6 +4,7 @@
 #include "tf_editor_widget.h"
 #include "viewer_options.h"
 
+#include <sss/option_names.h>
 #include <sss/scene.h>
 #include "viewer_state.h"
 
@@ -732,6 +733,20 @@ private:
         }
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("on: the dipole rescaled to a random walk, plus single scattering\noff: the paper's directional dipole");
+        // Where the combine pass reads the radiosity (the CLI's --combine names).
+        const std::string combineName(sss::enumName(m_meshOptions.combine));
+        if (ImGui::BeginCombo("combine", combineName.c_str())) {
+            for (const auto& [value, name] : sss::enumNames<sss::MeshCombine>()) {
+                if (ImGui::Selectable(std::string(name).c_str(), value == m_meshOptions.combine)) {
+                    m_meshOptions.combine = value;
+                    m_meshDirty = true;
+                }
+            }
+            ImGui::EndCombo();
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("per-pixel: the K maps at every pixel (the paper's)\nper-vertex: the maps resolved per vertex\n"
+                              "vertex-estimate: no maps, the radiosity estimated at each vertex (fine meshes)");
         const std::vector<std::string> names = sss::materialPresetNames();
         const char* current = m_materialIndex >= 0 ? names[static_cast<std::size_t>(m_materialIndex)].c_str()
                                                     : "(custom)";
