@@ -53,9 +53,9 @@ enum class MeshCombine {
     /// highlight stay per pixel.
     PerVertex,
     /// Evaluate-once radiosity: no scattering maps. The radiosity is estimated directly at each
-    /// vertex (N samples per light and frame, accumulated over accumulationFrames like the maps)
-    /// instead of in every map texel that sees the point, and every frame interpolates it as
-    /// PerVertex does. Regenerating costs about V x N evaluations instead of K x texels x N
+    /// vertex (N samples per light and frame, accumulated over accumulationFrames like the maps,
+    /// along one low-discrepancy sequence per vertex) instead of in every map texel that sees the
+    /// point, and every frame interpolates it as PerVertex does. Regenerating costs about V x N evaluations instead of K x texels x N
     /// (cameras and mapResolution are unused); detail finer than the vertices is lost, so it
     /// needs a mesh whose edges are short against the diffusion length.
     VertexEstimate,

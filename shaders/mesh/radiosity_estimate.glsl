@@ -12,6 +12,9 @@
 // Shared by the scattering maps (per texel, shaders/mesh/scattering_map.frag) and the evaluate-once
 // vertex estimate (per vertex, shaders/mesh/vertex_estimate.comp); the uniforms are set by
 // setRadiosityEstimateUniforms (src/mesh/radiosity_estimate.h).
+#ifndef VERTEX_SEQUENCE
+#define VERTEX_SEQUENCE 0
+#endif
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
 #include "common/surface_shadows.glsl"
@@ -44,11 +47,24 @@ vec3 estimateRadiosity(vec3 xo, vec3 no, inout uint state) {
         vec3 axis = point ? normalize(xo - lightVector[l].xyz) : -lightVector[l].xyz;
         vec3 u = normalize(abs(axis.x) < 0.9 ? cross(axis, vec3(1, 0, 0)) : cross(axis, vec3(0, 1, 0)));
         vec3 v = cross(axis, u);
+#if VERTEX_SEQUENCE
+        // One low-discrepancy sequence per vertex across all its frames (R3, Roberts 2018), under
+        // a random rotation fixed per vertex and light: sample i of the vertex's whole estimate.
+        vec3 rotation = vec3(random01(state), random01(state), random01(state));
+#endif
         for (int s = 0; s < samplesPerLight; ++s) {
+#if VERTEX_SEQUENCE
+            uint i = frameSeed * uint(samplesPerLight) + uint(s);
+            vec3 q = fract(rotation + float(i) * vec3(0.8191725134, 0.6710436067, 0.5497004779));
+            float rate = q.x < 0.5 ? sigmaNear : sigmaStar;
+            float r = -log(1.0 - q.y * (1.0 - exp(-rate * diskRadius))) / rate;
+            float phi = twoPi * q.z;
+#else
             // Truncated exponential in r on [0, R], rate chosen at random from the two.
             float rate = random01(state) < 0.5 ? sigmaNear : sigmaStar;
             float r = -log(1.0 - random01(state) * (1.0 - exp(-rate * diskRadius))) / rate;
             float phi = twoPi * random01(state);
+#endif
             if (!(r > 0.0)) continue;
             // Area density of the mixture at r: each rate gives rate e^(-rate r) / (1 - e^(-rate R)) / (2 pi r).
             float pdf = 0.5 * (sigmaNear * exp(-sigmaNear * r) / (1.0 - exp(-sigmaNear * diskRadius)) +
