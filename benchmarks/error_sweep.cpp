@@ -71,7 +71,7 @@ void realMeshRows(BenchmarkContext& bench, PlotSpec* plot) {
             mo.shading = sss::MeshShading::Scattering;
             mo.cameras = cameras;
             mo.samples = config.samples;
-            if (config.vertexEstimate) mo.combine = sss::MeshCombine::VertexEstimate;
+            mo.combine = config.vertexEstimate ? sss::MeshCombine::VertexEstimate : sss::MeshCombine::PerPixel;
             mo.specular = 0.0f;
             sss::MeshScatteringRenderer renderer(mo);
             renderer.setMesh(*mesh);
@@ -219,6 +219,7 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
     for (int resolution : resolutions) {
         sss::MeshRenderOptions mo;
         mo.shading = sss::MeshShading::Scattering;
+        mo.combine = sss::MeshCombine::PerPixel;  // the paper's maps; the estimate's series follows
         mo.mapResolution = mo.lightMapResolution = resolution;
         mo.accumulationFrames = 1;
         mo.millimetresPerUnit = mmPerUnit;

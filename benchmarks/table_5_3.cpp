@@ -65,8 +65,8 @@ void runTable53(BenchmarkContext& bench) {
             sss::MeshRenderOptions options;
             options.shading = sss::MeshShading::Scattering;
             const bool estimate = configs[c].vertexEstimate;
-            if (estimate) options.combine = sss::MeshCombine::VertexEstimate;
-            else options.cameras = configs[c].cameras;
+            options.combine = estimate ? sss::MeshCombine::VertexEstimate : sss::MeshCombine::PerPixel;
+            if (!estimate) options.cameras = configs[c].cameras;
             options.samples = configs[c].samples;
             options.mapResolution = options.lightMapResolution = quick ? 256 : 904;
             options.sampleRadius = 0.025f;

@@ -36,6 +36,7 @@ void runTable55(BenchmarkContext& bench) {
         const glm::mat4 volumeModel = glm::translate(glm::mat4(1.0f), {0.55f, 0.0f, 0.0f});
         sss::MeshRenderOptions meshOptions;
         meshOptions.shading = sss::MeshShading::Scattering;
+        meshOptions.combine = sss::MeshCombine::PerPixel;  // the thesis's maps
         meshOptions.cameras = 8;
         meshOptions.samples = 24;
         meshOptions.mapResolution = meshOptions.lightMapResolution = quick ? 256 : 904;

@@ -345,17 +345,23 @@ int run(CLI::App& app, Args& a) {
                 "shader compilation\n",
                 times[times.size() / 2], times.front(), times.back(), times.size(), width, height,
                 timer.method() == sss::TimingMethod::GlTimerQuery ? "GL timer query" : "CPU clock around glFinish");
-    for (const sss::SceneMesh& m : scene.meshes) {
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const sss::SceneMesh& m = scene.meshes[i];
         if (m.options.shading != sss::MeshShading::Scattering) continue;
-        if (m.options.combine == sss::MeshCombine::VertexEstimate)
-            std::printf("scattering: %s, vertex estimate (no maps), N = %d; converging took %.2f ms (includes "
+        const sss::MeshScatteringRenderer& renderer = compositor.mesh(i);
+        const bool automatic = m.options.combine == sss::MeshCombine::Automatic;
+        const std::string why = automatic ? " (auto: edges " + std::to_string(renderer.edgeToDiffusionLength()).substr(0, 5) +
+                                                " diffusion lengths)"
+                                          : "";
+        if (renderer.activeCombine() == sss::MeshCombine::VertexEstimate)
+            std::printf("scattering: %s, vertex estimate (no maps)%s, N = %d; converging took %.2f ms (includes "
                         "shader compilation)\n",
-                        m.material.name.c_str(), m.options.samples, convergeMs);
+                        m.material.name.c_str(), why.c_str(), m.options.samples, convergeMs);
         else
-            std::printf("scattering: %s, K = %d, N = %d, maps %d^2; converging took %.2f ms (includes shader "
-                        "compilation)\n",
+            std::printf("scattering: %s, K = %d, N = %d, maps %d^2, %s combine%s; converging took %.2f ms (includes "
+                        "shader compilation)\n",
                         m.material.name.c_str(), m.options.cameras, m.options.samples, m.options.mapResolution,
-                        convergeMs);
+                        std::string(sss::enumName(renderer.activeCombine())).c_str(), why.c_str(), convergeMs);
     }
     if (multipleScattering)
         for (std::size_t i = 0; i < compositor.volumeCount(); ++i)

@@ -287,7 +287,8 @@ void bindOptions(py::module_& m) {
     bindEnum<sss::MeshCombine>(m, "MeshCombine",
                                {{"PER_PIXEL", sss::MeshCombine::PerPixel},
                                 {"PER_VERTEX", sss::MeshCombine::PerVertex},
-                                {"VERTEX_ESTIMATE", sss::MeshCombine::VertexEstimate}},
+                                {"VERTEX_ESTIMATE", sss::MeshCombine::VertexEstimate},
+                                {"AUTOMATIC", sss::MeshCombine::Automatic}},
                                "Where the combine pass reads the scattered light.");
     bindEnum<sss::VolumeShading>(m, "VolumeShading",
                                  {{"EMISSION_ABSORPTION", sss::VolumeShading::EmissionAbsorption},

@@ -12,7 +12,8 @@ std::span<const EnumName<MeshShading>> enumNames<MeshShading>() {
 
 template <>
 std::span<const EnumName<MeshCombine>> enumNames<MeshCombine>() {
-    static constexpr EnumName<MeshCombine> names[] = {{MeshCombine::PerPixel, "per-pixel"},
+    static constexpr EnumName<MeshCombine> names[] = {{MeshCombine::Automatic, "auto"},
+                                                      {MeshCombine::PerPixel, "per-pixel"},
                                                       {MeshCombine::PerVertex, "per-vertex"},
                                                       {MeshCombine::VertexEstimate, "vertex-estimate"}};
     return names;

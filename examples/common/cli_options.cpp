@@ -164,7 +164,8 @@ void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string&
             "scattering) or dipole (the paper's, as the thesis)")
         ->group(group);
     addEnum(app, "--combine", options.combine,
-            "per-pixel (the K maps looked up at every pixel), per-vertex (resolved once per vertex after each "
+            "auto (the default: vertex-estimate on meshes fine against the diffusion length, per-pixel on coarse "
+            "ones), per-pixel (the K maps looked up at every pixel), per-vertex (resolved once per vertex after each "
             "map update: fixed frames cost about a Blinn-Phong frame) or vertex-estimate (evaluate-once: no maps, "
             "the radiosity estimated at each vertex; needs a finely tessellated mesh)")
         ->group(group);

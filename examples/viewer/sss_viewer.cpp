@@ -745,7 +745,8 @@ private:
             ImGui::EndCombo();
         }
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("per-pixel: the K maps at every pixel (the paper's)\nper-vertex: the maps resolved per vertex\n"
+            ImGui::SetTooltip("auto: vertex-estimate on fine meshes, per-pixel on coarse ones\n"
+                              "per-pixel: the K maps at every pixel (the paper's)\nper-vertex: the maps resolved per vertex\n"
                               "vertex-estimate: no maps, the radiosity estimated at each vertex (fine meshes)");
         const std::vector<std::string> names = sss::materialPresetNames();
         const char* current = m_materialIndex >= 0 ? names[static_cast<std::size_t>(m_materialIndex)].c_str()

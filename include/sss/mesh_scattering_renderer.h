@@ -59,6 +59,13 @@ enum class MeshCombine {
     /// (cameras and mapResolution are unused); detail finer than the vertices is lost, so it
     /// needs a mesh whose edges are short against the diffusion length.
     VertexEstimate,
+    /// The default: VertexEstimate when the mesh is fine against the material's diffusion length,
+    /// PerPixel otherwise. "Fine": the triangles holding 90 % of the surface have edges of at
+    /// most 2 diffusion lengths 1 / sigma_tr (in the narrowest-profile channel that reflects a
+    /// tenth of the brightest one's light). Scanned meshes at their real size are fine for every
+    /// preset; a box of a few large triangles is not. MeshScatteringRenderer::activeCombine()
+    /// says which one renders.
+    Automatic,
 };
 
 struct MeshRenderOptions {
@@ -68,9 +75,10 @@ struct MeshRenderOptions {
     /// Dipole reproduces the thesis). Calibrated also corrects for the part of the profile the
     /// sampling disk cuts off (exactly for a flat surface lit head-on) and adds single scattering.
     ScatteringProfile profile = ScatteringProfile::Calibrated;
-    /// Per-pixel map lookups (the paper's), the cached per-vertex combine, or the evaluate-once
-    /// vertex estimate without maps (default: PerPixel).
-    MeshCombine combine = MeshCombine::PerPixel;
+    /// Per-pixel map lookups (the paper's), the cached per-vertex combine, the evaluate-once
+    /// vertex estimate without maps, or Automatic: the vertex estimate on fine meshes, per-pixel
+    /// maps on coarse ones (default: Automatic).
+    MeshCombine combine = MeshCombine::Automatic;
     int cameras = 8;               ///< K scattering maps, 1..32 (default: 8)
     int samples = 24;              ///< N proposals per light per frame, 1..4096 (default: 24)
     int mapResolution = 512;       ///< scattering-map side in texels, 16..8192 (default: 512)
@@ -131,6 +139,12 @@ public:
     void setLights(std::vector<Light> lights);
     void setOptions(const MeshRenderOptions& options);
     const MeshRenderOptions& options() const;
+    /// The combine that renders: options().combine, with Automatic resolved for the current mesh,
+    /// model transform, material and scale (PerPixel before a mesh is set).
+    MeshCombine activeCombine() const;
+    /// The Automatic test's measure: the mesh's edge length (surface-weighted 90th percentile,
+    /// after the model transform) over the material's diffusion length; 0 before a mesh is set.
+    double edgeToDiffusionLength() const;
 
     /// Draws over `target` with depth testing (the caller clears it). Throws if no mesh is set.
     void render(const Camera& camera, RenderTarget& target);

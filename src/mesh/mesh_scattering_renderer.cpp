@@ -4,6 +4,7 @@
 
 #include "lighting/light_uniforms.h"
 #include "mesh/blinn_phong_pass.h"
+#include "mesh/combine_choice.h"
 #include "mesh/combine_pass.h"
 #include "mesh/gpu_mesh.h"
 #include "mesh/light_buffer_pass.h"
@@ -115,6 +116,7 @@ struct MeshScatteringRenderer::Impl {
     std::optional<detail::VertexRadiosityPass> vertexRadiosity;  // built with the mesh's scattering
     std::optional<detail::VertexEstimatePass> vertexEstimate;    // MeshCombine::VertexEstimate
     detail::VertexAdjacency adjacency;  // of the mesh, for the vertex-radiosity pass
+    float surfaceEdgeLength = 0.0f;     // of the mesh, in its own units (MeshCombine::Automatic)
     int vertexRadiosityFrames = -1;
     std::optional<ScatteringMapInputs> vertexRadiosityInputs;
     detail::MapLookupSettings vertexRadiosityLookup;
@@ -188,6 +190,18 @@ struct MeshScatteringRenderer::Impl {
         stats.record(pass, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
 
+    double edgeToDiffusionLength() const {
+        if (!mesh) return 0.0;
+        return detail::edgeToDiffusionLength(surfaceEdgeLength * detail::largestScale(model), scatteringMaterial,
+                                             options.millimetresPerUnit);
+    }
+
+    MeshCombine activeCombine() const {
+        if (!mesh) return MeshCombine::PerPixel;
+        if (options.combine != MeshCombine::Automatic) return options.combine;
+        return detail::resolveCombine(options.combine, edgeToDiffusionLength());
+    }
+
     ScatteringMapInputs currentMapInputs() const {
         return {{meshGeneration, model, lights, options.lightMapResolution},
                 materialGeneration,
@@ -198,13 +212,13 @@ struct MeshScatteringRenderer::Impl {
                 options.sampleRadius,
                 options.spread,
                 options.profile,
-                options.combine == MeshCombine::VertexEstimate,
+                activeCombine() == MeshCombine::VertexEstimate,
                 shadows ? shadows->revision() : 0};
     }
 
     // Frames accumulated by whichever pass estimates the radiosity (-1: none yet).
     int radiosityFrames() const {
-        if (options.combine == MeshCombine::VertexEstimate) return vertexEstimate ? vertexEstimate->frames() : -1;
+        if (activeCombine() == MeshCombine::VertexEstimate) return vertexEstimate ? vertexEstimate->frames() : -1;
         return scatteringMaps ? scatteringMaps->frames() : -1;
     }
 
@@ -261,6 +275,7 @@ void MeshScatteringRenderer::setMesh(const Mesh& mesh, const glm::mat4& model) {
     m_impl->vertexRadiosity.reset();
     m_impl->vertexEstimate.reset();
     m_impl->adjacency = detail::buildVertexAdjacency(mesh);
+    m_impl->surfaceEdgeLength = detail::surfaceEdgeLength(mesh);
     ++m_impl->meshGeneration;
     m_impl->model = model;
 }
@@ -292,6 +307,8 @@ void MeshScatteringRenderer::setOptions(const MeshRenderOptions& options) {
 
 const MeshRenderOptions& MeshScatteringRenderer::options() const { return m_impl->options; }
 const RenderStats& MeshScatteringRenderer::stats() const { return m_impl->stats; }
+MeshCombine MeshScatteringRenderer::activeCombine() const { return m_impl->activeCombine(); }
+double MeshScatteringRenderer::edgeToDiffusionLength() const { return m_impl->edgeToDiffusionLength(); }
 
 void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) {
     if (!m_impl->mesh)
@@ -308,7 +325,8 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     }
     r.updateScattering();
     if (!r.combine) r.combine.emplace();
-    const bool vertexEstimate = r.options.combine == MeshCombine::VertexEstimate;
+    const MeshCombine combine = r.activeCombine();
+    const bool vertexEstimate = combine == MeshCombine::VertexEstimate;
     // Bias and shrink are given in texels of the scattering maps; convert with the maps' extent
     // (2 radii across, 3 radii of depth; see makeScatteringCameras).
     const float texels = static_cast<float>(r.options.mapResolution);
@@ -321,7 +339,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.shininess = r.options.shininess;
     settings.environment = r.options.environment * glm::vec3(r.environmentReflectance);
     settings.dipole = r.dipole;
-    settings.perVertex = r.options.combine != MeshCombine::PerPixel;
+    settings.perVertex = combine != MeshCombine::PerPixel;
     // The vertices' radiosity follows the maps: once per accumulated frame.
     if (!vertexEstimate && !r.vertexRadiosity) r.vertexRadiosity.emplace(r.adjacency);
     if (!vertexEstimate &&

@@ -1,0 +1,37 @@
+#pragma once
+// What MeshCombine::Automatic resolves to. The evaluate-once vertex estimate interpolates the
+// radiosity linearly between vertices, which holds wherever the radiosity varies little across a
+// triangle. Subsurface transport blurs the incident light over about one diffusion length
+// 1 / sigma_tr, so the test compares the mesh's edges with that length; on coarser meshes the
+// paper's per-pixel maps keep detail the vertices cannot.
+#include "sss/materials.h"
+#include "sss/mesh.h"
+#include "sss/mesh_scattering_renderer.h"
+
+#include <glm/mat4x4.hpp>
+
+namespace sss::detail {
+
+/// The longest edge of the triangles that hold 90 % of the surface area, in the mesh's units: the
+/// area-weighted 90th percentile of each triangle's longest edge. A few long slivers do not
+/// count; large faces (a box's 2-triangle sides) do.
+float surfaceEdgeLength(const Mesh& mesh);
+
+/// How far `model` stretches the mesh at most (the largest singular value of its 3x3 part).
+float largestScale(const glm::mat4& model);
+
+/// Edge length over diffusion length: `edgeLength` (scene units) times sigma_tr of the
+/// narrowest-profile channel among those that reflect at least a tenth of the brightest channel's
+/// diffuse reflectance (ketchup's absorbed green and blue set no scale). 0 when no channel
+/// absorbs (sigma_tr = 0: the profile is wider than any mesh).
+double edgeToDiffusionLength(float edgeLength, const ScatteringMaterial& material, double millimetresPerUnit);
+
+/// The largest edgeToDiffusionLength() at which MeshCombine::Automatic takes the vertex estimate
+/// (measured: tests/gl/test_mesh_accuracy.cpp, "the automatic combine ...").
+inline constexpr double kVertexEstimateMaxEdgeRatio = 2.0;
+
+/// `requested` unless it is Automatic; then VertexEstimate up to kVertexEstimateMaxEdgeRatio,
+/// PerPixel above it.
+MeshCombine resolveCombine(MeshCombine requested, double edgeRatio);
+
+}  // namespace sss::detail
