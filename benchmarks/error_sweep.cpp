@@ -91,6 +91,9 @@ void realMeshRows(BenchmarkContext& bench, PlotSpec* plot) {
                 std::filesystem::create_directories(o.imageDir);
                 sss::toDisplay(image).savePng(o.imageDir / ("error-sweep-" + model + "-" + config.name() + ".png"));
                 sss::toDisplay(reference).savePng(o.imageDir / ("error-sweep-" + model + "-reference.png"));
+                // Linear radiance as compared, for error maps of one's own.
+                image.saveExr(o.imageDir / ("error-sweep-" + model + "-" + config.name() + ".exr"));
+                reference.saveExr(o.imageDir / ("error-sweep-" + model + "-reference.exr"));
                 // Where the specks are: red over the reference's grey.
                 sss::Image specks = reference;
                 auto luminance = [](glm::vec4 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; };

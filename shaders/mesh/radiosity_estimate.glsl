@@ -73,20 +73,37 @@ vec3 estimateRadiosity(vec3 xo, vec3 no, inout uint state) {
             vec4 clip = lightViewProjection[l] * vec4(p, 1.0);
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
             if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) continue;
-            vec4 xiTexel = texture(lightPositions, vec3(uv, float(l)));
+            // The bilinear blend of the four texels around uv lies on the surface only if they all
+            // hold one surface. At a depth edge as seen from the light (a chin over the chest) it
+            // would float in the air between the two, right beside the shadowed surface, where the
+            // profile's near field makes it bright. One surface tilted by theta spreads the four
+            // texels' depths along the light by tan(theta) times their spread across it: a spread
+            // above 4 (76 degrees) is taken for an edge, and the nearest texel used instead.
+            vec3 layer = vec3(uv, float(l));
+            vec4 gx = textureGather(lightPositions, layer, 0), gy = textureGather(lightPositions, layer, 1),
+                 gz = textureGather(lightPositions, layer, 2), gw = textureGather(lightPositions, layer, 3);
+            bool oneSurface = all(greaterThan(gw, vec4(0.999)));
+            if (oneSurface) {
+                vec4 depth = gx * axis.x + gy * axis.y + gz * axis.z;
+                float depthSpread = max(max(depth.x, depth.y), max(depth.z, depth.w)) -
+                                    min(min(depth.x, depth.y), min(depth.z, depth.w));
+                vec3 diagonal = vec3(gx.x - gx.z, gy.x - gy.z, gz.x - gz.z);
+                float across = length(diagonal - dot(diagonal, axis) * axis);
+                oneSurface = depthSpread <= 4.0 * across;
+            }
+            vec4 xiTexel;
             vec3 ni;
-            if (xiTexel.w < 0.999) {
-                // Bilinear lookup: w < 1 means a neighbour texel is empty or (at a depth edge)
-                // the blend mixes two surfaces, so the position would float off the surface.
-                // Take the nearest texel instead: dropping the sample would darken every point
-                // near a silhouette as seen from the light.
+            if (oneSurface) {
+                xiTexel = texture(lightPositions, layer);
+                ni = normalize(texture(lightNormals, layer).xyz);
+            } else {
+                // An edge, or a neighbour texel is empty: the nearest texel. Dropping the sample
+                // would darken every point near a silhouette as seen from the light.
                 ivec3 nearest = ivec3(clamp(ivec2(uv * vec2(textureSize(lightPositions, 0).xy)), ivec2(0),
                                             textureSize(lightPositions, 0).xy - 1), l);
                 xiTexel = texelFetch(lightPositions, nearest, 0);
                 if (xiTexel.w < 0.5) continue;  // no surface there
                 ni = normalize(texelFetch(lightNormals, nearest, 0).xyz);
-            } else {
-                ni = normalize(texture(lightNormals, vec3(uv, float(l))).xyz);
             }
             vec3 xi = xiTexel.xyz;
             vec3 irradiance;  // per unit disk area
