@@ -108,10 +108,13 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
 #endif
 
 #if SHADING_GRADIENT || SHADING_SCATTERING
+// Towards the viewer from any point of this pixel's ray: the same all along it (set in main).
+vec3 viewerDirection;
+
 vec3 shade(vec3 p, vec3 tc, vec3 color) {
     vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
 #if SHADING_GRADIENT
-    vec3 v = towardsViewer(worldPosition);
+    vec3 v = viewerDirection;
     SurfaceNormal surface = gradientNormal(tc, v);
 #endif
     vec3 lit = ambientStrength * color;
@@ -154,7 +157,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
             // Single scattering: albedo (TF colour) x phase function between the light's travel
             // direction -l and the way to the viewer x the light that arrives (grey extinction:
             // no chromaticity).
-            float cosTheta = dot(-l, towardsViewer(worldPosition));
+            float cosTheta = dot(-l, viewerDirection);
             float d = 1.0 + phaseG * phaseG - 2.0 * phaseG * cosTheta;
             float phase = (1.0 - phaseG * phaseG) / (12.5663706 * d * sqrt(d));
             lit += color * radiance * (arriving.a * phase);
@@ -245,6 +248,9 @@ void compositeSegment(Segment segment, vec3 end, float length, vec3 direction, i
 
 void main() {
     Ray ray = pixelRay(ndc);
+#if SHADING_GRADIENT || SHADING_SCATTERING
+    viewerDirection = -normalize(mat3(modelToWorld) * ray.direction);
+#endif
     vec2 span = intersectBox(ray, boxMin, boxMax);
     // Rays end at opaque geometry already in the target: a mesh in front hides the volume, a
     // mesh inside it cuts the rays at its surface.
