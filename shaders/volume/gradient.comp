@@ -7,7 +7,8 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 uniform sampler3D volumeTexture;
 uniform ivec3 volumeDims;
-layout(rgba16_snorm, binding = 0) uniform writeonly image3D gradients;
+uniform int storeValues;
+layout(rgba16, binding = 0) uniform writeonly image3D gradients;
 
 float at(ivec3 i) { return texelFetch(volumeTexture, clamp(i, ivec3(0), volumeDims - 1), 0).r; }
 
@@ -16,5 +17,5 @@ void main() {
     if (any(greaterThanEqual(i, volumeDims))) return;
     vec3 d = vec3(at(i + ivec3(1, 0, 0)) - at(i - ivec3(1, 0, 0)), at(i + ivec3(0, 1, 0)) - at(i - ivec3(0, 1, 0)),
                   at(i + ivec3(0, 0, 1)) - at(i - ivec3(0, 0, 1)));
-    imageStore(gradients, i, vec4(d, 0.0));  // each in [-1, 1]
+    imageStore(gradients, i, vec4(d * 0.5 + 0.5, storeValues != 0 ? at(i) : 0.0));
 }

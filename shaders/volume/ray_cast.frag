@@ -5,6 +5,9 @@
 //   EMPTY_SPACE_SKIPPING 0|1 : jump over bricks the transfer function makes fully transparent
 //   EYE_PASS 0|1           : add the eye pass's blurred light from behind (scattering only)
 //   PREINTEGRATED 0|1      : classify the segment between samples from the pre-integrated table
+//   GRADIENT_VOLUME 0|1    : gradients from the precomputed gradient volume (else six fetches)
+//   VALUES_IN_GRADIENTS 0|1: its fourth channel holds the data value: a gradient-shaded sample
+//                            reads one texel for its value and its gradient
 //   LIGHT_COUNT n          : the number of lights, fixed at compile time so the loop over the
 //                            light volumes indexes its sampler array with constants (dynamic
 //                            indices make software rasterisers fetch from every array element)
@@ -14,6 +17,13 @@
 #include "common/blinn_phong.glsl"
 #include "volume/ray_setup.glsl"
 #include "volume/transfer_function.glsl"
+
+// One fetch per sample for value and gradient (see VALUES_IN_GRADIENTS above).
+#if SHADING_GRADIENT && GRADIENT_VOLUME && VALUES_IN_GRADIENTS
+#define COMBINED_FETCH 1
+#else
+#define COMBINED_FETCH 0
+#endif
 
 in vec2 ndc;
 
@@ -74,6 +84,7 @@ layout(location = 0) out vec4 fragColor;   // premultiplied colour, alpha = opac
 
 vec3 toTexture(vec3 p) { return (p - boxMin) / (boxMax - boxMin); }
 
+
 #if SHADING_GRADIENT
 struct SurfaceNormal {
     vec3 n;          // world space, facing the viewer (two-sided)
@@ -81,14 +92,21 @@ struct SurfaceNormal {
 };
 
 #if GRADIENT_VOLUME
-uniform sampler3D gradientVolume;  // per-voxel central differences (volume/gradient.comp)
+uniform sampler3D gradientVolume;  // per-voxel central differences d / 2 + 1/2 (volume/gradient.comp)
+#endif
+#if COMBINED_FETCH
+// The gradient (central differences) at the point being shaded: the caller reads it with the
+// value (sampleVolume) and sets it before compositing.
+vec3 shadedDifferences;
 #endif
 
 SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
     // Central differences, one voxel apart on each axis; gradient in value units per voxel.
-#if GRADIENT_VOLUME
+#if COMBINED_FETCH
+    vec3 g = shadedDifferences * (0.5 * valueScaleOffset.x);
+#elif GRADIENT_VOLUME
     // Precomputed: the trilinear interpolation of per-voxel differences is the same gradient.
-    vec3 g = texture(gradientVolume, tc).xyz * (0.5 * valueScaleOffset.x);
+    vec3 g = (texture(gradientVolume, tc).xyz * 2.0 - 1.0) * (0.5 * valueScaleOffset.x);
 #else
     vec3 h = 1.0 / vec3(volumeDims);
     vec3 g = vec3(texture(volumeTexture, tc + vec3(h.x, 0, 0)).r - texture(volumeTexture, tc - vec3(h.x, 0, 0)).r,
@@ -105,6 +123,16 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
     if (dot(n, v) < 0.0) n = -n;
     return SurfaceNormal(n, smoothstep(0.0, gradientThreshold, length(g)));
 }
+#endif
+
+// The data value at texture coordinate tc (xyz: its central differences with COMBINED_FETCH).
+#if COMBINED_FETCH
+vec4 sampleVolume(vec3 tc) {
+    vec4 s = texture(gradientVolume, tc);
+    return vec4(s.xyz * 2.0 - 1.0, s.w);
+}
+#else
+vec4 sampleVolume(vec3 tc) { return vec4(0.0, 0.0, 0.0, texture(volumeTexture, tc).r); }
 #endif
 
 #if SHADING_GRADIENT || SHADING_SCATTERING
@@ -271,7 +299,12 @@ void main() {
         // previous sample was taken, and `previous` is its value.
         float firstEnd = min(tFirst, span.y);
         vec3 firstPoint = ray.origin + firstEnd * ray.direction;
-        float previous = texture(volumeTexture, toTexture(firstPoint)).r;
+        vec4 firstSample = sampleVolume(toTexture(firstPoint));
+        float previous = firstSample.w;
+#if COMBINED_FETCH
+        vec3 previousDifferences = firstSample.xyz;  // the gradient at `previous`
+        shadedDifferences = firstSample.xyz;
+#endif
         compositeSegment(pointSegment(previous, (firstEnd - span.x) / stepLength * opacityExponent), firstPoint,
                          firstEnd - span.x, ray.direction, color, alpha);
         bool segmentOpen = true;
@@ -315,11 +348,25 @@ void main() {
                 continue;
             }
 #endif
-            float value = texture(volumeTexture, tc).r;
+            vec4 sampled = sampleVolume(tc);
+            float value = sampled.w;
 #if PREINTEGRATED
             // Just out of skipped bricks, the previous position was not sampled.
-            if (!segmentOpen) previous = texture(volumeTexture, toTexture(p - stepLength * ray.direction)).r;
-            compositeSegment(classifySegment(previous, value), p, stepLength, ray.direction, color, alpha);
+            if (!segmentOpen) {
+                vec4 before = sampleVolume(toTexture(p - stepLength * ray.direction));
+                previous = before.w;
+#if COMBINED_FETCH
+                previousDifferences = before.xyz;
+#endif
+            }
+            Segment segment = classifySegment(previous, value);
+#if COMBINED_FETCH
+            // The segment is shaded where it adds its light, a fraction `depth` along it: the
+            // gradient there, linear between its two samples.
+            shadedDifferences = mix(previousDifferences, sampled.xyz, segment.depth);
+            previousDifferences = sampled.xyz;
+#endif
+            compositeSegment(segment, p, stepLength, ray.direction, color, alpha);
             previous = value;
 #if EMPTY_SPACE_SKIPPING
             segmentOpen = !emptyBrick;
@@ -329,6 +376,9 @@ void main() {
 #else
             vec4 tf = classify(value);
             if (tf.a <= 0.0) continue;
+#if COMBINED_FETCH
+            shadedDifferences = sampled.xyz;
+#endif
             // Opacity correction: the TF opacity is defined per voxel length.
             composite(p, tf.rgb, correctOpacity(tf.a, opacityExponent, 1.0), color, alpha);
 #endif
@@ -340,8 +390,11 @@ void main() {
         float tail = span.y - tailStart;
         if (reachedEnd && tail > 0.0 && alpha < earlyTermination) {
             vec3 tailEnd = ray.origin + span.y * ray.direction;
-            compositeSegment(pointSegment(texture(volumeTexture, toTexture(tailEnd - 0.5 * tail * ray.direction)).r,
-                                          tail / stepLength * opacityExponent),
+            vec4 tailSample = sampleVolume(toTexture(tailEnd - 0.5 * tail * ray.direction));
+#if COMBINED_FETCH
+            shadedDifferences = tailSample.xyz;
+#endif
+            compositeSegment(pointSegment(tailSample.w, tail / stepLength * opacityExponent),
                              tailEnd, tail, ray.direction, color, alpha);
         }
 #endif

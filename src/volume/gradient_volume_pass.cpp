@@ -6,12 +6,13 @@ GradientVolumePass::GradientVolumePass()
     : m_program(gl::Program::link({{GL_COMPUTE_SHADER, "volume/gradient.comp"}})) {}
 
 gl::Texture GradientVolumePass::run(const GpuVolume& volume) const {
-    gl::Texture gradients = gl::Texture::create3D(GL_RGBA16_SNORM, volume.dims, "gradient volume");
+    gl::Texture gradients = gl::Texture::create3D(GL_RGBA16, volume.dims, "gradient volume");
     gradients.setFilter(GL_LINEAR, GL_LINEAR);
     gradients.setWrap(GL_CLAMP_TO_EDGE);
     const gl::Program& p = m_program;
     p.set("volumeTexture", 0);
     p.set("volumeDims", volume.dims);
+    p.set("storeValues", gradientVolumeHoldsValues(volume) ? 1 : 0);
     volume.texture.bind(0);
     gradients.bindImage(0, GL_WRITE_ONLY);
     p.use();
@@ -19,7 +20,7 @@ gl::Texture GradientVolumePass::run(const GpuVolume& volume) const {
                       static_cast<GLuint>((volume.dims.z + 3) / 4));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(0);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16_SNORM);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16);
     return gradients;
 }
 

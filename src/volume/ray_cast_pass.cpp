@@ -26,12 +26,12 @@ bool usesEyePass(const VolumeRenderOptions& o) {
 }
 
 RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass,
-                         bool gradientVolume, bool preintegration)
+                         GradientSource gradients, bool preintegration)
     : m_shading(shading),
       m_emptySpaceSkipping(emptySpaceSkipping),
       m_lightCount(lightCount),
       m_eyePass(eyePass),
-      m_gradientVolume(gradientVolume),
+      m_gradients(gradients),
       m_preintegration(preintegration),
       m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
@@ -40,7 +40,8 @@ RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::si
                                    {"EMPTY_SPACE_SKIPPING", emptySpaceSkipping ? "1" : "0"},
                                    {"LIGHT_COUNT", std::to_string(lightCount)},
                                    {"EYE_PASS", eyePass ? "1" : "0"},
-                                   {"GRADIENT_VOLUME", gradientVolume ? "1" : "0"},
+                                   {"GRADIENT_VOLUME", gradients != GradientSource::OnTheFly ? "1" : "0"},
+                                   {"VALUES_IN_GRADIENTS", gradients == GradientSource::VolumeWithValues ? "1" : "0"},
                                    {"PREINTEGRATED", preintegration ? "1" : "0"}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
@@ -99,7 +100,7 @@ void RayCastPass::run(const RayCastInputs& in) const {
         p.set("specularColor", options.specular);
         p.set("shininess", options.shininess);
         p.set("gradientThreshold", options.gradientThreshold);
-        if (m_gradientVolume && in.gradientVolume) {
+        if (m_gradients != GradientSource::OnTheFly && in.gradientVolume) {
             p.set("gradientVolume", units::kGradientVolume);
             in.gradientVolume->bind(units::kGradientVolume);
         }

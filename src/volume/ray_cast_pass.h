@@ -40,15 +40,20 @@ struct RayCastInputs {
     float aspect = 1.0f;
 };
 
+/// Where the gradient modes read gradients: computed per sample from six data fetches, or the
+/// gradient volume; with unorm data (8 and 16 bit) its fourth channel also holds the data value,
+/// so a gradient-shaded sample reads one texel for both.
+enum class GradientSource { OnTheFly, Volume, VolumeWithValues };
+
 class RayCastPass {
 public:
     RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass,
-                bool gradientVolume, bool preintegration);
+                GradientSource gradients, bool preintegration);
     /// Whether this pass was built for these options, lights, gradient source and classification
     /// (programs are per variant).
-    bool matches(const VolumeRenderOptions& o, std::size_t lightCount, bool gradientVolume, bool preintegration) const {
+    bool matches(const VolumeRenderOptions& o, std::size_t lightCount, GradientSource gradients, bool preintegration) const {
         return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping && lightCount == m_lightCount &&
-               usesEyePass(o) == m_eyePass && gradientVolume == m_gradientVolume &&
+               usesEyePass(o) == m_eyePass && gradients == m_gradients &&
                preintegration == m_preintegration;
     }
     /// Draws into the bound target.
@@ -59,7 +64,7 @@ private:
     bool m_emptySpaceSkipping;
     std::size_t m_lightCount;
     bool m_eyePass;
-    bool m_gradientVolume;
+    GradientSource m_gradients;
     bool m_preintegration;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes

@@ -362,9 +362,14 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     const bool gradients = m_impl->updateGradientVolume();
     m_impl->updatePreintegration();
     const bool preintegrated = m_impl->preintegrated();
-    if (!m_impl->rayCast || !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size(), gradients, preintegrated))
+    const detail::GradientSource gradientSource =
+        !gradients ? detail::GradientSource::OnTheFly
+        : detail::gradientVolumeHoldsValues(*m_impl->volume) ? detail::GradientSource::VolumeWithValues
+                                                               : detail::GradientSource::Volume;
+    if (!m_impl->rayCast ||
+        !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size(), gradientSource, preintegrated))
         m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping, m_impl->lights.size(),
-                                eyePass, gradients, preintegrated);
+                                eyePass, gradientSource, preintegrated);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
     const auto start = std::chrono::steady_clock::now();
