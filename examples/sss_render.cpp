@@ -350,18 +350,17 @@ int run(CLI::App& app, Args& a) {
         if (m.options.shading != sss::MeshShading::Scattering) continue;
         const sss::MeshScatteringRenderer& renderer = compositor.mesh(i);
         const bool automatic = m.options.combine == sss::MeshCombine::Automatic;
-        const std::string why = automatic ? " (auto: edges " + std::to_string(renderer.edgeToDiffusionLength()).substr(0, 5) +
-                                                " diffusion lengths)"
-                                          : "";
+        char why[64] = "";
+        if (automatic) std::snprintf(why, sizeof why, " (auto: edges %.3g diffusion lengths)", renderer.edgeToDiffusionLength());
         if (renderer.activeCombine() == sss::MeshCombine::VertexEstimate)
             std::printf("scattering: %s, vertex estimate (no maps)%s, N = %d; converging took %.2f ms (includes "
                         "shader compilation)\n",
-                        m.material.name.c_str(), why.c_str(), m.options.samples, convergeMs);
+                        m.material.name.c_str(), why, m.options.samples, convergeMs);
         else
             std::printf("scattering: %s, K = %d, N = %d, maps %d^2, %s combine%s; converging took %.2f ms (includes "
                         "shader compilation)\n",
                         m.material.name.c_str(), m.options.cameras, m.options.samples, m.options.mapResolution,
-                        std::string(sss::enumName(renderer.activeCombine())).c_str(), why.c_str(), convergeMs);
+                        std::string(sss::enumName(renderer.activeCombine())).c_str(), why, convergeMs);
     }
     if (multipleScattering)
         for (std::size_t i = 0; i < compositor.volumeCount(); ++i)
