@@ -123,6 +123,24 @@ Mesh makeUvSphere(int segments, int rings, float radius) {
     return Mesh::fromArrays(std::move(positions), std::move(indices), std::move(normals), "uv-sphere");
 }
 
+Mesh makeFolds(int segments, int rings) {
+    checkRange("makeFolds: segments", segments, 3, 4096);
+    checkRange("makeFolds: rings", rings, 2, 4096);
+    const Mesh sphere = makeUvSphere(segments, rings);
+    std::vector<glm::vec3> positions(sphere.positions().begin(), sphere.positions().end());
+    for (glm::vec3& p : positions) {
+        const glm::dvec3 d = glm::normalize(glm::dvec3(p));
+        const double theta = std::acos(std::clamp(d.y, -1.0, 1.0));
+        const double phi = std::atan2(-d.z, d.x);
+        const double sin2 = std::sin(theta) * std::sin(theta);  // no dimples at the poles
+        const double groove = sin2 * std::pow(std::max(0.0, std::cos(8.0 * theta)), 4.0);
+        const double fold = sin2 * std::pow(0.5 + 0.5 * std::cos(7.0 * phi), 6.0);
+        p = glm::vec3(d * (1.0 - 0.3 * groove - 0.2 * fold));
+    }
+    std::vector<uint32_t> indices(sphere.indices().begin(), sphere.indices().end());
+    return Mesh::fromArrays(std::move(positions), std::move(indices), {}, "folds");
+}
+
 Mesh makeTorus(float majorRadius, float minorRadius, int majorSegments, int minorSegments) {
     checkPositive("makeTorus: majorRadius", majorRadius);
     checkPositive("makeTorus: minorRadius", minorRadius);

@@ -692,7 +692,8 @@ Mesh loadMeshSource(std::string_view source, std::span<const fs::path> searchDir
         if (*name == "sphere") return makeUvSphere();  // the thesis sphere, 382 v / 800 tri
         if (*name == "torus") return makeTorus();
         if (*name == "slab") return makeSlab();
-        throw Error(ErrorKind::InvalidArgument, "unknown procedural mesh \"" + *name + "\" (sphere, torus, slab)");
+        if (*name == "folds") return makeFolds();  // concave, with overhangs: 20 322 v / 40 960 tri
+        throw Error(ErrorKind::InvalidArgument, "unknown procedural mesh \"" + *name + "\" (sphere, torus, slab, folds)");
     }
     if (source.empty()) throw Error(ErrorKind::InvalidArgument, "empty mesh path");
     return Mesh::load(resolve(source, searchDirs, "meshes"));

@@ -112,7 +112,7 @@ sss::Light LightArgs::light() const {
 void addInputOptions(CLI::App& app, InputArgs& args) {
     const std::string group = "input";
     app.add_option("--mesh", args.mesh,
-                   "triangle mesh: OBJ, PLY, STL, glTF 2.0 (.gltf/.glb) or OFF, or procedural:sphere|torus|slab")
+                   "triangle mesh: OBJ, PLY, STL, glTF 2.0 (.gltf/.glb) or OFF, or procedural:sphere|torus|slab|folds")
         ->type_name("PATH")
         ->group(group);
     app.add_option("--volume", args.volume,

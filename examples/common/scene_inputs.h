@@ -61,7 +61,7 @@ float parseExposure(const std::string& option, const std::string& text);  ///< s
 /// --data-dir if given, else $SSS_DATA_DIR, else ../shared/data if it exists, else empty.
 std::filesystem::path dataDirectory(const std::string& dataDirOption);
 
-/// procedural:sphere|torus|slab, or an .obj file (relative paths not found as given are looked up
+/// procedural:sphere|torus|slab|folds, or an .obj file (relative paths not found as given are looked up
 /// in dataDir and dataDir/meshes). Throws UsageError for an unknown procedural name.
 sss::Mesh loadSceneMesh(const std::string& path, const std::filesystem::path& dataDir);
 /// procedural:blobs|shell|bucky, a NRRD/MetaImage/NIfTI/.vti file or DICOM directory

@@ -25,6 +25,15 @@ Mesh makeUvSphere(int segments = 20, int rings = 20, float radius = 1.0f);
 Mesh makeTorus(float majorRadius = 0.7f, float minorRadius = 0.3f, int majorSegments = 48,
                int minorSegments = 24);
 
+/// A unit sphere carved by deep folds: a concave test model with overhangs, standing in for the
+/// Happy Buddha's robe. Three narrow grooves run around it (slots deeper than they are wide:
+/// their lips shadow their floors, depth edges seen from most light directions) and seven folds
+/// run from pole to pole. On the UV sphere's grid (theta from the +y pole, phi around y) the
+/// radius is 1 - 0.3 sin(theta)^2 max(0, cos(8 theta))^4 - 0.2 sin(theta)^2 (0.5 + 0.5 cos(7 phi))^6,
+/// with smooth area-weighted normals. 160 x 128 gives 20 322 vertices and 40 960 triangles.
+/// @throws Error InvalidArgument unless segments in [3, 4096] and rings in [2, 4096].
+Mesh makeFolds(int segments = 160, int rings = 128);
+
 /// Axis-aligned box of the given size centred at the origin: 24 vertices (4 per face, flat
 /// normals), 12 triangles. Default 1.6 x 1.0 x 0.2, a slab for translucency tests.
 /// @throws Error InvalidArgument unless every size component is finite and > 0.

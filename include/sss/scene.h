@@ -41,7 +41,7 @@ struct SceneTransform {
 
 /// A triangle mesh in a scene.
 struct SceneMesh {
-    std::string source;  ///< a mesh file (Mesh::load) or procedural:sphere|torus|slab
+    std::string source;  ///< a mesh file (Mesh::load) or procedural:sphere|torus|slab|folds
     /// If set, the mesh is first scaled uniformly to this largest side (scene units) and centred
     /// on the origin, then `transform` places it.
     std::optional<float> size;
@@ -117,7 +117,7 @@ std::string sceneToJson(const SceneDescription& scene);
 /// Writes sceneToJson() to `path`. @throws Error Io naming the file.
 void saveSceneFile(const SceneDescription& scene, const std::filesystem::path& path);
 
-/// Loads a mesh source: procedural:sphere|torus|slab or a file, looked up as given, then in each
+/// Loads a mesh source: procedural:sphere|torus|slab|folds or a file, looked up as given, then in each
 /// of `searchDirs` and its meshes/ folder.
 Mesh loadMeshSource(std::string_view source, std::span<const std::filesystem::path> searchDirs = {});
 /// Loads a volume source: procedural:blobs|shell|bucky, a headered file or DICOM directory

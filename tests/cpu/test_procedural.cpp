@@ -112,6 +112,25 @@ TEST_CASE("makeTorus counts and outward normals", "[cpu]") {
     REQUIRE_SSS_ERROR(sss::makeTorus(0.7f, 0.3f, 2), ErrorKind::InvalidArgument, Contains("majorSegments"));
 }
 
+TEST_CASE("makeFolds is a closed sphere carved by grooves and folds", "[cpu]") {
+    const Mesh f = sss::makeFolds();
+    CHECK(f.vertexCount() == 2 + 127 * 160);
+    CHECK(f.triangleCount() == 2 * 128 * 160);
+    double innermost = 1.0;
+    for (const glm::vec3& p : f.positions()) {
+        const double r = glm::length(p);
+        REQUIRE(r <= 1.0 + 1e-6);
+        innermost = std::min(innermost, r);
+    }
+    CHECK(innermost == Approx(0.5).margin(0.01));  // a groove crossing a fold at the equator
+    CHECK(glm::length(f.positions().front()) == Approx(1.0f));  // no dimple at the poles
+    CHECK(f.bounds().max.y == Approx(1.0f));
+    requireConsistentNormals(f);
+    requireClosedAndOriented(f);
+    REQUIRE_SSS_ERROR(sss::makeFolds(2, 8), ErrorKind::InvalidArgument, Contains("makeFolds") && Contains("segments"));
+    REQUIRE_SSS_ERROR(sss::makeFolds(8, 1), ErrorKind::InvalidArgument, Contains("rings"));
+}
+
 TEST_CASE("makeSlab is a closed box with flat normals", "[cpu]") {
     const Mesh s = sss::makeSlab();
     CHECK(s.vertexCount() == 24);

@@ -288,3 +288,66 @@ TEST_CASE("GPU slab radiance matches the CPU evaluation of the same profile", "[
     }
     gl.requireNoErrors();
 }
+
+TEST_CASE("a concave model with overhangs: no specks and near the CPU reference, defaults and the paper's maps",
+          "[gl][mesh][reference][concave]") {
+    // The Happy Buddha's failure modes (specks where the combine's visibility test fails, bands
+    // where the light buffer blends two surfaces at a depth edge) without the data set: makeFolds()
+    // is a sphere carved by grooves deeper than they are wide, whose lips shadow their floors, and
+    // by folds from pole to pole. 20 cm across in marble, as the Buddha in the real-mesh sweep, lit
+    // from above so that every groove has a depth edge seen from the light.
+    test::GlTestScope gl;
+    constexpr int kW = 96, kH = 72;
+    constexpr double kMmPerUnit = 100.0;
+    const Mesh mesh = makeFolds();
+    const ScatteringMaterial marble = materialPreset("marble");
+    const std::vector<Light> lights{DirectionalLight{.direction = {-0.4f, -0.8f, -0.45f}}};
+    const Camera camera = Scene().camera;
+    MeshReferenceOptions ro;
+    ro.millimetresPerUnit = kMmPerUnit;
+    ro.targetRelativeError = 0.02;
+    ro.absoluteError = 1e-4;
+    const MeshReferenceResult ref = renderMeshReference(mesh, glm::mat4(1.0f), marble, lights, camera, kW, kH, ro);
+    auto render = [&](MeshCombine combine, int cameras) {
+        MeshRenderOptions o = comparable();
+        o.millimetresPerUnit = kMmPerUnit;
+        o.combine = combine;
+        o.cameras = cameras;
+        MeshScatteringRenderer renderer(o);
+        renderer.setMesh(mesh);
+        renderer.setScatteringMaterial(marble);
+        renderer.setLights(lights);
+        RenderTarget target(kW, kH);
+        do {
+            target.clear({0, 0, 0, 0});
+            renderer.render(camera, target);
+        } while (!renderer.converged());
+        if (combine == MeshCombine::Automatic) CHECK(renderer.activeCombine() == MeshCombine::VertexEstimate);
+        return computeErrorMetrics(target.readColor(), ref.image);
+    };
+    struct Case {
+        const char* what;
+        MeshCombine combine;
+        int cameras;
+        double relRmseBound, speckBound;
+    };
+    // Measured on llvmpipe (Mesa 22.3), relRmse / speck share: vertex estimate 0.0852 / 1.26 %,
+    // maps K 8 0.0712 / 1.26 %, K 16 0.0594 / 1.14 %; the bounds are 1.25x. Harder than the
+    // Buddha (4.6 % / 0.05 % at the defaults): the error sits on the floor of the deep equatorial
+    // groove under its lip, which both the maps and the estimate light too brightly, and in
+    // scattered dim pixels underneath, facing away from the light.
+    const Case cases[] = {
+        {"defaults (automatic: vertex estimate)", MeshCombine::Automatic, 8, 0.107, 0.016},
+        {"maps, K 8", MeshCombine::PerPixel, 8, 0.089, 0.016},
+        {"maps, K 16", MeshCombine::PerPixel, 16, 0.075, 0.0145},
+    };
+    for (const Case& c : cases) {
+        const ErrorMetrics m = render(c.combine, c.cameras);
+        std::printf("[concave folds] %s: relRmse %.4f, specks %.4f %% (reference's own relRmse ~%.4f)\n", c.what,
+                    m.relRmse, 100.0 * m.speckShare, ref.relativeRmseEstimate);
+        INFO(c.what << ": relRmse " << m.relRmse << ", specks " << m.speckShare);
+        CHECK(m.relRmse < c.relRmseBound);
+        CHECK(m.speckShare < c.speckBound);
+    }
+    gl.requireNoErrors();
+}
