@@ -3,13 +3,23 @@
 //  - every volume, through its light volumes (volumeTransmittance): the light-volume value
 //    (c, l) where the light's ray leaves the volume box towards the point (at the point itself
 //    inside the box), so the light arrives tinted by c and dimmed by l.
-// Both give 1 where nothing is set.
+// Both give 1 where nothing is set. With SURFACE_SHADOWS 0 (a scene where nothing shadows the
+// surface: src/lighting/shadows.h, castsSurfaceShadows) both are the constant 1, and their
+// uniforms do not exist.
+#ifndef SURFACE_SHADOWS
+#define SURFACE_SHADOWS 1
+#endif
 #include "common/ray_box.glsl"
 
 #ifndef MAX_LIGHTS
 #define MAX_LIGHTS 8
 #endif
 #define MAX_VOLUME_SHADOW_PAIRS 16  // kMaxVolumeShadowPairs in src/lighting/shadows.h
+
+#if !SURFACE_SHADOWS
+float meshShadow(int light, vec3 p, vec3 n, vec3 towardsLight, int radius) { return 1.0; }
+vec3 volumeTransmittance(int light, vec3 worldPosition, vec3 towardsLight) { return vec3(1.0); }
+#else
 
 uniform int meshShadowEnabled;
 uniform sampler2DArray meshShadowDepth;       // per light
@@ -78,3 +88,4 @@ vec3 volumeTransmittance(int light, vec3 worldPosition, vec3 towardsLight) {
     }
     return transmitted;
 }
+#endif  // SURFACE_SHADOWS

@@ -2,6 +2,14 @@
 // like a shadow map, average the layers that see it, apply the exit Fresnel factor, add the
 // calibrated profile's single scattering and an optional specular highlight; writes linear
 // radiance.
+//
+// Defines (src/mesh/combine_pass.cpp):
+//   PER_VERTEX 0|1      : 1: the vertices' radiosity only, no map lookups (MeshCombine::PerVertex
+//                         and VertexEstimate)
+//   SURFACE_SHADOWS 0|1 : whether other meshes or volumes shadow this one (common/surface_shadows.glsl)
+#ifndef PER_VERTEX
+#define PER_VERTEX 0
+#endif
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
@@ -12,14 +20,15 @@ in vec3 modelNormal;
 in vec3 worldPosition;
 in vec3 worldNormal;
 
+#if !PER_VERTEX
 #include "mesh/map_lookup.glsl"
+#endif
 
 in vec3 vertexRadiosity;     // the vertex-radiosity pass's value, interpolated
 uniform float eta;
 uniform float specularStrength;
 uniform float shininess;
 uniform vec3 environment;    // a uniform environment's radiance times the total diffuse reflectance
-uniform int perVertexRadiosity;  // 1: sss::MeshCombine::PerVertex (no map lookups)
 uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0: none)
 uniform sampler2DArray lightPositions;          // the light buffer: what each light sees
 uniform mat4 lightViewProjection[MAX_LIGHTS];  // world -> light-buffer clip space
@@ -61,10 +70,10 @@ void main() {
     // (deep concavities) takes the radiosity interpolated from its triangle's vertices, which the
     // vertex pass filled in from the surface around them.
     vec3 radiosity = vertexRadiosity;
-    if (perVertexRadiosity == 0) {
-        MapLookup maps = lookUpScatteringMaps(modelPosition, normalize(modelNormal));
-        if (maps.weight > 0.0) radiosity = maps.radiosity;
-    }
+#if !PER_VERTEX
+    MapLookup maps = lookUpScatteringMaps(modelPosition, normalize(modelNormal));
+    if (maps.weight > 0.0) radiosity = maps.radiosity;
+#endif
 
     vec3 nWorld = normalize(worldNormal);
     if (!gl_FrontFacing) nWorld = -nWorld;
@@ -73,28 +82,25 @@ void main() {
     // The maps hold the integral of T_in S_d E over the lit surface (S_d is per steradian), so the
     // radiance leaving towards the eye is that times the exit transmittance.
     vec3 color = exitT * radiosity + environment;
-    if (dipole.singleScattering > 0.0) {
+    // One pass over the lights for both view-dependent terms: each light's direction, radiance
+    // and shadows are found once.
+    bool single = dipole.singleScattering > 0.0, specular = specularStrength > 0.0;
+    if (single || specular) {
         for (int i = 0; i < lightCount; ++i) {
             vec3 radiance;
             vec3 l = lightDirectionAt(i, worldPosition, radiance);
             float nDotL = dot(nWorld, l);
             if (nDotL <= 0.0) continue;
-            float visible = selfVisibility(i, worldPosition, nWorld, l);
-            if (visible <= 0.0) continue;
-            radiance *= visible * volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
-            color += radiance * nDotL * dirpoleSingleScattering(dipole, nWorld, l, wo);
-        }
-    }
-    if (specularStrength > 0.0) {
-        for (int i = 0; i < lightCount; ++i) {
-            vec3 radiance;
-            vec3 l = lightDirectionAt(i, worldPosition, radiance);
-            float nDotL = dot(nWorld, l);
-            if (nDotL <= 0.0) continue;
-            radiance *= volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
-            vec3 h = normalize(l + wo);
-            // The surface reflects what it does not transmit: 1 - T at the viewing angle.
-            color += specularStrength * (1.0 - exitT) * radiance * nDotL * pow(max(dot(nWorld, h), 0.0), shininess);
+            radiance *= nDotL * volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
+            if (single) {
+                float visible = selfVisibility(i, worldPosition, nWorld, l);
+                if (visible > 0.0) color += visible * radiance * dirpoleSingleScattering(dipole, nWorld, l, wo);
+            }
+            if (specular) {
+                vec3 h = normalize(l + wo);
+                // The surface reflects what it does not transmit: 1 - T at the viewing angle.
+                color += specularStrength * (1.0 - exitT) * radiance * pow(max(dot(nWorld, h), 0.0), shininess);
+            }
         }
     }
     fragColor = vec4(max(color, vec3(0.0)), 1.0);  // linear radiance

@@ -22,6 +22,26 @@ std::uint64_t SurfaceShadows::revision() const {
     return hash == 0 ? 1 : hash;
 }
 
+namespace {
+
+bool meshShadowsEnabled(const SurfaceShadows* shadows, std::size_t lightCount) {
+    const MeshShadowMaps* meshes = shadows ? shadows->meshes : nullptr;
+    return meshes && meshes->depth && meshes->worldToClip.size() >= lightCount;
+}
+
+bool shadowsWith(const VolumeShadows& v, std::size_t lightCount) {
+    return v.lightVolumes && v.lightVolumes->size() >= lightCount;
+}
+
+}  // namespace
+
+bool castsSurfaceShadows(const SurfaceShadows* shadows, std::size_t lightCount) {
+    if (meshShadowsEnabled(shadows, lightCount)) return true;
+    if (!shadows || lightCount == 0) return false;
+    return std::any_of(shadows->volumes.begin(), shadows->volumes.end(),
+                       [&](const VolumeShadows& v) { return shadowsWith(v, lightCount); });
+}
+
 void setSurfaceShadowUniforms(const gl::Program& program, const SurfaceShadows* shadows, std::size_t lightCount) {
     // Samplers keep their own units even when unused: two samplers of different types on one
     // unit (they default to unit 0) make every draw fail validation.
@@ -31,7 +51,7 @@ void setSurfaceShadowUniforms(const gl::Program& program, const SurfaceShadows* 
         program.set("volumeShadowLight[" + std::to_string(i) + "]", units::kVolumeShadows + i);
 
     const MeshShadowMaps* meshes = shadows ? shadows->meshes : nullptr;
-    const bool meshesEnabled = meshes && meshes->depth && meshes->worldToClip.size() >= lightCount;
+    const bool meshesEnabled = meshShadowsEnabled(shadows, lightCount);
     program.set("meshShadowEnabled", meshesEnabled ? 1 : 0);
     if (meshesEnabled) {
         for (std::size_t i = 0; i < lightCount; ++i)
@@ -47,7 +67,7 @@ void setSurfaceShadowUniforms(const gl::Program& program, const SurfaceShadows* 
         const int fit = kMaxVolumeShadowPairs / static_cast<int>(lightCount);
         for (const VolumeShadows& v : shadows->volumes) {
             if (volumes >= fit) break;
-            if (!v.lightVolumes || v.lightVolumes->size() < lightCount) continue;
+            if (!shadowsWith(v, lightCount)) continue;
             program.set("volumeShadowWorldToTexture[" + std::to_string(volumes) + "]", v.worldToTexture);
             for (std::size_t i = 0; i < lightCount; ++i)
                 (*v.lightVolumes)[i].bind(

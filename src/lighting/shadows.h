@@ -48,6 +48,11 @@ struct SurfaceShadows {
 /// At most this many (volume, light) pairs shadow one mesh: each takes a texture unit.
 inline constexpr int kMaxVolumeShadowPairs = 16;
 
+/// Whether anything shadows the surface: mesh shadow maps for every light, or a volume with a
+/// light volume per light. Where nothing does, passes compile surface_shadows.glsl with
+/// SURFACE_SHADOWS 0 and skip its work per pixel.
+bool castsSurfaceShadows(const SurfaceShadows* shadows, std::size_t lightCount);
+
 /// Sets the uniforms of shaders/common/surface_shadows.glsl (null: nothing shadows the surface)
 /// and binds its textures. Volumes beyond kMaxVolumeShadowPairs / lightCount are left out.
 void setSurfaceShadowUniforms(const gl::Program& program, const SurfaceShadows* shadows, std::size_t lightCount);

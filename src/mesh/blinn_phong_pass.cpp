@@ -8,23 +8,28 @@
 
 namespace sss::detail {
 
-BlinnPhongPass::BlinnPhongPass()
-    : m_program(gl::Program::link({{GL_VERTEX_SHADER, "mesh/blinn_phong.vert"},
-                                   {GL_FRAGMENT_SHADER, "mesh/blinn_phong.frag"}})) {}
+const gl::Program& BlinnPhongPass::program(bool surfaceShadows) const {
+    std::optional<gl::Program>& slot = m_programs[surfaceShadows ? 1 : 0];
+    if (!slot)
+        slot = gl::Program::link({{GL_VERTEX_SHADER, "mesh/blinn_phong.vert"}, {GL_FRAGMENT_SHADER, "mesh/blinn_phong.frag"}},
+                                 {{"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"}});
+    return *slot;
+}
 
 void BlinnPhongPass::run(const BlinnPhongInputs& in) const {
-    m_program.set("model", in.model);
-    m_program.set("viewProjection", in.camera.projection(in.aspect) * in.camera.view());
-    m_program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
-    setCameraUniforms(m_program, in.camera);
-    m_program.set("ambient", in.material.ambient);
-    m_program.set("diffuseColor", in.material.diffuse);
-    m_program.set("specularColor", in.material.specular);
-    m_program.set("shininess", in.material.shininess);
-    setLightUniforms(m_program, in.lights);
-    setSurfaceShadowUniforms(m_program, in.shadows, in.lights.size());
+    const gl::Program& p = program(castsSurfaceShadows(in.shadows, in.lights.size()));
+    p.set("model", in.model);
+    p.set("viewProjection", in.camera.projection(in.aspect) * in.camera.view());
+    p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
+    setCameraUniforms(p, in.camera);
+    p.set("ambient", in.material.ambient);
+    p.set("diffuseColor", in.material.diffuse);
+    p.set("specularColor", in.material.specular);
+    p.set("shininess", in.material.shininess);
+    setLightUniforms(p, in.lights);
+    setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
 
-    in.mesh.drawOpaque(m_program);
+    in.mesh.drawOpaque(p);
 }
 
 }  // namespace sss::detail

@@ -7,6 +7,8 @@
 #include "lighting/shadows.h"
 #include "sss/mesh_scattering_renderer.h"
 
+#include <array>
+#include <optional>
 #include <vector>
 
 namespace sss::detail {
@@ -23,11 +25,14 @@ struct BlinnPhongInputs {
 
 class BlinnPhongPass {
 public:
-    BlinnPhongPass();
     void run(const BlinnPhongInputs& in) const;
 
 private:
-    gl::Program m_program;
+    /// With or without surface shadows (compiled out where nothing casts them), linked the first
+    /// time it is needed.
+    const gl::Program& program(bool surfaceShadows) const;
+
+    mutable std::array<std::optional<gl::Program>, 2> m_programs;
 };
 
 }  // namespace sss::detail

@@ -11,12 +11,18 @@
 
 namespace sss::detail {
 
-CombinePass::CombinePass()
-    : m_program(gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
-                                  {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)}})) {}
+const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows) const {
+    std::optional<gl::Program>& slot = m_programs[(perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
+    if (!slot)
+        slot = gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
+                                 {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)},
+                                  {"PER_VERTEX", perVertex ? "1" : "0"},
+                                  {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"}});
+    return *slot;
+}
 
 void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
-    const gl::Program& p = m_program;
+    const gl::Program& p = program(s.perVertex, castsSurfaceShadows(in.shadows, in.lights.size()));
     p.set("model", in.model);
     p.set("viewProjection", in.camera.projection(in.aspect) * in.camera.view());
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
@@ -29,7 +35,6 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     p.set("specularStrength", s.specularStrength);
     p.set("shininess", s.shininess);
     p.set("environment", s.environment);
-    p.set("perVertexRadiosity", s.perVertex ? 1 : 0);
     setDipoleUniforms(p, "dipole", s.dipole);
     // The light buffer frames the object's bounding sphere: 2 radii over its resolution.
     const auto [centre, radius] = worldSphere(in.mesh.bounds, in.model);
@@ -42,7 +47,7 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.id());
 
-    in.mesh.drawOpaque(m_program);
+    in.mesh.drawOpaque(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
 }
 

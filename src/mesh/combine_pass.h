@@ -13,6 +13,8 @@
 #include "sss/camera.h"
 #include "sss/light.h"
 
+#include <array>
+#include <optional>
 #include <vector>
 
 namespace sss::detail {
@@ -42,11 +44,14 @@ struct CombineInputs {
 
 class CombinePass {
 public:
-    CombinePass();
     void run(const CombineInputs& in, const CombineSettings& settings) const;
 
 private:
-    gl::Program m_program;
+    /// The program compiled for this frame's needs, linked the first time they occur: without
+    /// map lookups for the per-vertex combines, without surface shadows where nothing casts them.
+    const gl::Program& program(bool perVertex, bool surfaceShadows) const;
+
+    mutable std::array<std::optional<gl::Program>, 4> m_programs;
 };
 
 }  // namespace sss::detail
