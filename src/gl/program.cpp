@@ -97,6 +97,11 @@ void Program::set(std::string_view name, glm::vec4 v) const {
 void Program::set(std::string_view name, glm::ivec3 v) const {
     glProgramUniform3iv(id(), uniformLocation(name), 1, glm::value_ptr(v));
 }
+glm::ivec3 Program::workGroupSize() const {
+    glm::ivec3 size(1);
+    glGetProgramiv(id(), GL_COMPUTE_WORK_GROUP_SIZE, glm::value_ptr(size));
+    return size;
+}
 void Program::set(std::string_view name, const glm::mat3& v) const {
     glProgramUniformMatrix3fv(id(), uniformLocation(name), 1, GL_FALSE, glm::value_ptr(v));
 }

@@ -64,6 +64,8 @@ public:
     void set(std::string_view name, glm::ivec3 v) const;
     void set(std::string_view name, const glm::mat3& v) const;
     void set(std::string_view name, const glm::mat4& v) const;
+    /// local_size of a compute program, so dispatches follow the shader's declaration.
+    glm::ivec3 workGroupSize() const;
 
 private:
     explicit Program(GLuint id) : Object(id) {}

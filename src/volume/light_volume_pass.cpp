@@ -96,7 +96,9 @@ void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transfer
         p.set("accumulate", (!sweep.pyramid && s > 0) ? 1 : 0);
         p.set("pyramidMask", sweep.pyramid ? 1 : 0);
         glClearTexImage(m_slices[0].id(), 0, GL_RGBA, GL_FLOAT, unlit);
-        const GLuint groupsX = static_cast<GLuint>((sliceSize.x + 7) / 8), groupsY = static_cast<GLuint>((sliceSize.y + 7) / 8);
+        const glm::ivec3 group = p.workGroupSize();
+        const auto groupsX = static_cast<GLuint>((sliceSize.x + group.x - 1) / group.x);
+        const auto groupsY = static_cast<GLuint>((sliceSize.y + group.y - 1) / group.y);
         for (int w = sweep.firstSlice; w < dims[sweep.axis]; ++w) {
             const gl::Texture& previous = m_slices[(w - sweep.firstSlice) % 2];
             const gl::Texture& current = m_slices[(w - sweep.firstSlice + 1) % 2];
