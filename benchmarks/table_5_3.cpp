@@ -11,8 +11,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <sss/image_compare.h>
+
 #include <cmath>
 #include <map>
+#include <optional>
 
 namespace {
 
@@ -79,6 +82,24 @@ void runTable53(BenchmarkContext& bench) {
             const std::string id = std::string(kTable) + "-" + model +
                                    (estimate ? "-vertex-estimate" : "-k" + std::to_string(configs[c].cameras));
             const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, id);
+            // The same maps through the cached combine (MeshCombine::PerVertex, issue 11): its fixed
+            // frame, and how far its image is from the per-pixel combine's.
+            std::optional<Measurement> fixedPerVertex;
+            double perVertexDifference = 0.0;
+            if (!estimate) {
+                sss::RenderTarget check(bench.options().width, bench.options().height);
+                auto capture = [&] {
+                    check.clear({0, 0, 0, 0});
+                    renderer.render(camera, check);
+                    return check.readColor();
+                };
+                const sss::Image perPixel = capture();
+                sss::MeshRenderOptions cached = renderer.options();
+                cached.combine = sss::MeshCombine::PerVertex;
+                renderer.setOptions(cached);
+                fixedPerVertex = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed-per-vertex");
+                perVertexDifference = sss::computeErrorMetrics(capture(), perPixel).relRmse;
+            }
 
             Record r;
             r.table = kTable;
@@ -105,6 +126,11 @@ void runTable53(BenchmarkContext& bench) {
                          {"sample_radius", options.sampleRadius},
                          {"vertices", mesh->vertexCount()},
                          {"triangles", mesh->triangleCount()}};
+            if (fixedPerVertex) {
+                r.details["fixed_per_vertex_ms"] = fixedPerVertex->stats.medianMs;
+                r.details["fixed_per_vertex_over_blinn_phong"] = fixedPerVertex->stats.medianMs / bp.stats.medianMs;
+                r.details["per_vertex_rel_rmse_to_per_pixel"] = perVertexDifference;
+            }
             if (const auto it = thesisRows().find(model); it != thesisRows().end() && thesisViewport && !quick && !estimate) {
                 r.thesisMs = it->second.change[c];
                 r.details["thesis_gtx660"] = {{"change_ms", it->second.change[c]},
