@@ -90,8 +90,10 @@ struct VolumeRenderOptions {
     /// one 2D lookup instead of a 1D one per sample. Off: the transfer function at the sample
     /// alone (the thesis's post-classification) (default: on).
     bool preintegration = true;
-    /// Jump over 8^3-voxel bricks the transfer function makes fully transparent. The samples
-    /// taken, and so the image, are the same as without it (default: on).
+    /// Jump over 8^3-voxel bricks the transfer function makes fully transparent: the ray caster
+    /// skips their samples, and the light-volume sweep the medium samples of voxels surrounded
+    /// by them. The samples taken, and so the image and the light volume, are the same as
+    /// without it (default: on).
     bool emptySpaceSkipping = true;
     /// Entries of the transfer-function lookup table, 2..65536 (default: 256).
     int transferFunctionEntries = 256;

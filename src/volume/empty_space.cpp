@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace sss::detail {
 
@@ -37,7 +38,36 @@ OccupancyGrid::OccupancyGrid(const Volume& volume) {
             }
     m_texture = gl::Texture::create3D(GL_R8, m_bricks, "empty-space occupancy");
     m_texture.setFilter(GL_NEAREST, GL_NEAREST);
+    m_neighbourhoods = gl::Texture::create3D(GL_R8, m_bricks, "empty-space occupied neighbourhoods");
+    m_neighbourhoods.setFilter(GL_NEAREST, GL_NEAREST);
 }
+
+namespace {
+
+// Marks every brick next to a marked one (26-neighbourhood): one pass per axis, each spreading
+// the marks one brick along it.
+std::vector<std::uint8_t> dilateByOneBrick(std::vector<std::uint8_t> marks, glm::ivec3 bricks) {
+    const auto index = [&](glm::ivec3 b) { return (static_cast<size_t>(b.z) * bricks.y + b.y) * bricks.x + b.x; };
+    for (int axis = 0; axis < 3; ++axis) {
+        std::vector<std::uint8_t> spread(marks.size(), 0);
+        glm::ivec3 b;
+        for (b.z = 0; b.z < bricks.z; ++b.z)
+            for (b.y = 0; b.y < bricks.y; ++b.y)
+                for (b.x = 0; b.x < bricks.x; ++b.x) {
+                    std::uint8_t m = marks[index(b)];
+                    for (int step : {-1, 1}) {
+                        glm::ivec3 n = b;
+                        n[axis] += step;
+                        if (n[axis] >= 0 && n[axis] < bricks[axis]) m = std::max(m, marks[index(n)]);
+                    }
+                    spread[index(b)] = m;
+                }
+        marks = std::move(spread);
+    }
+    return marks;
+}
+
+}  // namespace
 
 void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueScaleOffset) {
     const int entries = static_cast<int>(table.size());
@@ -62,6 +92,7 @@ void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueS
         count += occupied[i] ? 1 : 0;
     }
     m_texture.upload(GL_RED, GL_UNSIGNED_BYTE, occupied.data());
+    m_neighbourhoods.upload(GL_RED, GL_UNSIGNED_BYTE, dilateByOneBrick(occupied, m_bricks).data());
     m_occupiedFraction = m_min.empty() ? 0.0 : static_cast<double>(count) / static_cast<double>(m_min.size());
 }
 

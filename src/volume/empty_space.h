@@ -25,6 +25,10 @@ public:
     /// Re-derives occupancy for a TF table (entry i at TF coordinate i/(N-1)) and uploads it.
     void update(const std::vector<glm::vec4>& transferFunctionTable, glm::vec2 valueScaleOffset);
     const gl::Texture& texture() const { return m_texture; }
+    /// R8 per brick, 1 where the brick or one of its 26 neighbours is occupied: a point within
+    /// kBrickVoxels voxels (per axis) of a brick marked 0 samples no opacity. The light-volume
+    /// sweep skips its medium samples there (shaders/volume/light_propagation.comp).
+    const gl::Texture& occupiedNeighbourhoods() const { return m_neighbourhoods; }
     /// Fraction of bricks marked occupied by the last update().
     double occupiedFraction() const { return m_occupiedFraction; }
     /// Per brick (x fastest), the largest TF opacity a trilinear sample inside it can be
@@ -37,6 +41,7 @@ private:
     std::vector<float> m_min, m_max;  // per brick
     std::vector<float> m_maxOpacity;  // per brick, from the last update()
     gl::Texture m_texture;            // R8, 1 = occupied
+    gl::Texture m_neighbourhoods;     // R8, 1 = occupied within one brick
     double m_occupiedFraction = 1.0;
 };
 

@@ -42,7 +42,7 @@ void EyePass::run(const EyePassInputs& in) {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(0);
     if (!m_sweep) m_sweep.emplace(true);
-    m_sweep->runEyePass(in.volume, in.transferFunction, m_litColour, in.viewDirection, in.model, in.settings,
+    m_sweep->runEyePass({.volume = in.volume, .transferFunction = in.transferFunction}, m_litColour, in.viewDirection, in.model, in.settings,
                         m_eyeVolume);
 }
 

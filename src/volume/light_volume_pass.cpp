@@ -2,6 +2,7 @@
 
 #include "light_geometry.h"
 #include "lighting/texture_units.h"
+#include "volume/empty_space.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -16,24 +17,24 @@ LightVolumePass::LightVolumePass(bool eyePass)
                                   {{"EYE_PASS", eyePass ? "1" : "0"}})),
       m_eyePass(eyePass) {}
 
-void LightVolumePass::run(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light,
-                          const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output) {
-    sweep(volume, transferFunction, light, model, settings, output, glm::vec4(1.0f));
+void LightVolumePass::run(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
+                          const LightVolumeSettings& settings, gl::Texture& output) {
+    sweep(medium, light, model, settings, output, glm::vec4(1.0f));
 }
 
-void LightVolumePass::runEyePass(const GpuVolume& volume, const gl::Texture& transferFunction,
-                                 const gl::Texture& litColour, glm::vec3 viewDirection, const glm::mat4& model,
-                                 const LightVolumeSettings& settings, gl::Texture& output) {
+void LightVolumePass::runEyePass(const LightVolumeMedium& medium, const gl::Texture& litColour,
+                                 glm::vec3 viewDirection, const glm::mat4& model, const LightVolumeSettings& settings,
+                                 gl::Texture& output) {
     m_program.set("litColour", units::kLitColour);
     litColour.bind(units::kLitColour);
     // Light travelling towards the viewer; nothing enters from behind the volume.
-    sweep(volume, transferFunction, DirectionalLight{.direction = -viewDirection}, model, settings, output,
+    sweep(medium, DirectionalLight{.direction = -viewDirection}, model, settings, output,
           glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
 }
 
-void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& worldLight,
-                            const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output,
-                            glm::vec4 outside) {
+void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldLight, const glm::mat4& model,
+                            const LightVolumeSettings& settings, gl::Texture& output, glm::vec4 outside) {
+    const GpuVolume& volume = medium.volume;
     const glm::ivec3 dims = lightVolumeDims(volume.dims, settings.resolutionScale);
     if (!output || output.size() != dims) {
         output = gl::Texture::create3D(GL_RGBA16F, dims, m_eyePass ? "eye-pass volume" : "light volume");
@@ -57,7 +58,8 @@ void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transfer
     p.set("previousSlice", 2);
     p.set("lightVolume", 0);   // image units
     p.set("currentSlice", 1);
-    p.set("transferFunctionEntries", static_cast<float>(transferFunction.size().x));
+    p.set("occupiedNeighbourhoods", 3);
+    p.set("transferFunctionEntries", static_cast<float>(medium.transferFunction.size().x));
     p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("lightVolumeDims", dims);
     p.set("voxelSize", volume.box.size() / glm::vec3(dims));
@@ -72,10 +74,14 @@ void LightVolumePass::sweep(const GpuVolume& volume, const gl::Texture& transfer
     }
     p.set("coneTangent", cone.tangent);
     p.set("coneWeights", glm::vec2(cone.centreWeight, cone.ringWeight));
-
+    p.set("skipEmpty", medium.occupiedNeighbourhoods ? 1 : 0);
+    p.set("dataDims", volume.dims);
+    p.set("brickVoxels", kBrickVoxels);
 
     volume.texture.bind(0);
-    transferFunction.bind(1);
+    medium.transferFunction.bind(1);
+    // Unit 3 always holds a 3D texture, so the sampler validates with skipping off as well.
+    (medium.occupiedNeighbourhoods ? *medium.occupiedNeighbourhoods : volume.texture).bind(3);
     output.bindImage(0, GL_READ_WRITE);
     m_program.use();
     const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};

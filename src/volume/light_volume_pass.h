@@ -23,6 +23,16 @@
 
 namespace sss::detail {
 
+/// What the light crosses: the data and its transfer-function table and, optionally, the
+/// occupancy grid's neighbourhood texture (OccupancyGrid::occupiedNeighbourhoods) for that table.
+/// With it, voxels whose path across their slab stays within a brick of empty ones take no medium
+/// samples: the light leaves them as it came, so the light volume is the same texel for texel.
+struct LightVolumeMedium {
+    const GpuVolume& volume;
+    const gl::Texture& transferFunction;
+    const gl::Texture* occupiedNeighbourhoods = nullptr;
+};
+
 struct LightVolumeSettings {
     float resolutionScale = 1.0f;  ///< light-volume resolution relative to the data, (0, 1]
     float anisotropy = 0.5f;       ///< Henyey-Greenstein g: sets the chromaticity blur cone
@@ -32,18 +42,17 @@ class LightVolumePass {
 public:
     /// `eyePass`: the variant that carries the voxels' scattered light towards the viewer.
     explicit LightVolumePass(bool eyePass = false);
-    /// Propagates `light` (world space) through `volume` placed by `model` into `output`
+    /// Propagates `light` (world space) through the medium placed by `model` into `output`
     /// (re)allocated at the scaled resolution.
-    void run(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light,
-             const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output);
+    void run(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
+             const LightVolumeSettings& settings, gl::Texture& output);
     /// Eye pass: propagates `litColour` (same size as `output`) towards the viewer, i.e. along
     /// `viewDirection` reversed (world space; perspective rays are taken as parallel).
-    void runEyePass(const GpuVolume& volume, const gl::Texture& transferFunction, const gl::Texture& litColour,
-                    glm::vec3 viewDirection, const glm::mat4& model, const LightVolumeSettings& settings,
-                    gl::Texture& output);
+    void runEyePass(const LightVolumeMedium& medium, const gl::Texture& litColour, glm::vec3 viewDirection,
+                    const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output);
 
 private:
-    void sweep(const GpuVolume& volume, const gl::Texture& transferFunction, const Light& light, const glm::mat4& model,
+    void sweep(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
                const LightVolumeSettings& settings, gl::Texture& output, glm::vec4 outside);
     gl::Program m_program;
     bool m_eyePass = false;

@@ -247,8 +247,11 @@ struct VolumeScatteringRenderer::Impl {
             try {
                 lightVolumes.resize(lights.size());
                 for (size_t i = 0; i < lights.size(); ++i)
-                    lightVolumePass->run(*volume, transferFunctionTable, lights[i], model, {scale, options.anisotropy},
-                                         lightVolumes[i]);
+                    lightVolumePass->run({.volume = *volume,
+                                          .transferFunction = transferFunctionTable,
+                                          .occupiedNeighbourhoods =
+                                              options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr},
+                                         lights[i], model, {scale, options.anisotropy}, lightVolumes[i]);
                 break;
             } catch (const Error& e) {
                 const glm::ivec3 dims = detail::lightVolumeDims(volume->dims, scale);

@@ -4,6 +4,7 @@
 #include "support/scenes.h"
 #include "support/golden.h"
 
+#include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
 #include "volume/light_volume_pass.h"
 
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 using namespace sss;
@@ -47,15 +49,30 @@ struct LightVolumeReadback {
     const glm::vec4& at(int x, int y, int z) const { return texels[static_cast<size_t>((z * dims.y + y) * dims.x + x)]; }
 };
 
+// Empty-space skipping in the sweep: Off, or with the occupancy grid derived from `skipTf` (the
+// propagated TF itself when it is null).
+struct Skipping {
+    bool on = false;
+    const TransferFunction* skipTf = nullptr;
+};
+
 LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, const Light& light,
-                              detail::LightVolumeSettings settings = {}) {
+                              detail::LightVolumeSettings settings = {}, Skipping skipping = {}) {
     const detail::GpuVolume gpu = detail::GpuVolume::upload(volume);
     const std::vector<glm::vec4> table = tf.table(256);
     gl::Texture tfTexture = gl::Texture::create2D(GL_RGBA32F, 256, 1, "test transfer function");
     tfTexture.upload(GL_RGBA, GL_FLOAT, table.data());
+    std::optional<detail::OccupancyGrid> occupancy;
+    if (skipping.on) {
+        occupancy.emplace(volume);
+        occupancy->update(skipping.skipTf ? skipping.skipTf->table(256) : table, gpu.valueScaleOffset);
+    }
     detail::LightVolumePass pass;
     gl::Texture output;
-    pass.run(gpu, tfTexture, light, glm::mat4(1.0f), settings, output);
+    pass.run({.volume = gpu,
+              .transferFunction = tfTexture,
+              .occupiedNeighbourhoods = occupancy ? &occupancy->occupiedNeighbourhoods() : nullptr},
+             light, glm::mat4(1.0f), settings, output);
     LightVolumeReadback r{output.size(), std::vector<glm::vec4>(static_cast<size_t>(output.size().x * output.size().y * output.size().z))};
     glGetTextureImage(output.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(r.texels.size() * sizeof(glm::vec4)),
                       r.texels.data());
@@ -93,6 +110,56 @@ TEST_CASE("a transparent transfer function leaves the light unattenuated and the
     const Image image = renderScattering(volume, clear, {DirectionalLight{}}, orbitCamera(volume.worldBounds(), 30, 20), 48, 27);
     for (int y = 0; y < image.height(); ++y)
         for (int x = 0; x < image.width(); ++x) REQUIRE(image.at(x, y) == kBackground);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("empty-space skipping leaves the light volume unchanged texel for texel", "[gl][volume][scattering]") {
+    test::GlTestScope gl;
+    // Two small dense blobs in a 48^3 box, so most bricks (8^3) and their neighbourhoods are
+    // empty and some are not; a directional light at a slant (long slabs: some voxels too far
+    // from their brick to skip), a nearly axial one, a point light inside and, at a reduced
+    // resolution, light-volume voxels that span several data voxels.
+    const int n = 48;
+    const Volume volume = makeVolume(n, [](int x, int y, int z) {
+        const auto inside = [&](glm::vec3 c, float r) { return glm::length(glm::vec3(x, y, z) + 0.5f - c) < r; };
+        return (inside({14, 15, 18}, 6.0f) || inside({33, 30, 26}, 5.0f)) ? 200 : 20;
+    });
+    const TransferFunction tf({{0.0f, {0.9f, 0.5f, 0.3f}, 0.0f}, {0.45f, {0.9f, 0.5f, 0.3f}, 0.0f},
+                               {0.55f, {0.3f, 0.6f, 0.9f}, 0.8f}, {1.0f, {0.3f, 0.6f, 0.9f}, 0.8f}});
+    detail::OccupancyGrid grid(volume);
+    grid.update(tf.table(256), detail::GpuVolume::upload(volume).valueScaleOffset);
+    INFO("occupied bricks " << grid.occupiedFraction());
+    REQUIRE(grid.occupiedFraction() > 0.05);
+    REQUIRE(grid.occupiedFraction() < 0.6);
+    struct Case {
+        Light light;
+        float scale;
+    };
+    for (const Case& c : {Case{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 1.0f},
+                          Case{DirectionalLight{.direction = {0.05f, 1.0f, 0.02f}}, 1.0f},
+                          Case{PointLight{.position = {0.02f, -0.05f, 0.1f}}, 1.0f},
+                          Case{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 0.35f}}) {
+        const detail::LightVolumeSettings settings{.resolutionScale = c.scale};
+        const LightVolumeReadback plain = propagate(volume, tf, c.light, settings);
+        const LightVolumeReadback skipped = propagate(volume, tf, c.light, settings, {.on = true});
+        REQUIRE(plain.texels.size() == skipped.texels.size());
+        size_t differing = 0, shadowed = 0;
+        for (size_t i = 0; i < plain.texels.size(); ++i) {
+            differing += plain.texels[i] != skipped.texels[i] ? 1 : 0;
+            shadowed += plain.texels[i].a < 0.9f ? 1 : 0;
+        }
+        INFO("scale " << c.scale << ": " << differing << " texels differ, " << shadowed << " shadowed");
+        CHECK(shadowed > 0);  // the blobs do cast shadows: the comparison is not between empty volumes
+        CHECK(differing == 0);
+    }
+    // The sweep does consult the grid: given one that calls everything empty (the occupancy of a
+    // transparent TF), it skips the blobs too, and their shadows disappear.
+    const TransferFunction clear({{0.0f, {1, 1, 1}, 0.0f}, {1.0f, {1, 1, 1}, 0.0f}});
+    const LightVolumeReadback wrong =
+        propagate(volume, tf, DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, {}, {.on = true, .skipTf = &clear});
+    size_t shadowed = 0;
+    for (const glm::vec4& t : wrong.texels) shadowed += t.a < 0.9f ? 1 : 0;
+    CHECK(shadowed == 0);
     gl.requireNoErrors();
 }
 
