@@ -42,7 +42,10 @@ void EyePass::run(const EyePassInputs& in) {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(0);
     if (!m_sweep) m_sweep.emplace(true);
-    m_sweep->runEyePass({.volume = in.volume, .transferFunction = in.transferFunction}, m_litColour, in.viewDirection, in.model, in.settings,
+    m_sweep->runEyePass({.volume = in.volume,
+                         .transferFunction = in.transferFunction,
+                         .occupiedNeighbourhoods = in.occupiedNeighbourhoods},
+                        m_litColour, in.viewDirection, in.model, in.settings,
                         m_eyeVolume);
 }
 

@@ -26,6 +26,7 @@ struct EyePassInputs {
     glm::vec3 viewDirection;                       ///< world space (perspective rays taken as parallel)
     float ambientStrength = 0.0f, diffuseStrength = 1.0f;
     LightVolumeSettings settings;
+    const gl::Texture* occupiedNeighbourhoods = nullptr;  ///< empty-space skipping (LightVolumeMedium)
 };
 
 class EyePass {

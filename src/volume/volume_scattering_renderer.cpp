@@ -283,7 +283,8 @@ struct VolumeScatteringRenderer::Impl {
         const auto start = std::chrono::steady_clock::now();
         if (!eyePass) eyePass.emplace();
         eyePass->run({*volume, transferFunctionTable, lightVolumes, lights, model, camera.forward(),
-                      options.ambient + options.emission, options.diffuse, {lightVolumeScaleInUse, options.anisotropy}});
+                      options.ambient + options.emission, options.diffuse, {lightVolumeScaleInUse, options.anisotropy},
+                      options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr});
         if (options.finishEachPass) finishGpuWork();
         stats.record("eye-pass", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         eyeInputs = inputs;

@@ -215,14 +215,24 @@ TEST_CASE("empty-space skipping changes no pixel in any mode", "[gl][volume]") {
     test::GlTestScope gl;
     const Volume volume = makeBlobsVolume(48);  // mostly empty
     const Camera camera = orbitCamera(volume.worldBounds(), 35.0f, 15.0f);
-    for (VolumeShading shading : {VolumeShading::EmissionAbsorption, VolumeShading::Gradient,
-                                  VolumeShading::Scattering, VolumeShading::ScatteringGradient}) {
-        const Image skipped = renderVolume(volume, test::blobsTransferFunction(), {.shading = shading, .emptySpaceSkipping = true}, camera, 96, 54);
-        const Image full = renderVolume(volume, test::blobsTransferFunction(), {.shading = shading, .emptySpaceSkipping = false}, camera, 96, 54);
+    // The scattering modes skip in the light-volume sweep too, and the eye pass in its own sweep.
+    struct Mode {
+        VolumeShading shading;
+        bool eyePass;
+    };
+    for (const Mode mode : {Mode{VolumeShading::EmissionAbsorption, false}, Mode{VolumeShading::Gradient, false},
+                            Mode{VolumeShading::Scattering, false}, Mode{VolumeShading::ScatteringGradient, false},
+                            Mode{VolumeShading::Scattering, true}}) {
+        const Image skipped = renderVolume(volume, test::blobsTransferFunction(),
+                                           {.shading = mode.shading, .emptySpaceSkipping = true, .eyePass = mode.eyePass},
+                                           camera, 96, 54);
+        const Image full = renderVolume(volume, test::blobsTransferFunction(),
+                                        {.shading = mode.shading, .emptySpaceSkipping = false, .eyePass = mode.eyePass},
+                                        camera, 96, 54);
         int different = 0;
         for (int y = 0; y < full.height(); ++y)
             for (int x = 0; x < full.width(); ++x) different += skipped.at(x, y) != full.at(x, y) ? 1 : 0;
-        INFO("shading mode " << static_cast<int>(shading));
+        INFO("shading mode " << static_cast<int>(mode.shading) << ", eye pass " << mode.eyePass);
         CHECK(different == 0);
     }
     gl.requireNoErrors();
