@@ -1,9 +1,31 @@
 // Lambert diffuse + Blinn-Phong specular for one light (the thesis's "scattering off" model).
 // n, l, v are unit vectors (normal, towards light, towards viewer).
-vec3 blinnPhong(vec3 n, vec3 l, vec3 v, vec3 radiance, vec3 diffuse, vec3 specular, float shininess) {
+
+// x^shininess for x >= 0. A program compiled with INTEGER_SHININESS n (1..256) raises to the
+// constant n by repeated squaring: the loop unrolls and its tests fold away, leaving a few
+// multiplications where pow() costs a logarithm and an exponential. Exact for whole exponents.
+float specularPower(float x, float shininess) {
+#if defined(INTEGER_SHININESS) && INTEGER_SHININESS > 0
+    float result = 1.0;
+    float base = x;
+    for (int bit = 0; bit < 9; ++bit) {
+        if (((INTEGER_SHININESS >> bit) & 1) != 0) result *= base;
+        base *= base;
+    }
+    return result;
+#else
+    return pow(x, shininess);
+#endif
+}
+
+// The same with the half vector h = normalize(l + v) given (callers that know it per ray).
+vec3 blinnPhongHalf(vec3 n, vec3 l, vec3 h, vec3 radiance, vec3 diffuse, vec3 specular, float shininess) {
     float nDotL = max(dot(n, l), 0.0);
     if (nDotL <= 0.0) return vec3(0.0);
-    vec3 h = normalize(l + v);
-    float spec = pow(max(dot(n, h), 0.0), shininess);
+    float spec = specularPower(max(dot(n, h), 0.0), shininess);
     return radiance * (diffuse * nDotL + specular * spec);
+}
+
+vec3 blinnPhong(vec3 n, vec3 l, vec3 v, vec3 radiance, vec3 diffuse, vec3 specular, float shininess) {
+    return blinnPhongHalf(n, l, normalize(l + v), radiance, diffuse, specular, shininess);
 }

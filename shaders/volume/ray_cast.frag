@@ -11,6 +11,9 @@
 //   LIGHT_COUNT n          : the number of lights, fixed at compile time so the loop over the
 //                            light volumes indexes its sampler array with constants (dynamic
 //                            indices make software rasterisers fetch from every array element)
+//   DIRECTIONAL_LIGHTS_ONLY 0|1: every light is directional: gradient shading takes each light's
+//                            half vector once per ray, and no sample needs its world position
+//   INTEGER_SHININESS n    : 1..256: the specular exponent, raised to by squaring; 0: pow()
 // Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
 #include "common/camera.glsl"
 #include "common/lights.glsl"
@@ -50,7 +53,7 @@ uniform int physicalModel;          // 1: physical single scattering (sss::Volum
 uniform float phaseG;               // its Henyey-Greenstein mean cosine
 #endif
 #if SHADING_GRADIENT
-uniform mat3 normalToWorld;
+uniform mat3 gradientToOutward;    // model-space gradient -> outward world normal (unnormalised)
 uniform vec3 specularColor;
 uniform float shininess;
 uniform float gradientThreshold;   // |gradient| (per voxel) below which shading fades out
@@ -71,9 +74,10 @@ uniform sampler3D eyeVolume;    // rgb: scattered light arriving from behind, to
 uniform float eyePassStrength;
 #endif
 
-float meshVisibility(int light, vec3 worldPosition) {
+// At model-space point p.
+float meshVisibility(int light, vec3 p) {
     if (meshShadows == 0) return 1.0;
-    vec4 clip = worldToShadowClip[light] * vec4(worldPosition, 1.0);
+    vec4 clip = worldToShadowClip[light] * (modelToWorld * vec4(p, 1.0));
     vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
     if (any(lessThan(window, vec3(0.0))) || any(greaterThan(window, vec3(1.0)))) return 1.0;
     return window.z - meshShadowBias > texture(meshShadowDepth, vec3(window.xy, float(light))).r ? 0.0 : 1.0;
@@ -114,13 +118,14 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
                   texture(volumeTexture, tc + vec3(0, 0, h.z)).r - texture(volumeTexture, tc - vec3(0, 0, h.z)).r) *
              0.5 * valueScaleOffset.x;
 #endif
-    // Surfaces face from high to low values; scale the model-space gradient by the box so
-    // anisotropic boxes get correct normals.
-    vec3 outward = normalToWorld * (-g * vec3(volumeDims) / (boxMax - boxMin));
-    float outwardLength = length(outward);
-    // A zero gradient has no direction (normalize would give NaN); fall back to the view vector.
-    vec3 n = outwardLength > 1e-12 ? outward / outwardLength : v;
-    if (dot(n, v) < 0.0) n = -n;
+    // Surfaces face from high to low values; the matrix also scales the gradient by the box so
+    // anisotropic boxes get correct normals (RayCastPass::run).
+    vec3 outward = gradientToOutward * g;
+    // Normalised and turned to the viewer by one factor (a multiplication, not a division per
+    // component). A zero gradient has no direction (normalize would give NaN): the view vector.
+    float outwardSquared = dot(outward, outward);
+    float toViewer = (dot(outward, v) < 0.0 ? -1.0 : 1.0) * inversesqrt(max(outwardSquared, 1e-24));
+    vec3 n = outwardSquared > 1e-24 ? outward * toViewer : v;
     return SurfaceNormal(n, smoothstep(0.0, gradientThreshold, length(g)));
 }
 #endif
@@ -138,9 +143,39 @@ vec4 sampleVolume(vec3 tc) { return vec4(0.0, 0.0, 0.0, texture(volumeTexture, t
 #if SHADING_GRADIENT || SHADING_SCATTERING
 // Towards the viewer from any point of this pixel's ray: the same all along it (set in main).
 vec3 viewerDirection;
+#if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
+// Each light's half vector normalize(l + v): also the same all along the ray (set in main).
+vec3 rayHalfVectors[MAX_LIGHTS];
+#endif
+
+#if SHADING_SCATTERING
+// The light-volume reach towards light i, whose direction is l (see shade): in texture
+// coordinates, and its per-axis inverse.
+struct LightReach {
+    vec3 reach;
+    vec3 inverseReach;
+    float voxels;  // its length in data voxels
+};
+
+LightReach lightReachTowards(int i, vec3 l) {
+    vec3 lightTexels = vec3(textureSize(lightVolumes[i], 0));
+    vec3 towardsLight = worldToModelDirection * l * lightTexels / (boxMax - boxMin);
+    float towardsLength = length(towardsLight);
+    vec3 reach = towardsLength > 0.0 ? towardsLight / towardsLength * lightVolumeReach / lightTexels : vec3(0.0);
+    return LightReach(reach, safeInverse(reach), length(reach * vec3(volumeDims)));
+}
+#if DIRECTIONAL_LIGHTS_ONLY
+// A directional light's reach is the same at every sample (set in main).
+LightReach rayLightReaches[MAX_LIGHTS];
+#endif
+#endif
 
 vec3 shade(vec3 p, vec3 tc, vec3 color) {
+#if !DIRECTIONAL_LIGHTS_ONLY
     vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
+#else
+    const vec3 worldPosition = vec3(0.0);  // directional lights do not depend on it
+#endif
 #if SHADING_GRADIENT
     vec3 v = viewerDirection;
     SurfaceNormal surface = gradientNormal(tc, v);
@@ -149,6 +184,11 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     for (int i = 0; i < LIGHT_COUNT; ++i) {
         vec3 radiance;
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
+#if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
+        vec3 h = rayHalfVectors[i];
+#elif SHADING_GRADIENT
+        vec3 h = normalize(l + v);
+#endif
 #if SHADING_SCATTERING
         // Diffuse light is what the light volume says arrives here: tinted by c, dimmed by l.
         // The light volume stores light at voxel centres, and next to a dense or thin structure
@@ -158,21 +198,24 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
         // in, and carry that light back to the sample through the data itself, c and l changing
         // on the way as in the light volume: L(p) = L(q) T(q -> p), with T at one-voxel steps.
         // Where the reach leaves the box or passes a point light, the light arrives there whole.
-        vec3 lightTexels = vec3(textureSize(lightVolumes[i], 0));
-        vec3 towardsLight = worldToModelDirection * l * lightTexels / (boxMax - boxMin);
-        float towardsLength = length(towardsLight);
-        vec3 reach = towardsLength > 0.0 ? towardsLight / towardsLength * lightVolumeReach / lightTexels : vec3(0.0);
-        vec3 inverseReach = safeInverse(reach);
-        vec3 exits = max(-tc * inverseReach, (1.0 - tc) * inverseReach);
+#if DIRECTIONAL_LIGHTS_ONLY
+        LightReach full = rayLightReaches[i];
+#else
+        LightReach full = lightReachTowards(i, l);
+#endif
+        vec3 reach = full.reach;
+        vec3 exits = max(-tc * full.inverseReach, (1.0 - tc) * full.inverseReach);
         float reachShare = min(min(exits.x, exits.y), exits.z);
+#if !DIRECTIONAL_LIGHTS_ONLY
         if (lightVector[i].w != 0.0) {
             float reachWorld = length(mat3(modelToWorld) * (reach * (boxMax - boxMin)));
             if (reachWorld > 0.0) reachShare = min(reachShare, length(lightVector[i].xyz - worldPosition) / reachWorld);
         }
+#endif
         reachShare = clamp(reachShare, 0.0, 1.0);
         reach *= reachShare;
         vec4 arriving = reachShare < 1.0 ? vec4(1.0) : texture(lightVolumes[i], tc + reach);
-        float reachVoxels = length(reach * vec3(volumeDims));
+        float reachVoxels = full.voxels * reachShare;
         int subSteps = clamp(int(ceil(reachVoxels)), 1, 16);
         float subVoxels = reachVoxels / float(subSteps);
         for (int k = subSteps - 1; k >= 0; --k) {
@@ -180,7 +223,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
             float a = correctOpacity(medium.a, subVoxels, 1.0);
             arriving = vec4((1.0 - a) * arriving.rgb + a * medium.rgb, (1.0 - a) * arriving.a);
         }
-        arriving.a *= meshVisibility(i, worldPosition);
+        arriving.a *= meshVisibility(i, p);
         if (physicalModel != 0) {
             // Single scattering: albedo (TF colour) x phase function between the light's travel
             // direction -l and the way to the viewer x the light that arrives (grey extinction:
@@ -193,14 +236,13 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
             lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
         }
 #if SHADING_GRADIENT
-        vec3 h = normalize(l + v);
         float nDotL = dot(surface.n, l);
         if (nDotL > 0.0)
             lit += surface.strength * arriving.a * radiance * specularColor *
-                   pow(max(dot(surface.n, h), 0.0), shininess);
+                   specularPower(max(dot(surface.n, h), 0.0), shininess);
 #endif
 #else
-        lit += blinnPhong(surface.n, l, v, radiance, diffuseStrength * color, specularColor, shininess);
+        lit += blinnPhongHalf(surface.n, l, h, radiance, diffuseStrength * color, specularColor, shininess);
 #endif
     }
 #if SHADING_SCATTERING
@@ -278,6 +320,12 @@ void main() {
     Ray ray = pixelRay(ndc);
 #if SHADING_GRADIENT || SHADING_SCATTERING
     viewerDirection = -normalize(mat3(modelToWorld) * ray.direction);
+#endif
+#if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
+    for (int i = 0; i < LIGHT_COUNT; ++i) rayHalfVectors[i] = normalize(lightVector[i].xyz + viewerDirection);
+#endif
+#if SHADING_SCATTERING && DIRECTIONAL_LIGHTS_ONLY
+    for (int i = 0; i < LIGHT_COUNT; ++i) rayLightReaches[i] = lightReachTowards(i, lightVector[i].xyz);
 #endif
     vec2 span = intersectBox(ray, boxMin, boxMax);
     // Rays end at opaque geometry already in the target: a mesh in front hides the volume, a

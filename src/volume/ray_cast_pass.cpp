@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <variant>
 
 namespace sss::detail {
 
@@ -25,24 +26,38 @@ bool usesEyePass(const VolumeRenderOptions& o) {
     return o.eyePass && usesLightVolume(o.shading) && o.model == VolumeModel::Paper;
 }
 
-RayCastPass::RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass,
-                         GradientSource gradients, bool preintegration)
-    : m_shading(shading),
-      m_emptySpaceSkipping(emptySpaceSkipping),
-      m_lightCount(lightCount),
-      m_eyePass(eyePass),
-      m_gradients(gradients),
-      m_preintegration(preintegration),
+RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
+                                  GradientSource gradients, bool preintegration) {
+    RayCastVariant v;
+    v.shading = options.shading;
+    v.emptySpaceSkipping = options.emptySpaceSkipping;
+    v.lightCount = lights.size();
+    v.eyePass = usesEyePass(options);
+    v.gradients = gradients;
+    v.preintegration = preintegration;
+    v.directionalLightsOnly = std::all_of(lights.begin(), lights.end(), [](const Light& light) {
+        return std::holds_alternative<DirectionalLight>(light);
+    });
+    const float shininess = options.shininess;
+    if (usesGradient(options.shading) && shininess >= 1.0f && shininess <= 256.0f && shininess == std::floor(shininess))
+        v.integerShininess = static_cast<int>(shininess);
+    return v;
+}
+
+RayCastPass::RayCastPass(const RayCastVariant& variant)
+    : m_variant(variant),
       m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
-                                  {{"SHADING_GRADIENT", usesGradient(shading) ? "1" : "0"},
-                                   {"SHADING_SCATTERING", usesLightVolume(shading) ? "1" : "0"},
-                                   {"EMPTY_SPACE_SKIPPING", emptySpaceSkipping ? "1" : "0"},
-                                   {"LIGHT_COUNT", std::to_string(lightCount)},
-                                   {"EYE_PASS", eyePass ? "1" : "0"},
-                                   {"GRADIENT_VOLUME", gradients != GradientSource::OnTheFly ? "1" : "0"},
-                                   {"VALUES_IN_GRADIENTS", gradients == GradientSource::VolumeWithValues ? "1" : "0"},
-                                   {"PREINTEGRATED", preintegration ? "1" : "0"}})),
+                                  {{"SHADING_GRADIENT", usesGradient(variant.shading) ? "1" : "0"},
+                                   {"SHADING_SCATTERING", usesLightVolume(variant.shading) ? "1" : "0"},
+                                   {"EMPTY_SPACE_SKIPPING", variant.emptySpaceSkipping ? "1" : "0"},
+                                   {"LIGHT_COUNT", std::to_string(variant.lightCount)},
+                                   {"EYE_PASS", variant.eyePass ? "1" : "0"},
+                                   {"GRADIENT_VOLUME", variant.gradients != GradientSource::OnTheFly ? "1" : "0"},
+                                   {"VALUES_IN_GRADIENTS", variant.gradients == GradientSource::VolumeWithValues ? "1" : "0"},
+                                   {"PREINTEGRATED", variant.preintegration ? "1" : "0"},
+                                   {"DIRECTIONAL_LIGHTS_ONLY", variant.directionalLightsOnly ? "1" : "0"},
+                                   {"INTEGER_SHININESS", std::to_string(variant.integerShininess)}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const RayCastInputs& in) const {
@@ -83,11 +98,11 @@ void RayCastPass::run(const RayCastInputs& in) const {
                             (subpixel.x < 0.0f ? 0.5 : 0.0) + (subpixel.y < 0.0f ? 0.25 : 0.0);
     p.set("jitterShift", static_cast<float>(scramble - std::floor(scramble)));
     p.set("maxSteps", maxSteps);
-    if (m_shading != VolumeShading::EmissionAbsorption) {
+    if (m_variant.shading != VolumeShading::EmissionAbsorption) {
         p.set("modelToWorld", model);
         // Emission adds to the ambient term: both are light-independent fractions of the TF colour.
         // The physical model has neither (single scattering only).
-        const bool physical = options.model == VolumeModel::Physical && usesLightVolume(m_shading);
+        const bool physical = options.model == VolumeModel::Physical && usesLightVolume(m_variant.shading);
         p.set("ambientStrength", physical ? 0.0f : options.ambient + options.emission);
         p.set("diffuseStrength", options.diffuse);
         p.set("physicalModel", physical ? 1 : 0);
@@ -95,17 +110,23 @@ void RayCastPass::run(const RayCastInputs& in) const {
         setCameraUniforms(p, in.camera);
         setLightUniforms(p, lights);
     }
-    if (usesGradient(m_shading)) {
-        p.set("normalToWorld", glm::mat3(glm::transpose(glm::inverse(model))));
+    if (usesGradient(m_variant.shading)) {
+        // The shader's gradient is in value units per voxel along the model axes: scale it to
+        // model units (voxels per unit on each axis, so anisotropic boxes get correct normals),
+        // point it from high to low values, then take it to world space as a normal.
+        const glm::vec3 voxelsPerUnit = glm::vec3(volume.dims) / size;
+        const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(model)));
+        const glm::mat3 highToLow(-voxelsPerUnit.x, 0.0f, 0.0f, 0.0f, -voxelsPerUnit.y, 0.0f, 0.0f, 0.0f, -voxelsPerUnit.z);
+        p.set("gradientToOutward", normalToWorld * highToLow);
         p.set("specularColor", options.specular);
         p.set("shininess", options.shininess);
         p.set("gradientThreshold", options.gradientThreshold);
-        if (m_gradients != GradientSource::OnTheFly && in.gradientVolume) {
+        if (m_variant.gradients != GradientSource::OnTheFly && in.gradientVolume) {
             p.set("gradientVolume", units::kGradientVolume);
             in.gradientVolume->bind(units::kGradientVolume);
         }
     }
-    if (usesLightVolume(m_shading)) {
+    if (usesLightVolume(m_variant.shading)) {
         const bool shadowed = meshShadows && meshShadows->worldToClip.size() >= lights.size();
         p.set("meshShadows", shadowed ? 1 : 0);
         p.set("meshShadowDepth", units::kMeshShadowDepth);
@@ -116,7 +137,7 @@ void RayCastPass::run(const RayCastInputs& in) const {
             p.set("meshShadowBias", 2.0f / static_cast<float>(meshShadows->depth.size().x));
             meshShadows->depth.bind(units::kMeshShadowDepth);
         }
-        if (m_eyePass && in.eyeVolume) {
+        if (m_variant.eyePass && in.eyeVolume) {
             p.set("eyeVolume", units::kEyeVolume);
             p.set("eyePassStrength", options.eyePassStrength);
             in.eyeVolume->bind(units::kEyeVolume);
@@ -135,8 +156,8 @@ void RayCastPass::run(const RayCastInputs& in) const {
     volume.texture.bind(0);
     in.transferFunction.bind(1);
     in.sceneDepth.bind(2);
-    if (m_emptySpaceSkipping) in.occupancy.bind(3);
-    if (m_preintegration && in.preintegration) {
+    if (m_variant.emptySpaceSkipping) in.occupancy.bind(3);
+    if (m_variant.preintegration && in.preintegration) {
         p.set("preintegrationTable", units::kPreintegration);
         p.set("preintegrationSize", static_cast<float>(in.preintegration->size().x));
         in.preintegration->bind(units::kPreintegration);

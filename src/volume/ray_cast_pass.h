@@ -45,27 +45,37 @@ struct RayCastInputs {
 /// so a gradient-shaded sample reads one texel for both.
 enum class GradientSource { OnTheFly, Volume, VolumeWithValues };
 
+/// What a ray-cast program is compiled for: every switch the shader takes as a constant. The
+/// renderer rebuilds the pass when the variant its options and lights call for changes.
+struct RayCastVariant {
+    VolumeShading shading = VolumeShading::EmissionAbsorption;
+    bool emptySpaceSkipping = true;
+    std::size_t lightCount = 0;
+    bool eyePass = false;
+    GradientSource gradients = GradientSource::OnTheFly;
+    bool preintegration = false;
+    /// Every light is directional: the shader then finds each light's direction and half vector
+    /// once per ray instead of once per sample, and no sample's world position.
+    bool directionalLightsOnly = true;
+    /// The gradient modes' Blinn-Phong exponent when it is a whole number from 1 to 256: the
+    /// shader then raises to it by repeated squaring (exact, and a few multiplications where
+    /// pow() costs a logarithm and an exponential per sample); 0: pow() with the uniform.
+    int integerShininess = 0;
+
+    static RayCastVariant of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
+                             GradientSource gradients, bool preintegration);
+    bool operator==(const RayCastVariant&) const = default;
+};
+
 class RayCastPass {
 public:
-    RayCastPass(VolumeShading shading, bool emptySpaceSkipping, std::size_t lightCount, bool eyePass,
-                GradientSource gradients, bool preintegration);
-    /// Whether this pass was built for these options, lights, gradient source and classification
-    /// (programs are per variant).
-    bool matches(const VolumeRenderOptions& o, std::size_t lightCount, GradientSource gradients, bool preintegration) const {
-        return o.shading == m_shading && o.emptySpaceSkipping == m_emptySpaceSkipping && lightCount == m_lightCount &&
-               usesEyePass(o) == m_eyePass && gradients == m_gradients &&
-               preintegration == m_preintegration;
-    }
+    explicit RayCastPass(const RayCastVariant& variant);
+    const RayCastVariant& variant() const { return m_variant; }
     /// Draws into the bound target.
     void run(const RayCastInputs& in) const;
 
 private:
-    VolumeShading m_shading;
-    bool m_emptySpaceSkipping;
-    std::size_t m_lightCount;
-    bool m_eyePass;
-    GradientSource m_gradients;
-    bool m_preintegration;
+    RayCastVariant m_variant;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
 };

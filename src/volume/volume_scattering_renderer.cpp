@@ -370,10 +370,9 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
         !gradients ? detail::GradientSource::OnTheFly
         : detail::gradientVolumeHoldsValues(*m_impl->volume) ? detail::GradientSource::VolumeWithValues
                                                                : detail::GradientSource::Volume;
-    if (!m_impl->rayCast ||
-        !m_impl->rayCast->matches(m_impl->options, m_impl->lights.size(), gradientSource, preintegrated))
-        m_impl->rayCast.emplace(m_impl->options.shading, m_impl->options.emptySpaceSkipping, m_impl->lights.size(),
-                                eyePass, gradientSource, preintegrated);
+    const detail::RayCastVariant variant =
+        detail::RayCastVariant::of(m_impl->options, m_impl->lights, gradientSource, preintegrated);
+    if (!m_impl->rayCast || !(m_impl->rayCast->variant() == variant)) m_impl->rayCast.emplace(variant);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
     const auto start = std::chrono::steady_clock::now();
