@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -645,10 +646,14 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
           "one light change (light volume and ray cast), median of 3.\n\n"
        << "| scene | model | GPU settings | relRMSE | mean ratio R / G / B | ms | relRMSE, straight c |\n"
           "|---|---|---|---:|---|---:|---:|\n";
-    PlotSeries series[2] = {{"paper light volume", {}, 0xd62728, false}, {"physical single", {}, 0x1f77b4, false}};
-    int index = 0;
+    // The plot: the physical model's time against error, one series per scene and ray step over
+    // the light-volume scales (the paper model's reference follows the scale, so it is left out).
+    struct FrontPoint {
+        float scale;
+        double ms, errorPercent;
+    };
+    std::map<std::pair<std::string, float>, std::vector<FrontPoint>> front;  // (scene, step) -> points
     for (const Scene& scene : scenes) {
-        ++index;
         const sss::Camera camera = volumeAccuracyCamera(scene.volume, width, height);
         const sss::DirectionalLight light = volumeAccuracyLight();
         for (const sss::VolumeModel model : {sss::VolumeModel::Paper, sss::VolumeModel::Physical}) {
@@ -743,7 +748,8 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                    << " % | " << fixed(ratio.x, 3) << " / " << fixed(ratio.y, 3) << " / " << fixed(ratio.z, 3) << " | "
                    << fixed(timed.medianMs, 1) << " | "
                    << (physical ? std::string("-") : fixed(100.0 * eStraight, 1) + " %") << " |\n";
-                if (settings == "default") series[physical ? 1 : 0].points.push_back({double(index), 100.0 * e});
+                if (physical && (settings == "default" || scaled))
+                    front[{scene.name, o.stepSize}].push_back({o.lightVolumeScale, timed.medianMs, 100.0 * e});
                 if (!options.imageDir.empty()) {
                     std::filesystem::create_directories(options.imageDir);
                     sss::toDisplay(gpu, {}).savePng(options.imageDir / ("light-volume-" + scene.name + "-" + modelName + "-" +
@@ -759,13 +765,25 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
             }
         }
     }
-    md << "\nScenes in the plot, left to right: ";
-    for (size_t i = 0; i < scenes.size(); ++i) md << (i ? ", " : "") << i + 1 << " = " << scenes[i].name;
-    md << ".\n";
+    md << "\nPlot: the physical model's relRMSE against the time of a light change, one line per scene and "
+          "ray step through the light-volume scales 0.25, 0.5 and 1 (right: finer).\n";
     report.markdown = md.str();
-    report.plot.title = "light volume against its own model (CPU shadow rays), GPU defaults";
-    report.plot.xLabel = "scene (see the Markdown)";
+    report.plot.title = "physical light volume: time per light change against error (CPU reference)";
+    report.plot.xLabel = "light change: light volume + ray cast (ms)";
     report.plot.yLabel = "relRMSE %";
-    report.plot.series = {series[0], series[1]};
+    // One hue per scene, lighter for the coarser and darker for the finer step.
+    const unsigned colours[][3] = {{0x9ecae1, 0x1f77b4, 0x08306b}, {0xfdae6b, 0xff7f0e, 0x7f2704}, {0xa1d99b, 0x2ca02c, 0x00441b}};
+    for (size_t sceneIndex = 0; sceneIndex < scenes.size(); ++sceneIndex) {
+        const float steps[] = {1.0f, 0.5f, 0.25f};
+        for (int k = 0; k < 3; ++k) {
+            auto it = front.find({scenes[sceneIndex].name, steps[k]});
+            if (it == front.end()) continue;
+            std::vector<FrontPoint> points = it->second;
+            std::sort(points.begin(), points.end(), [](const FrontPoint& a, const FrontPoint& b) { return a.scale < b.scale; });
+            PlotSeries series{scenes[sceneIndex].name + ", step " + fixed(steps[k], 2), {}, colours[sceneIndex % 3][k]};
+            for (const FrontPoint& p : points) series.points.push_back({p.ms, p.errorPercent});
+            report.plot.series.push_back(std::move(series));
+        }
+    }
     return report;
 }
