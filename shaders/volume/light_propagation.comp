@@ -17,6 +17,12 @@
 // voxels scatter (litColour, from lit_colour.comp) instead of the TF colour, starting from no
 // light (border (0, 0, 0, 1)), so rgb becomes the cone-blurred light scattered towards the eye
 // from behind each voxel.
+//
+// CHROMATICITY 0 (readers that use l alone: the physical model's grey extinction): no cone
+// gather and no colour mixing; c stays 1 and l is exactly what CHROMATICITY 1 computes.
+#ifndef CHROMATICITY
+#define CHROMATICITY 1
+#endif
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "volume/transfer_function.glsl"
@@ -83,6 +89,7 @@ void main() {
     vec2 sliceSize = vec2(sliceDims.xy);
     vec2 previous = vec2(uv) + 0.5 - d.xy / dz * s.z / s.xy;
     vec4 centre = texture(previousSlice, previous / sliceSize);
+#if CHROMATICITY
     vec3 chromaticity = centre.rgb;
     vec2 ringRadius = coneTangent * pathLength / s.xy;  // texels
     if (min(ringRadius.x, ringRadius.y) >= 0.5) {
@@ -93,6 +100,9 @@ void main() {
         }
         chromaticity = coneWeights.x * centre.rgb + coneWeights.y * ring;
     }
+#else
+    const vec3 chromaticity = vec3(1.0);
+#endif
     // Across this voxel's slab (from plane w - 1/2 to w + 1/2) the light crosses the medium at
     // data resolution: n samples along the ray, about one per data voxel of path and at least
     // two (one sample at the centre let light slip past thin structures between slices; two per
@@ -125,7 +135,11 @@ void main() {
         vec3 source = medium.rgb;
 #endif
         float a = correctOpacity(medium.a, piece, referenceLength);
+#if CHROMATICITY
         light = vec4((1.0 - a) * light.rgb + a * source, (1.0 - a) * light.a);
+#else
+        light.a *= 1.0 - a;
+#endif
         if (k == n / 2 - 1) arriving = light;
     }
     imageStore(currentSlice, uv, light);

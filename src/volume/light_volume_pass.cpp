@@ -12,10 +12,15 @@
 
 namespace sss::detail {
 
-LightVolumePass::LightVolumePass(bool eyePass)
-    : m_program(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
-                                  {{"EYE_PASS", eyePass ? "1" : "0"}})),
-      m_eyePass(eyePass) {}
+LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass) { program(true); }
+
+const gl::Program& LightVolumePass::program(bool chromaticity) {
+    std::optional<gl::Program>& p = m_programs[chromaticity ? 1 : 0];
+    if (!p)
+        p = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
+                              {{"EYE_PASS", m_eyePass ? "1" : "0"}, {"CHROMATICITY", chromaticity ? "1" : "0"}});
+    return *p;
+}
 
 void LightVolumePass::run(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
                           const LightVolumeSettings& settings, gl::Texture& output) {
@@ -25,7 +30,7 @@ void LightVolumePass::run(const LightVolumeMedium& medium, const Light& light, c
 void LightVolumePass::runEyePass(const LightVolumeMedium& medium, const gl::Texture& litColour,
                                  glm::vec3 viewDirection, const glm::mat4& model, const LightVolumeSettings& settings,
                                  gl::Texture& output) {
-    m_program.set("litColour", units::kLitColour);
+    program(true).set("litColour", units::kLitColour);
     litColour.bind(units::kLitColour);
     // Light travelling towards the viewer; nothing enters from behind the volume.
     sweep(medium, DirectionalLight{.direction = -viewDirection}, model, settings, output,
@@ -52,7 +57,8 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     const std::vector<LightSweep> sweeps = planLightSweeps(light, volume.box, dims);
     const ChromaticityCone cone = chromaticityCone(settings.anisotropy);
 
-    const gl::Program& p = m_program;
+    // The eye pass carries colour whatever the settings say.
+    const gl::Program& p = program(settings.chromaticity || m_eyePass);
     p.set("volumeTexture", 0);
     p.set("transferFunction", 1);
     p.set("previousSlice", 2);
@@ -83,7 +89,7 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     // Unit 3 always holds a 3D texture, so the sampler validates with skipping off as well.
     (medium.occupiedNeighbourhoods ? *medium.occupiedNeighbourhoods : volume.texture).bind(3);
     output.bindImage(0, GL_READ_WRITE);
-    m_program.use();
+    p.use();
     const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};
     for (size_t s = 0; s < sweeps.size(); ++s) {
         const LightSweep& sweep = sweeps[s];

@@ -19,6 +19,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace sss::detail {
@@ -36,6 +37,10 @@ struct LightVolumeMedium {
 struct LightVolumeSettings {
     float resolutionScale = 1.0f;  ///< light-volume resolution relative to the data, (0, 1]
     float anisotropy = 0.5f;       ///< Henyey-Greenstein g: sets the chromaticity blur cone
+    /// false: propagate the intensity l alone and leave the chromaticity c at 1 (white), for
+    /// readers that take none (VolumeModel::Physical: grey extinction). The sweep then makes
+    /// no cone gather and no colour mixing; l is the same texel for texel.
+    bool chromaticity = true;
 };
 
 class LightVolumePass {
@@ -54,7 +59,9 @@ public:
 private:
     void sweep(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
                const LightVolumeSettings& settings, gl::Texture& output, glm::vec4 outside);
-    gl::Program m_program;
+    /// The propagation program for this pass and `chromaticity`, linked on first use.
+    const gl::Program& program(bool chromaticity);
+    std::optional<gl::Program> m_programs[2];  // [chromaticity]
     bool m_eyePass = false;
     gl::Texture m_slices[2];  // ping-pong: light leaving the previous / current slice
 };

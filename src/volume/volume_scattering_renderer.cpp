@@ -42,6 +42,7 @@ struct LightVolumeInputs {
     glm::mat4 model{1.0f};
     float resolutionScale = 0.0f;
     float anisotropy = 0.0f;
+    bool chromaticity = true;  // LightVolumeSettings::chromaticity
     bool operator==(const LightVolumeInputs&) const = default;
 };
 
@@ -237,8 +238,11 @@ struct VolumeScatteringRenderer::Impl {
     }
 
     void updateLightVolumes() {
+        // The physical model reads the intensity alone (grey extinction), and so do the meshes it
+        // shadows in a hybrid scene: the sweep leaves the chromaticity out.
+        const bool chromaticity = options.model != VolumeModel::Physical;
         const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
-                                       lights, model, options.lightVolumeScale, options.anisotropy};
+                                       lights, model, options.lightVolumeScale, options.anisotropy, chromaticity};
         if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
         if (!lightVolumePass) lightVolumePass.emplace();
         const auto start = std::chrono::steady_clock::now();
@@ -251,7 +255,7 @@ struct VolumeScatteringRenderer::Impl {
                                           .transferFunction = transferFunctionTable,
                                           .occupiedNeighbourhoods =
                                               options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr},
-                                         lights[i], model, {scale, options.anisotropy}, lightVolumes[i]);
+                                         lights[i], model, {scale, options.anisotropy, chromaticity}, lightVolumes[i]);
                 break;
             } catch (const Error& e) {
                 const glm::ivec3 dims = detail::lightVolumeDims(volume->dims, scale);

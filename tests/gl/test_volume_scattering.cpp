@@ -163,6 +163,51 @@ TEST_CASE("empty-space skipping leaves the light volume unchanged texel for texe
     gl.requireNoErrors();
 }
 
+TEST_CASE("an intensity-only light volume has the full one's intensity texel for texel", "[gl][volume][scattering]") {
+    // The physical model reads the intensity l alone, so its sweep leaves out the chromaticity
+    // cone and the colour mixing (LightVolumeSettings::chromaticity = false). l must not change:
+    // coloured blobs under a slanted and a nearly axial directional light (one and two blended
+    // sweeps), a point light inside (six sweeps) and a reduced resolution, with and without
+    // empty-space skipping; c must be white everywhere.
+    test::GlTestScope gl;
+    const int n = 40;
+    const Volume volume = makeVolume(n, [](int x, int y, int z) {
+        const auto inside = [&](glm::vec3 c, float r) { return glm::length(glm::vec3(x, y, z) + 0.5f - c) < r; };
+        return inside({12, 13, 15}, 7.0f) ? 220 : inside({27, 25, 22}, 6.0f) ? 150 : 20;
+    });
+    const TransferFunction tf({{0.0f, {0.9f, 0.5f, 0.3f}, 0.0f}, {0.45f, {0.9f, 0.5f, 0.3f}, 0.05f},
+                               {0.6f, {0.2f, 0.7f, 0.9f}, 0.4f}, {1.0f, {0.9f, 0.2f, 0.2f}, 0.9f}});
+    struct Case {
+        Light light;
+        float scale;
+    };
+    for (const Case& c : {Case{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 1.0f},
+                          Case{DirectionalLight{.direction = {0.05f, 1.0f, 0.02f}}, 1.0f},
+                          Case{PointLight{.position = {0.02f, -0.05f, 0.1f}}, 1.0f},
+                          Case{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 0.4f}}) {
+        for (const bool skipping : {false, true}) {
+            const LightVolumeReadback full = propagate(volume, tf, c.light, {.resolutionScale = c.scale}, {.on = skipping});
+            const LightVolumeReadback grey =
+                propagate(volume, tf, c.light, {.resolutionScale = c.scale, .chromaticity = false}, {.on = skipping});
+            REQUIRE(full.texels.size() == grey.texels.size());
+            size_t intensityDiffers = 0, notWhite = 0, tinted = 0, shadowed = 0;
+            for (size_t i = 0; i < full.texels.size(); ++i) {
+                intensityDiffers += full.texels[i].a != grey.texels[i].a ? 1 : 0;
+                notWhite += glm::vec3(grey.texels[i]) != glm::vec3(1.0f) ? 1 : 0;
+                tinted += glm::vec3(full.texels[i]) != glm::vec3(1.0f) ? 1 : 0;
+                shadowed += full.texels[i].a < 0.9f ? 1 : 0;
+            }
+            INFO("scale " << c.scale << ", skipping " << skipping << ": " << intensityDiffers << " intensities differ, "
+                          << notWhite << " grey texels not white, " << tinted << " tinted, " << shadowed << " shadowed");
+            CHECK(shadowed > 0);  // the blobs cast shadows and tint the light: the cases are not trivial
+            CHECK(tinted > 0);
+            CHECK(intensityDiffers == 0);
+            CHECK(notWhite == 0);
+        }
+    }
+    gl.requireNoErrors();
+}
+
 TEST_CASE("an opaque slab casts a hard shadow exactly where the geometry puts it", "[gl][volume][scattering]") {
     test::GlTestScope gl;
     // 32^3: an opaque wall at x in [6, 9) covering y < 16 only; everything else empty.
