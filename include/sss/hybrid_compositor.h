@@ -20,7 +20,8 @@
 ///    and a Blinn-Phong mesh's n.l its attached shadows (its cast self-shadows are not drawn);
 ///  - every scattering volume tints and dims the light reaching meshes and the box: a mesh
 ///    point's light from each light is multiplied by the light-volume value (c, l) where that
-///    light's ray leaves the volume box towards the point (or at the point, inside the box). Up to
+///    light's ray leaves the volume box towards the point (or at the point, inside the box); a
+///    volume in VolumeModel::Physical (grey extinction) has c = 1 and only dims it. Up to
 ///    16 volume-light pairs do so (16 volumes with one light, 2 with eight); a warning names
 ///    the volumes left out. Light scattered by a volume does not illuminate meshes.
 /// Every renderer keeps its own caches: a camera move reruns neither the scattering maps nor the

@@ -48,7 +48,8 @@ enum class VolumeModel {
     /// Physical single scattering: C_tf (the single-scattering albedo) E l p_HG(anisotropy,
     /// cos theta), the Henyey-Greenstein phase function (per steradian) between the light's
     /// direction of travel and the direction to the viewer; no ambient, no emission, no
-    /// chromaticity, no eye pass. What renderVolumePathTraced() computes in its single-scattering
+    /// chromaticity (its light volume carries the intensity l alone, a cheaper sweep), no eye
+    /// pass. What renderVolumePathTraced() computes in its single-scattering
     /// mode. About 4 pi dimmer than the paper's model at diffuse 1 (the phase function is per
     /// steradian): raise the light or the exposure.
     Physical,
