@@ -31,8 +31,16 @@ uniform sampler2D previousSlice;                          // (c, l) leaving slic
 layout(rgba16f) uniform writeonly image2D currentSlice;   // (c, l) leaving slice w
 layout(rgba16f) uniform image3D lightVolume;              // (c, l) arriving at each voxel
 
-uniform ivec3 sweepAxes;        // data axis that u, v, w run along
-uniform ivec3 sweepFlip;        // 1 where u, v or w runs against its data axis
+// The sweep frame against the data axes (set per sweep on the CPU, so no voxel permutes axes):
+// voxel = voxelOrigin + u voxelStepU + v voxelStepV + w voxelStepW, a data-space vector x is
+// dataToSweep x in the sweep frame, and a voxel's edges along u, v, w are sweepVoxelSize.
+uniform ivec3 sliceDims;        // light-volume voxels along u, v, w
+uniform ivec3 voxelOrigin;
+uniform ivec3 voxelStepU;
+uniform ivec3 voxelStepV;
+uniform ivec3 voxelStepW;
+uniform mat3 dataToSweep;
+uniform vec3 sweepVoxelSize;
 uniform ivec3 lightVolumeDims;  // per data axis
 uniform vec3 voxelSize;         // light-volume voxel edge per data axis, model units
 uniform vec3 boxMin;            // model-space corner of the volume box
@@ -57,27 +65,16 @@ uniform sampler3D litColour;
 #endif
 
 void main() {
-    ivec3 sliceDims = ivec3(lightVolumeDims[sweepAxes.x], lightVolumeDims[sweepAxes.y], lightVolumeDims[sweepAxes.z]);
     ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
     if (uv.x >= sliceDims.x || uv.y >= sliceDims.y) return;
-    ivec3 sweep = ivec3(uv, sliceIndex);
 
-    // Sweep frame -> data voxel index.
-    ivec3 voxel;
-    for (int j = 0; j < 3; ++j) {
-        int axis = sweepAxes[j];
-        voxel[axis] = sweepFlip[j] != 0 ? lightVolumeDims[axis] - 1 - sweep[j] : sweep[j];
-    }
+    ivec3 voxel = voxelOrigin + uv.x * voxelStepU + uv.y * voxelStepV + sliceIndex * voxelStepW;
     vec3 position = boxMin + (vec3(voxel) + 0.5) * voxelSize;
     vec3 direction = isPointLight != 0 ? position - lightPosition : lightDirection;
 
     // Direction and voxel size in the sweep frame.
-    vec3 d, s;
-    for (int j = 0; j < 3; ++j) {
-        int axis = sweepAxes[j];
-        d[j] = sweepFlip[j] != 0 ? -direction[axis] : direction[axis];
-        s[j] = voxelSize[axis];
-    }
+    vec3 d = dataToSweep * direction;
+    vec3 s = sweepVoxelSize;
     // A voxel centred exactly on a point light gets an arbitrary direction instead of NaN.
     d = dot(d, d) > 1e-20 ? normalize(d) : vec3(0.0, 0.0, 1.0);
     // Light must travel forward along w; a point light beside the sweep gives dz -> 0.

@@ -102,8 +102,24 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
             }
             slice.setBorderColor(outside);
         }
-        p.set("sweepAxes", glm::ivec3(u, v, sweep.axis));
-        p.set("sweepFlip", glm::ivec3(0, 0, sweep.reversed ? 1 : 0));
+        // The sweep frame: u and v across a slice, w along the sweep (towards -axis if reversed).
+        glm::ivec3 origin(0), stepU(0), stepV(0), stepW(0);
+        stepU[u] = 1;
+        stepV[v] = 1;
+        stepW[sweep.axis] = sweep.reversed ? -1 : 1;
+        origin[sweep.axis] = sweep.reversed ? dims[sweep.axis] - 1 : 0;
+        glm::mat3 dataToSweep(0.0f);  // column = data axis, row = sweep axis
+        dataToSweep[u][0] = 1.0f;
+        dataToSweep[v][1] = 1.0f;
+        dataToSweep[sweep.axis][2] = sweep.reversed ? -1.0f : 1.0f;
+        const glm::vec3 voxelSize = volume.box.size() / glm::vec3(dims);
+        p.set("sliceDims", glm::ivec3(dims[u], dims[v], dims[sweep.axis]));
+        p.set("voxelOrigin", origin);
+        p.set("voxelStepU", stepU);
+        p.set("voxelStepV", stepV);
+        p.set("voxelStepW", stepW);
+        p.set("dataToSweep", dataToSweep);
+        p.set("sweepVoxelSize", glm::vec3(voxelSize[u], voxelSize[v], voxelSize[sweep.axis]));
         p.set("sweepWeight", sweep.weight);
         p.set("accumulate", (!sweep.pyramid && s > 0) ? 1 : 0);
         p.set("pyramidMask", sweep.pyramid ? 1 : 0);
