@@ -56,6 +56,31 @@ struct Skipping {
     const TransferFunction* skipTf = nullptr;
 };
 
+// Two small dense blobs in a 48^3 box under a two-colour TF: most bricks (8^3) and their
+// neighbourhoods are empty and some are not, and the light comes out of the blobs tinted.
+Volume twoBlobsVolume() {
+    return makeVolume(48, [](int x, int y, int z) {
+        const auto inside = [&](glm::vec3 c, float r) { return glm::length(glm::vec3(x, y, z) + 0.5f - c) < r; };
+        return (inside({14, 15, 18}, 6.0f) || inside({33, 30, 26}, 5.0f)) ? 200 : 20;
+    });
+}
+TransferFunction twoBlobsTf() {
+    return TransferFunction({{0.0f, {0.9f, 0.5f, 0.3f}, 0.0f}, {0.45f, {0.9f, 0.5f, 0.3f}, 0.0f},
+                             {0.55f, {0.3f, 0.6f, 0.9f}, 0.8f}, {1.0f, {0.3f, 0.6f, 0.9f}, 0.8f}});
+}
+
+// Lights that exercise every kind of sweep: a slanted directional light (two blended sweeps,
+// long slabs), a nearly axial one (one sweep), a point light inside (six sweeps) and, at a
+// reduced resolution, light-volume voxels that span several data voxels.
+struct SweepCase {
+    Light light;
+    float scale;
+};
+const SweepCase kSweepCases[] = {{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 1.0f},
+                                 {DirectionalLight{.direction = {0.05f, 1.0f, 0.02f}}, 1.0f},
+                                 {PointLight{.position = {0.02f, -0.05f, 0.1f}}, 1.0f},
+                                 {DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 0.35f}};
+
 LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, const Light& light,
                               detail::LightVolumeSettings settings = {}, Skipping skipping = {}) {
     const detail::GpuVolume gpu = detail::GpuVolume::upload(volume);
@@ -115,30 +140,15 @@ TEST_CASE("a transparent transfer function leaves the light unattenuated and the
 
 TEST_CASE("empty-space skipping leaves the light volume unchanged texel for texel", "[gl][volume][scattering]") {
     test::GlTestScope gl;
-    // Two small dense blobs in a 48^3 box, so most bricks (8^3) and their neighbourhoods are
-    // empty and some are not; a directional light at a slant (long slabs: some voxels too far
-    // from their brick to skip), a nearly axial one, a point light inside and, at a reduced
-    // resolution, light-volume voxels that span several data voxels.
-    const int n = 48;
-    const Volume volume = makeVolume(n, [](int x, int y, int z) {
-        const auto inside = [&](glm::vec3 c, float r) { return glm::length(glm::vec3(x, y, z) + 0.5f - c) < r; };
-        return (inside({14, 15, 18}, 6.0f) || inside({33, 30, 26}, 5.0f)) ? 200 : 20;
-    });
-    const TransferFunction tf({{0.0f, {0.9f, 0.5f, 0.3f}, 0.0f}, {0.45f, {0.9f, 0.5f, 0.3f}, 0.0f},
-                               {0.55f, {0.3f, 0.6f, 0.9f}, 0.8f}, {1.0f, {0.3f, 0.6f, 0.9f}, 0.8f}});
+    // The slanted light's long slabs leave some voxels too far from their brick to skip.
+    const Volume volume = twoBlobsVolume();
+    const TransferFunction tf = twoBlobsTf();
     detail::OccupancyGrid grid(volume);
     grid.update(tf.table(256), detail::GpuVolume::upload(volume).valueScaleOffset);
     INFO("occupied bricks " << grid.occupiedFraction());
     REQUIRE(grid.occupiedFraction() > 0.05);
     REQUIRE(grid.occupiedFraction() < 0.6);
-    struct Case {
-        Light light;
-        float scale;
-    };
-    for (const Case& c : {Case{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 1.0f},
-                          Case{DirectionalLight{.direction = {0.05f, 1.0f, 0.02f}}, 1.0f},
-                          Case{PointLight{.position = {0.02f, -0.05f, 0.1f}}, 1.0f},
-                          Case{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 0.35f}}) {
+    for (const SweepCase& c : kSweepCases) {
         const detail::LightVolumeSettings settings{.resolutionScale = c.scale};
         const LightVolumeReadback plain = propagate(volume, tf, c.light, settings);
         const LightVolumeReadback skipped = propagate(volume, tf, c.light, settings, {.on = true});
@@ -165,26 +175,12 @@ TEST_CASE("empty-space skipping leaves the light volume unchanged texel for texe
 
 TEST_CASE("an intensity-only light volume has the full one's intensity texel for texel", "[gl][volume][scattering]") {
     // The physical model reads the intensity l alone, so its sweep leaves out the chromaticity
-    // cone and the colour mixing (LightVolumeSettings::chromaticity = false). l must not change:
-    // coloured blobs under a slanted and a nearly axial directional light (one and two blended
-    // sweeps), a point light inside (six sweeps) and a reduced resolution, with and without
-    // empty-space skipping; c must be white everywhere.
+    // cone and the colour mixing (LightVolumeSettings::chromaticity = false). l must not change
+    // under any kind of sweep, with and without empty-space skipping; c must be white everywhere.
     test::GlTestScope gl;
-    const int n = 40;
-    const Volume volume = makeVolume(n, [](int x, int y, int z) {
-        const auto inside = [&](glm::vec3 c, float r) { return glm::length(glm::vec3(x, y, z) + 0.5f - c) < r; };
-        return inside({12, 13, 15}, 7.0f) ? 220 : inside({27, 25, 22}, 6.0f) ? 150 : 20;
-    });
-    const TransferFunction tf({{0.0f, {0.9f, 0.5f, 0.3f}, 0.0f}, {0.45f, {0.9f, 0.5f, 0.3f}, 0.05f},
-                               {0.6f, {0.2f, 0.7f, 0.9f}, 0.4f}, {1.0f, {0.9f, 0.2f, 0.2f}, 0.9f}});
-    struct Case {
-        Light light;
-        float scale;
-    };
-    for (const Case& c : {Case{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 1.0f},
-                          Case{DirectionalLight{.direction = {0.05f, 1.0f, 0.02f}}, 1.0f},
-                          Case{PointLight{.position = {0.02f, -0.05f, 0.1f}}, 1.0f},
-                          Case{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 0.4f}}) {
+    const Volume volume = twoBlobsVolume();
+    const TransferFunction tf = twoBlobsTf();
+    for (const SweepCase& c : kSweepCases) {
         for (const bool skipping : {false, true}) {
             const LightVolumeReadback full = propagate(volume, tf, c.light, {.resolutionScale = c.scale}, {.on = skipping});
             const LightVolumeReadback grey =
