@@ -68,7 +68,8 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     p.set("transferFunctionEntries", static_cast<float>(medium.transferFunction.size().x));
     p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("lightVolumeDims", dims);
-    p.set("voxelSize", volume.box.size() / glm::vec3(dims));
+    const glm::vec3 voxelSize = volume.box.size() / glm::vec3(dims);
+    p.set("voxelSize", voxelSize);
     p.set("boxMin", volume.box.min);
     p.set("referenceLength", volume.voxelLength);
     if (const auto* d = std::get_if<DirectionalLight>(&light)) {
@@ -112,7 +113,6 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
         dataToSweep[u][0] = 1.0f;
         dataToSweep[v][1] = 1.0f;
         dataToSweep[sweep.axis][2] = sweep.reversed ? -1.0f : 1.0f;
-        const glm::vec3 voxelSize = volume.box.size() / glm::vec3(dims);
         p.set("sliceDims", glm::ivec3(dims[u], dims[v], dims[sweep.axis]));
         p.set("voxelOrigin", origin);
         p.set("voxelStepU", stepU);

@@ -41,6 +41,7 @@ struct LightVolumeSettings {
     /// readers that take none (VolumeModel::Physical: grey extinction). The sweep then makes
     /// no cone gather and no colour mixing; l is the same texel for texel.
     bool chromaticity = true;
+    bool operator==(const LightVolumeSettings&) const = default;
 };
 
 class LightVolumePass {

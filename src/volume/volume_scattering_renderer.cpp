@@ -40,9 +40,7 @@ struct LightVolumeInputs {
     int transferFunctionEntries = 0;
     std::vector<Light> lights;
     glm::mat4 model{1.0f};
-    float resolutionScale = 0.0f;
-    float anisotropy = 0.0f;
-    bool chromaticity = true;  // LightVolumeSettings::chromaticity
+    detail::LightVolumeSettings settings;  // as asked: the scale before any fallback
     bool operator==(const LightVolumeInputs&) const = default;
 };
 
@@ -240,13 +238,16 @@ struct VolumeScatteringRenderer::Impl {
     void updateLightVolumes() {
         // The physical model reads the intensity alone (grey extinction), and so do the meshes it
         // shadows in a hybrid scene: the sweep leaves the chromaticity out.
-        const bool chromaticity = options.model != VolumeModel::Physical;
+        const detail::LightVolumeSettings asked{.resolutionScale = options.lightVolumeScale,
+                                                .anisotropy = options.anisotropy,
+                                                .chromaticity = options.model != VolumeModel::Physical};
         const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
-                                       lights, model, options.lightVolumeScale, options.anisotropy, chromaticity};
+                                       lights, model, asked};
         if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
         if (!lightVolumePass) lightVolumePass.emplace();
         const auto start = std::chrono::steady_clock::now();
-        float scale = options.lightVolumeScale;
+        detail::LightVolumeSettings settings = asked;
+        float& scale = settings.resolutionScale;
         for (;;) {
             try {
                 lightVolumes.resize(lights.size());
@@ -255,7 +256,7 @@ struct VolumeScatteringRenderer::Impl {
                                           .transferFunction = transferFunctionTable,
                                           .occupiedNeighbourhoods =
                                               options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr},
-                                         lights[i], model, {scale, options.anisotropy, chromaticity}, lightVolumes[i]);
+                                         lights[i], model, settings, lightVolumes[i]);
                 break;
             } catch (const Error& e) {
                 const glm::ivec3 dims = detail::lightVolumeDims(volume->dims, scale);
@@ -376,7 +377,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                                                                : detail::GradientSource::Volume;
     const detail::RayCastVariant variant =
         detail::RayCastVariant::of(m_impl->options, m_impl->lights, gradientSource, preintegrated);
-    if (!m_impl->rayCast || !(m_impl->rayCast->variant() == variant)) m_impl->rayCast.emplace(variant);
+    if (!m_impl->rayCast || m_impl->rayCast->variant() != variant) m_impl->rayCast.emplace(variant);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
     const auto start = std::chrono::steady_clock::now();
