@@ -118,7 +118,9 @@ void main() {
     if (skipEmpty != 0) {
         vec3 halfSlab = 0.5 * abs(slabTc) * vec3(dataDims);
         if (max(max(halfSlab.x, halfSlab.y), halfSlab.z) <= float(brickVoxels)) {
-            ivec3 brick = clamp(ivec3(centreTc * vec3(dataDims)) / brickVoxels, ivec3(0),
+            // A float product, not a vector integer division (scalar divisions on software
+            // rasterisers); exact, as brickVoxels is a power of two.
+            ivec3 brick = clamp(ivec3(centreTc * (vec3(dataDims) / float(brickVoxels))), ivec3(0),
                                 textureSize(occupiedNeighbourhoods, 0) - 1);
             empty = texelFetch(occupiedNeighbourhoods, brick, 0).r == 0.0;
         }

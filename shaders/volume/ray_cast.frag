@@ -43,6 +43,12 @@ uniform sampler2D sceneDepth;         // depth of what the target already holds 
 #if EMPTY_SPACE_SKIPPING
 uniform sampler3D occupancy;          // per brick: > 0 where the TF gives any opacity
 uniform int brickVoxels;
+// Set once per ray (main): texture coordinates to brick coordinates, and the last brick. A brick
+// index as a float product, not an integer division per sample: software rasterisers have no
+// vector integer division and split it into scalar ones (a fifth of an emission-absorption frame
+// on llvmpipe). brickVoxels is a power of two, so the product is exact and the index the same.
+vec3 textureToBrick;
+ivec3 lastBrick;
 #endif
 
 #if SHADING_GRADIENT || SHADING_SCATTERING
@@ -318,6 +324,10 @@ void compositeSegment(Segment segment, vec3 end, float length, vec3 direction, i
 
 void main() {
     Ray ray = pixelRay(ndc);
+#if EMPTY_SPACE_SKIPPING
+    textureToBrick = vec3(volumeDims) / float(brickVoxels);
+    lastBrick = textureSize(occupancy, 0) - 1;
+#endif
 #if SHADING_GRADIENT || SHADING_SCATTERING
     viewerDirection = -normalize(mat3(modelToWorld) * ray.direction);
 #endif
@@ -376,7 +386,7 @@ void main() {
             vec3 p = ray.origin + t * ray.direction;
             vec3 tc = toTexture(p);
 #if EMPTY_SPACE_SKIPPING
-            ivec3 brick = clamp(ivec3(tc * vec3(volumeDims)) / brickVoxels, ivec3(0), textureSize(occupancy, 0) - 1);
+            ivec3 brick = clamp(ivec3(tc * textureToBrick), ivec3(0), lastBrick);
             bool emptyBrick = texelFetch(occupancy, brick, 0).r == 0.0;
 #if PREINTEGRATED
             // The segment from the last sample taken into an empty brick may still hold medium at

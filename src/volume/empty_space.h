@@ -16,6 +16,8 @@
 namespace sss::detail {
 
 inline constexpr int kBrickVoxels = 8;
+// The shaders find a sample's brick as tc * (dims / kBrickVoxels): exact for a power of two.
+static_assert((kBrickVoxels & (kBrickVoxels - 1)) == 0, "kBrickVoxels must be a power of two");
 
 class OccupancyGrid {
 public:
