@@ -298,11 +298,23 @@ Segment pointSegment(float value, float voxels) {
 }
 #endif
 
+#if !PREINTEGRATED
+// The transfer function with each entry's opacity corrected for one ray step (the TF's is per
+// voxel), on a grid finer than the TF's (src/volume/step_classification.h): a table lookup per
+// sample instead of a pow().
+uniform sampler2D stepTransferFunction;
+uniform float stepTransferFunctionEntries;
+
+vec4 classifyStep(float value) {
+    return texture(stepTransferFunction, vec2(transferFunctionCoordinate(value, stepTransferFunctionEntries), 0.5));
+}
+#endif
+
 // Adds one sample (point classification) or segment (pre-integrated) front to back: colour
-// `albedo`, opacity `a`, shaded at p.
-void composite(vec3 p, vec3 albedo, float a, inout vec3 color, inout float alpha) {
+// `albedo`, opacity `a`, shaded at p (texture coordinate tc).
+void composite(vec3 p, vec3 tc, vec3 albedo, float a, inout vec3 color, inout float alpha) {
 #if SHADING_GRADIENT || SHADING_SCATTERING
-    vec3 c = shade(p, toTexture(p), albedo);
+    vec3 c = shade(p, tc, albedo);
 #else
     vec3 c = albedo;
 #endif
@@ -318,7 +330,8 @@ void compositeSegment(Segment segment, vec3 end, float length, vec3 direction, i
     float a = segment.premultiplied.a;
     if (a <= 0.0) return;
     // The segment's mean colour, weighted by what each part of it adds.
-    composite(end - (1.0 - segment.depth) * length * direction, segment.premultiplied.rgb / a, a, color, alpha);
+    vec3 p = end - (1.0 - segment.depth) * length * direction;
+    composite(p, toTexture(p), segment.premultiplied.rgb / a, a, color, alpha);
 }
 #endif
 
@@ -338,6 +351,9 @@ void main() {
     for (int i = 0; i < LIGHT_COUNT; ++i) rayLightReaches[i] = lightReachTowards(i, lightVector[i].xyz);
 #endif
     vec2 span = intersectBox(ray, boxMin, boxMax);
+    // The ray in texture coordinates: a sample's is a multiply-add, not three divisions.
+    vec3 tcOrigin = toTexture(ray.origin);
+    vec3 tcDirection = ray.direction / (boxMax - boxMin);
     // Rays end at opaque geometry already in the target: a mesh in front hides the volume, a
     // mesh inside it cuts the rays at its surface.
     float depth = texelFetch(sceneDepth, ivec2(gl_FragCoord.xy), 0).r;
@@ -384,7 +400,7 @@ void main() {
                 break;
             }
             vec3 p = ray.origin + t * ray.direction;
-            vec3 tc = toTexture(p);
+            vec3 tc = tcOrigin + t * tcDirection;
 #if EMPTY_SPACE_SKIPPING
             ivec3 brick = clamp(ivec3(tc * textureToBrick), ivec3(0), lastBrick);
             bool emptyBrick = texelFetch(occupancy, brick, 0).r == 0.0;
@@ -432,13 +448,12 @@ void main() {
             segmentOpen = true;
 #endif
 #else
-            vec4 tf = classify(value);
+            vec4 tf = classifyStep(value);
             if (tf.a <= 0.0) continue;
 #if COMBINED_FETCH
             shadedDifferences = sampled.xyz;
 #endif
-            // Opacity correction: the TF opacity is defined per voxel length.
-            composite(p, tf.rgb, correctOpacity(tf.a, opacityExponent, 1.0), color, alpha);
+            composite(p, tc, tf.rgb, tf.a, color, alpha);
 #endif
             if (alpha >= earlyTermination) break;
         }

@@ -5,10 +5,14 @@ uniform sampler2D transferFunction;   // one row of N entries; entry i belongs t
 uniform float transferFunctionEntries;
 uniform vec2 valueScaleOffset;        // TF coordinate = sample * x + y (data range -> [0,1])
 
-vec4 classify(float value) {
+// The texel coordinate of a data value in a one-row table of `entries` entries over the TF's range.
+float transferFunctionCoordinate(float value, float entries) {
     float x = clamp(value * valueScaleOffset.x + valueScaleOffset.y, 0.0, 1.0);
-    float u = (x * (transferFunctionEntries - 1.0) + 0.5) / transferFunctionEntries;
-    return texture(transferFunction, vec2(u, 0.5));
+    return (x * (entries - 1.0) + 0.5) / entries;
+}
+
+vec4 classify(float value) {
+    return texture(transferFunction, vec2(transferFunctionCoordinate(value, transferFunctionEntries), 0.5));
 }
 
 // Opacity of a path `pathLength` long when the TF's opacity is defined per `referenceLength`.

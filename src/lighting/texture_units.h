@@ -20,6 +20,9 @@ inline constexpr int kMeshShadowDepth = 12;
 inline constexpr int kEyeVolume = 13;
 inline constexpr int kGradientVolume = 14;
 inline constexpr int kPreintegration = 15;
+// Post-classified rays read this instead of the pre-integrated table; 16 is free in the ray
+// caster, which reads no volume shadows (those units belong to the mesh passes).
+inline constexpr int kStepTransferFunction = 16;
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

@@ -2,6 +2,7 @@
 
 #include "volume/composite_over.h"
 #include "lighting/texture_units.h"
+#include "sss/error.h"
 
 #include "lighting/camera_uniforms.h"
 #include "lighting/light_uniforms.h"
@@ -161,6 +162,12 @@ void RayCastPass::run(const RayCastInputs& in) const {
         p.set("preintegrationTable", units::kPreintegration);
         p.set("preintegrationSize", static_cast<float>(in.preintegration->size().x));
         in.preintegration->bind(units::kPreintegration);
+    }
+    if (!m_variant.preintegration) {
+        if (!in.stepTransferFunction) throw Error(ErrorKind::InvalidArgument, "RayCastPass: no step transfer function");
+        p.set("stepTransferFunction", units::kStepTransferFunction);
+        p.set("stepTransferFunctionEntries", static_cast<float>(in.stepTransferFunction->size().x));
+        in.stepTransferFunction->bind(units::kStepTransferFunction);
     }
     // Premultiplied "over": the volume's colour in front of what the target already holds.
     drawPremultipliedOver(m_program, m_emptyVertexArray);

@@ -33,6 +33,7 @@ struct RayCastInputs {
     const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
+    const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)
     const glm::mat4& model;
     const std::vector<Light>& lights;
     const VolumeRenderOptions& options;

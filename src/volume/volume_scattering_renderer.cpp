@@ -15,6 +15,7 @@
 #include "volume/light_volume_pass.h"
 #include "volume/path_trace_pass.h"
 #include "volume/preintegration.h"
+#include "volume/step_classification.h"
 #include "volume/ray_cast_pass.h"
 #include "volume/renderer_access.h"
 
@@ -151,6 +152,19 @@ struct VolumeScatteringRenderer::Impl {
     // Whether the ray caster integrates segments: asked for and the table fitted.
     bool preintegrated() const {
         return options.preintegration && !options.multipleScattering && static_cast<bool>(preintegrationTable);
+    }
+
+    // Post-classification's transfer function with opacities corrected for the ray step, and
+    // the (TF revision, entries, step) it is for. Built when rays classify samples alone.
+    gl::Texture stepTransferFunction;
+    std::optional<std::tuple<std::uint64_t, int, float>> stepTransferFunctionKey;
+    void updateStepTransferFunction() {
+        const auto key = std::make_tuple(transferFunction.revision(), options.transferFunctionEntries, options.stepSize);
+        if (stepTransferFunctionKey == key) return;
+        stepTransferFunction = {};
+        stepTransferFunction = detail::uploadStepClassification(
+            detail::stepClassification(transferFunction.table(options.transferFunctionEntries), options.stepSize));
+        stepTransferFunctionKey = key;
     }
 
     // Whether the ray caster reads precomputed gradients; builds them once per data set.
@@ -371,6 +385,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     const bool gradients = m_impl->updateGradientVolume();
     m_impl->updatePreintegration();
     const bool preintegrated = m_impl->preintegrated();
+    if (!preintegrated) m_impl->updateStepTransferFunction();
     const detail::GradientSource gradientSource =
         !gradients ? detail::GradientSource::OnTheFly
         : detail::gradientVolumeHoldsValues(*m_impl->volume) ? detail::GradientSource::VolumeWithValues
@@ -393,6 +408,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
+                    .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,
                     .model = r.model,
                     .lights = r.lights,
                     .options = r.options,
