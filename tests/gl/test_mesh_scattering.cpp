@@ -157,6 +157,37 @@ TEST_CASE("the cached per-vertex combine follows the per-pixel combine of the sa
     gl.requireNoErrors();
 }
 
+TEST_CASE("with converged maps on a fine mesh, the cached combine is within 0.5 % of the per-pixel one",
+          "[gl][mesh][scattering][caching]") {
+    test::GlTestScope gl;
+    // The difference above is mostly the maps' Monte Carlo noise: it halves with every 4x
+    // frames. Measured (llvmpipe, the same scene, K 16, N 16 per frame): torus 128 x 64 0.0264 /
+    // 0.0135 / 0.0069 and 256 x 128 0.0166 / 0.0084 / 0.0043 after 4 / 16 / 64 frames (16 frames
+    // of N 64: 0.0043 too). So with the maps converged (1024 samples per texel here) and vertices
+    // a few texels apart, the per-vertex image is within the 0.5 % of the per-pixel one that
+    // issue 11 asked for. Bound: 0.5 %, 1.16x the measured 0.43 % (the noise is seeded, so the
+    // same on every run of one driver).
+    const Mesh torus = makeTorus(0.7f, 0.3f, 256, 128);
+    MeshRenderOptions options = testOptions(16);
+    options.accumulationFrames = 16;
+    options.samples = 64;
+    options.combine = MeshCombine::PerPixel;
+    options.specular = 0.0f;
+    MeshScatteringRenderer renderer(options);
+    renderer.setMesh(torus, glm::rotate(glm::mat4(1.0f), glm::radians(60.0f), glm::vec3(1, 0, 0)));
+    renderer.setScatteringMaterial(materialPreset("marble"));
+    renderer.setLights({DirectionalLight{.direction = {0.4f, -1.0f, -0.5f}}});
+    const Camera camera = orbitCamera(torus.bounds(), -25.0f, 10.0f);
+    const Image perPixel = renderConverged(renderer, camera);
+    options.combine = MeshCombine::PerVertex;
+    renderer.setOptions(options);
+    const double difference = computeErrorMetrics(renderConverged(renderer, camera), perPixel).relRmse;
+    std::printf("[cached combine] converged maps, torus 256 x 128: per-vertex against per-pixel relRMSE %.4f\n",
+                difference);
+    CHECK(difference < 0.005);
+    gl.requireNoErrors();
+}
+
 TEST_CASE("a camera-only change reruns only the combine pass", "[gl][mesh][scattering][caching]") {
     test::GlTestScope gl;
     // Both ways of estimating the radiosity cache alike (explicit: Automatic would switch between
