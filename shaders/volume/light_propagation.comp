@@ -60,6 +60,7 @@ uniform int skipEmpty;
 uniform sampler3D occupiedNeighbourhoods;
 uniform ivec3 dataDims;
 uniform int brickVoxels;
+uniform vec3 textureToBrick;    // dataDims / brickVoxels: a brick by a float product (ray_cast.frag)
 #if EYE_PASS
 uniform sampler3D litColour;
 #endif
@@ -118,9 +119,7 @@ void main() {
     if (skipEmpty != 0) {
         vec3 halfSlab = 0.5 * abs(slabTc) * vec3(dataDims);
         if (max(max(halfSlab.x, halfSlab.y), halfSlab.z) <= float(brickVoxels)) {
-            // A float product, not a vector integer division (scalar divisions on software
-            // rasterisers); exact, as brickVoxels is a power of two.
-            ivec3 brick = clamp(ivec3(centreTc * (vec3(dataDims) / float(brickVoxels))), ivec3(0),
+            ivec3 brick = clamp(ivec3(centreTc * textureToBrick), ivec3(0),
                                 textureSize(occupiedNeighbourhoods, 0) - 1);
             empty = texelFetch(occupiedNeighbourhoods, brick, 0).r == 0.0;
         }

@@ -43,12 +43,12 @@ uniform sampler2D sceneDepth;         // depth of what the target already holds 
 #if EMPTY_SPACE_SKIPPING
 uniform sampler3D occupancy;          // per brick: > 0 where the TF gives any opacity
 uniform int brickVoxels;
-// Set once per ray (main): texture coordinates to brick coordinates, and the last brick. A brick
-// index as a float product, not an integer division per sample: software rasterisers have no
-// vector integer division and split it into scalar ones (a fifth of an emission-absorption frame
-// on llvmpipe). brickVoxels is a power of two, so the product is exact and the index the same.
-vec3 textureToBrick;
-ivec3 lastBrick;
+// Texture coordinates to brick coordinates (dims / brickVoxels): a sample's brick is a float
+// product, not an integer division per sample (software rasterisers have no vector integer
+// division and split it into scalar ones: a fifth of an emission-absorption frame on llvmpipe).
+// brickVoxels is a power of two, so the product is exact and the brick the same.
+uniform vec3 textureToBrick;
+ivec3 lastBrick;  // set once per ray (main)
 #endif
 
 #if SHADING_GRADIENT || SHADING_SCATTERING
@@ -338,7 +338,6 @@ void compositeSegment(Segment segment, vec3 end, float length, vec3 direction, i
 void main() {
     Ray ray = pixelRay(ndc);
 #if EMPTY_SPACE_SKIPPING
-    textureToBrick = vec3(volumeDims) / float(brickVoxels);
     lastBrick = textureSize(occupancy, 0) - 1;
 #endif
 #if SHADING_GRADIENT || SHADING_SCATTERING

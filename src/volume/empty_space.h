@@ -8,6 +8,7 @@
 #include "sss/volume.h"
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include <cstdint>
@@ -16,8 +17,11 @@
 namespace sss::detail {
 
 inline constexpr int kBrickVoxels = 8;
-// The shaders find a sample's brick as tc * (dims / kBrickVoxels): exact for a power of two.
 static_assert((kBrickVoxels & (kBrickVoxels - 1)) == 0, "kBrickVoxels must be a power of two");
+
+/// The shaders' `textureToBrick`: a sample's brick is ivec3(tc * this), exactly the integer
+/// division of its voxel by kBrickVoxels, as that is a power of two.
+inline glm::vec3 textureToBrick(const glm::ivec3& dims) { return glm::vec3(dims) / static_cast<float>(kBrickVoxels); }
 
 class OccupancyGrid {
 public:

@@ -84,6 +84,7 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     p.set("skipEmpty", medium.occupiedNeighbourhoods ? 1 : 0);
     p.set("dataDims", volume.dims);
     p.set("brickVoxels", kBrickVoxels);
+    p.set("textureToBrick", textureToBrick(volume.dims));
 
     volume.texture.bind(0);
     medium.transferFunction.bind(1);

@@ -82,6 +82,7 @@ void RayCastPass::run(const RayCastInputs& in) const {
     p.set("sceneDepth", 2);
     p.set("occupancy", 3);
     p.set("brickVoxels", kBrickVoxels);
+    p.set("textureToBrick", textureToBrick(volume.dims));
     p.set("transferFunctionEntries", static_cast<float>(in.transferFunction.size().x));
     p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("boxMin", volume.box.min);

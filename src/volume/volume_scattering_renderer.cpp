@@ -122,16 +122,22 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<detail::GradientVolumePass> gradientPass;
     std::optional<gl::Texture> gradientVolume;  // for the current data, built on first use
     bool gradientVolumeFailed = false;          // did not fit: gradients on the fly for this data
-    // Pre-integrated classification: the table and the (TF revision, entries, step) it is for.
+    // What the classification tables for the ray step (pre-integrated or step-corrected) are
+    // built from: the TF revision, its entries and the step.
+    using StepTableKey = std::tuple<std::uint64_t, int, float>;
+    StepTableKey stepTableKey() const {
+        return {transferFunction.revision(), options.transferFunctionEntries, options.stepSize};
+    }
+    // Pre-integrated classification: the table and the key it was built for.
     gl::Texture preintegrationTable;
-    std::optional<std::tuple<std::uint64_t, int, float>> preintegrationKey;
+    std::optional<StepTableKey> preintegrationKey;
 
     // Built with the data and transfer function (and when the step changes), not at the first
     // frame, so its memory is taken when the data is set up. If it does not fit the GPU, a
     // warning says so and rays classify each sample alone until the inputs change.
     void updatePreintegration() {
         if (!options.preintegration || options.multipleScattering || !volume) return;  // the path tracer needs none
-        const auto key = std::make_tuple(transferFunction.revision(), options.transferFunctionEntries, options.stepSize);
+        const StepTableKey key = stepTableKey();
         if (preintegrationKey == key) return;
         preintegrationKey = key;
         const auto start = std::chrono::steady_clock::now();
@@ -155,13 +161,12 @@ struct VolumeScatteringRenderer::Impl {
     }
 
     // Post-classification's transfer function with opacities corrected for the ray step, and
-    // the (TF revision, entries, step) it is for. Built when rays classify samples alone.
+    // the key it was built for. Built when rays classify samples alone.
     gl::Texture stepTransferFunction;
-    std::optional<std::tuple<std::uint64_t, int, float>> stepTransferFunctionKey;
+    std::optional<StepTableKey> stepTransferFunctionKey;
     void updateStepTransferFunction() {
-        const auto key = std::make_tuple(transferFunction.revision(), options.transferFunctionEntries, options.stepSize);
+        const StepTableKey key = stepTableKey();
         if (stepTransferFunctionKey == key) return;
-        stepTransferFunction = {};
         stepTransferFunction = detail::uploadStepClassification(
             detail::stepClassification(transferFunction.table(options.transferFunctionEntries), options.stepSize));
         stepTransferFunctionKey = key;
