@@ -12,7 +12,6 @@ if(SSS_SANITIZE)
                                                 -fno-sanitize-recover=undefined)
   target_link_options(sss_sanitize INTERFACE -fsanitize=address,undefined)
 endif()
-install(TARGETS sss_warnings sss_sanitize EXPORT sssTargets)
 
 # sss_gl_process(<target>): marks an executable that creates GL contexts (see the comment in
 # sss_gl_process_asan_options.c for why sanitized GL processes run without leak checking).

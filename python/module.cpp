@@ -15,6 +15,7 @@ namespace {
 //   ParseError(Error, ValueError)            ErrorKind::Parse (malformed files)
 //   GlError(Error, RuntimeError)             ErrorKind::Gl (no context, shader failure)
 //   GpuLimitError(Error, MemoryError)        ErrorKind::GpuLimit (the scene does not fit the GPU)
+//   UnsupportedError(Error, NotImplementedError) ErrorKind::Unsupported (a reader left out of the build)
 // The message is the library's what(), unchanged; the exception's `kind` is the ErrorKind.
 void registerErrors(py::module_& m) {
     py::enum_<sss::ErrorKind>(m, "ErrorKind", "What kind of failure an sss.Error reports.")
@@ -22,7 +23,8 @@ void registerErrors(py::module_& m) {
         .value("IO", sss::ErrorKind::Io)
         .value("PARSE", sss::ErrorKind::Parse)
         .value("GL", sss::ErrorKind::Gl)
-        .value("GPU_LIMIT", sss::ErrorKind::GpuLimit);
+        .value("GPU_LIMIT", sss::ErrorKind::GpuLimit)
+        .value("UNSUPPORTED", sss::ErrorKind::Unsupported);
 
     auto make = [&m](const char* name, py::handle bases, const char* doc) {
         const std::string qualified = std::string("sss.") + name;
@@ -45,13 +47,17 @@ void registerErrors(py::module_& m) {
     py::object gpuLimit = make("GpuLimitError", py::make_tuple(error, py::handle(PyExc_MemoryError)),
                                "The scene does not fit the GPU (ErrorKind.GPU_LIMIT).");
 
+    py::object unsupported = make("UnsupportedError", py::make_tuple(error, py::handle(PyExc_NotImplementedError)),
+                                  "This build of libsss leaves the format or feature out (ErrorKind.UNSUPPORTED).");
+
     // Kept alive by the module; the translator runs with the GIL held.
-    static py::handle types[5];
+    static py::handle types[6];
     types[static_cast<int>(sss::ErrorKind::InvalidArgument)] = invalid.release();
     types[static_cast<int>(sss::ErrorKind::Io)] = io.release();
     types[static_cast<int>(sss::ErrorKind::Parse)] = parse.release();
     types[static_cast<int>(sss::ErrorKind::Gl)] = gl.release();
     types[static_cast<int>(sss::ErrorKind::GpuLimit)] = gpuLimit.release();
+    types[static_cast<int>(sss::ErrorKind::Unsupported)] = unsupported.release();
     error.release();
 
     py::register_exception_translator([](std::exception_ptr p) {

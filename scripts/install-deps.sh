@@ -14,7 +14,7 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   # libraries
   libglm-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev catch2 libopenexr-dev
-  # CLI11: the one option table of sss-render, sss-viewer and sss-bench (examples/common/cli_options.h)
+  # CLI11: the one option table of sss-render, sss-viewer and sss-bench (apps/common/cli_options.h)
   libcli11-dev
   # Assimp: the PLY, STL, glTF 2.0 and OFF mesh readers (Mesh::load; OBJ stays on tinyobjloader)
   libassimp-dev

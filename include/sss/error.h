@@ -14,6 +14,9 @@
 ///    implementation allows (GL_MAX_3D_TEXTURE_SIZE, ...), more memory than the driver has free or
 ///    than the budget set with setGpuMemoryBudget() (include/sss/gpu_memory.h), or
 ///    GL_OUT_OF_MEMORY. The message names the object, the size asked and the limit.
+///  - ErrorKind::Unsupported: this build of libsss leaves out what is asked, such as a file
+///    format whose reader was not built (SSS_WITH_VTK=OFF, ...). The message names the format
+///    and the build option.
 /// Nothing in libsss terminates the process or returns a silently wrong result on bad input.
 /// Internal invariants (bugs in libsss itself) are assert()s.
 
@@ -22,7 +25,7 @@
 
 namespace sss {
 
-enum class ErrorKind { InvalidArgument, Io, Parse, Gl, GpuLimit };
+enum class ErrorKind { InvalidArgument, Io, Parse, Gl, GpuLimit, Unsupported };
 
 /// The one exception type libsss throws; what() is a complete, human-readable message.
 class Error : public std::runtime_error {

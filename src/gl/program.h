@@ -1,6 +1,6 @@
 #pragma once
 #include "gl/object.h"
-#include "shader_source.h"
+#include "gl/shader_source.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>

@@ -1,6 +1,6 @@
 #include "lighting/light_uniforms.h"
 
-#include "light_geometry.h"
+#include "core/light_geometry.h"
 
 #include "sss/error.h"
 

@@ -1,6 +1,6 @@
 #include "mesh/light_buffer_pass.h"
 
-#include "light_geometry.h"
+#include "core/light_geometry.h"
 #include "lighting/light_uniforms.h"
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -1,6 +1,6 @@
 #include "sss/mesh_scattering_renderer.h"
 
-#include "format.h"
+#include "util/format.h"
 
 #include "lighting/light_uniforms.h"
 #include "mesh/blinn_phong_pass.h"

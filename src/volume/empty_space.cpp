@@ -1,6 +1,6 @@
 #include "volume/empty_space.h"
 
-#include "voxel_storage.h"
+#include "core/voxel_storage.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "volume/gpu_volume.h"
 
-#include "voxel_storage.h"
+#include "core/voxel_storage.h"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 #include "volume/light_sweep_plan.h"
 
-#include "light_geometry.h"
+#include "core/light_geometry.h"
 
 #include <glm/geometric.hpp>
 

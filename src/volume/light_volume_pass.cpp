@@ -1,6 +1,6 @@
 #include "volume/light_volume_pass.h"
 
-#include "light_geometry.h"
+#include "core/light_geometry.h"
 #include "lighting/texture_units.h"
 #include "volume/empty_space.h"
 

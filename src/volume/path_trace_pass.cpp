@@ -1,7 +1,7 @@
 #include "volume/path_trace_pass.h"
 
 #include "volume/composite_over.h"
-#include "light_geometry.h"
+#include "core/light_geometry.h"
 #include "lighting/light_uniforms.h"
 #include "sss/error.h"
 #include "sss/log.h"

@@ -1,6 +1,6 @@
 #include "volume/preintegration.h"
 
-#include "parallel.h"
+#include "util/parallel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "sss/volume_scattering_renderer.h"
 
-#include "format.h"
+#include "util/format.h"
 
 #include "gl/texture.h"
 #include "lighting/light_uniforms.h"

@@ -2,7 +2,7 @@
 // brute-force ray checks, an analytic plane, translucency, convergence and light equivalence.
 #include "sss/mesh_reference.h"
 
-#include "mesh/bvh.h"
+#include "reference/bvh.h"
 #include "test_helpers.h"
 
 #include <sss/image_compare.h>

@@ -1,5 +1,5 @@
 // Shader preprocessing: includes, #line numbering, defines, log remapping, loading from disk.
-#include "shader_source.h"
+#include "gl/shader_source.h"
 #include "support/temp_dir.h"
 
 #include <catch2/catch.hpp>

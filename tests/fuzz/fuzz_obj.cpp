@@ -17,7 +17,7 @@
 #include "sss/error.h"
 #include "sss/mesh.h"
 
-#include "mesh_formats.h"
+#include "io/mesh_formats.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>

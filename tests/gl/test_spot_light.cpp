@@ -5,7 +5,7 @@
 
 #include "gl/buffer.h"
 #include "gl/program.h"
-#include "light_geometry.h"
+#include "core/light_geometry.h"
 #include "lighting/light_uniforms.h"
 
 #include <catch2/catch.hpp>

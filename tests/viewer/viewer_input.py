@@ -32,7 +32,7 @@ POLL_SECONDS = 0.01
 MESH_SCENE = ["--mesh", "procedural:torus", "--mesh-mode", "blinn-phong"]
 VOLUME_SCENE = ["--volume", "procedural:blobs", "--volume-mode", "emission-absorption"]
 
-# The viewer's input constants (examples/viewer/sss_viewer.cpp, handleInput).
+# The viewer's input constants (apps/viewer/sss_viewer.cpp, handleInput).
 ORBIT_DEGREES_PER_PIXEL = 0.3
 ZOOM_PER_WHEEL_STEP = 0.88
 
