@@ -5,6 +5,7 @@
 #include "common/cli_options.h"
 
 #include <sss/sss.h>
+#include <sss/option_table.h>
 #include <sss/scene.h>
 
 #include <algorithm>
@@ -171,202 +172,263 @@ void encodeTurntableVideo(const fs::path& out) {
     else std::fprintf(stderr, "sss-render: warning: ffmpeg could not encode %s\n", video.string().c_str());
 }
 
-int run(CLI::App& app, Args& a) {
+/// --list-tf, --list-materials and --export-tf: print or write, and say so. False if none was given.
+bool listOrExport(const Args& a) {
     if (a.listTf || a.listMaterials) {
         for (const std::string& name : a.listTf ? sss::TransferFunction::presetNames() : sss::materialPresetNames())
             std::cout << name << "\n";
-        return 0;
+        return true;
     }
-    if (!a.exportTf.empty()) {
-        const std::string tf = a.input.tf.empty() ? "ramp" : a.input.tf;
-        sss::TransferFunction::preset(tf).saveParaViewJson(a.exportTf, tf);
-        std::printf("wrote %s\n", a.exportTf.c_str());
-        return 0;
-    }
-    const std::string ext = fs::path(a.out).extension().string();
-    if (ext != ".png" && ext != ".exr") throw UsageError("--out: the file must end in .png or .exr, got \"" + a.out + "\"");
-    if (a.turntable < 0 || a.turntable > 100000) throw UsageError("--turntable: must be in 0..100000 frames");
+    if (a.exportTf.empty()) return false;
+    const std::string tf = a.input.tf.empty() ? "ramp" : a.input.tf;
+    sss::TransferFunction::preset(tf).saveParaViewJson(a.exportTf, tf);
+    std::printf("wrote %s\n", a.exportTf.c_str());
+    return true;
+}
 
-    sss::SceneDescription scene;
-    if (!a.input.scene.empty()) {
-        rejectWithScene(app, {"--mesh", "--volume", "--mode", "--dims", "--type", "--spacing", "--tf", "--tf-range",
-                              "--material", "--profile", "--combine", "--cameras", "--samples", "--map-resolution",
-                              "--frames", "--scale", "--no-specular", "--environment", "--color", "--shininess",
-                              "--step", "--early-termination", "--no-jitter", "--no-skipping", "--no-gradient-volume",
-                              "--light-volume-scale", "--light-volume-fallback", "--anisotropy", "--volume-model",
-                              "--eye-pass", "--multiple-scattering", "--max-bounces", "--yaw", "--pitch", "--zoom",
-                              "--fov", "--ortho", "--light-dir", "--light-color", "--light-intensity",
-                              "--point-light", "--spot-light", "--mesh-size", "--mesh-offset", "--volume-offset",
-                              "--cornell-box", "--background"});
-        scene = sss::loadSceneFile(a.input.scene);
-        // The output options of the command line override the file's.
-        if (given(app, "--size")) scene.output.width = a.output.width, scene.output.height = a.output.height;
-        if (given(app, "--aa")) scene.output.antiAliasing = a.output.antiAliasing;
-        if (given(app, "--exposure")) scene.output.display.exposure = a.output.display.exposure;
-        if (given(app, "--tonemap")) scene.output.display.toneMap = a.output.display.toneMap;
-    } else {
-        scene = sceneFromFlags(app, a);
-    }
-    const fs::path dataDir = dataDirectory(a.input.dataDir);
-    const std::vector<fs::path> searchDirs = {dataDir};
-    // Load and validate everything before touching GL, so bad input fails fast and clearly.
-    const sss::SceneAssets assets = sss::loadSceneAssets(scene, searchDirs);
-    for (const sss::SceneMesh& m : scene.meshes) sss::validate(m.options), sss::validate(m.baseline);
-    for (const sss::SceneVolume& v : scene.volumes) sss::validate(v.options);
-    sss::validate(scene.options);
-
-    auto context = sss::EglContext::create();
-    const int width = scene.output.width, height = scene.output.height;
-    sss::RenderTarget target(width, height);
-    sss::HybridCompositor compositor;
-    sss::populateCompositor(compositor, scene, assets);
-    if (scene.lights.empty()) {
-        // The default Cornell-box light, in the colour and intensity the command line gives.
-        scene.lights = sss::defaultSceneLights(scene, compositor.bounds());
-        for (sss::Light& light : scene.lights)
-            if (auto* p = std::get_if<sss::PointLight>(&light))
-                p->color = a.light.directional.color, p->intensity *= a.light.directional.intensity;
-        compositor.setLights(scene.lights);
-    }
-    if (!a.saveScene.empty()) {
-        sss::saveSceneFile(scene, a.saveScene);
-        std::printf("wrote %s\n", a.saveScene.c_str());
-    }
-    sss::Camera camera = sss::sceneCamera(scene, assets, compositor.bounds(), float(width) / float(height));
-
-    const bool scattering = std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const sss::SceneMesh& m) {
-        return m.options.shading == sss::MeshShading::Scattering;
-    });
-    const bool multipleScattering = std::any_of(scene.volumes.begin(), scene.volumes.end(),
-                                                [](const sss::SceneVolume& v) { return v.options.multipleScattering; });
-    // The path tracer's frames before the timed ones: the first volume's (--frames).
-    const int pathTraceFrames = scene.meshes.empty() ? a.mesh.accumulationFrames
-                                                     : scene.meshes.front().options.accumulationFrames;
-    // Every scattering mesh's maps accumulate their frames (each render() adds one to all).
-    const auto convergeMeshes = [&] {
-        for (std::size_t i = 0; i < compositor.meshCount(); ++i)
-            if (scene.meshes[i].options.shading == sss::MeshShading::Scattering)
-                for (int frame = 0; !compositor.mesh(i).converged(); ++frame) {
-                    if (frame > scene.meshes[i].options.accumulationFrames + 8)
-                        throw sss::Error(sss::ErrorKind::Gl, "meshes[" + std::to_string(i) +
-                                                                 "]: the scattering maps did not converge");
-                    compositor.render(camera, target);
-                }
+/// The flags that describe a scene, which --scene replaces: every flag of the option tables and
+/// of the inputs, light, camera and placement.
+std::vector<std::string> sceneFlags() {
+    std::vector<std::string> flags = {"--mesh", "--volume", "--mode", "--dims", "--type", "--spacing", "--tf",
+                                      "--tf-range", "--material", "--map-resolution", "--no-specular",
+                                      "--preintegration", "--color", "--shininess", "--yaw", "--pitch", "--zoom",
+                                      "--fov", "--ortho", "--light-dir", "--light-color", "--light-intensity",
+                                      "--point-light", "--spot-light", "--mesh-size", "--mesh-offset",
+                                      "--volume-offset", "--cornell-box", "--background"};
+    auto add = [&flags](const auto& field) {
+        if (!field.flag.empty()) flags.emplace_back(field.flag);
     };
+    sss::forEachOptionField<sss::MeshRenderOptions>(add);
+    sss::forEachOptionField<sss::VolumeRenderOptions>(add);
+    return flags;
+}
 
-    sss::GpuTimer timer(*context);
-    std::vector<double> times;
-    // Scattering maps converge over their first frames; build them before the timed frames so
-    // the timing shows what a static scene costs ("fixed": no view-independent pass reruns).
-    double convergeMs = 0.0;
-    if (scattering) {
-        timer.begin();
-        convergeMeshes();
-        convergeMs = timer.endMilliseconds();
-    }
-    // The path tracer's running mean: --frames frames before the timed ones (which add to it).
-    double pathTraceMs = 0.0;
-    const auto pathTrace = [&] {
-        for (int i = 0; i < pathTraceFrames; ++i) compositor.render(camera, target);
-    };
-    if (multipleScattering) {
-        timer.begin();
-        pathTrace();
-        pathTraceMs = timer.endMilliseconds();
-    }
-    // One image of the current view: the timed frame, then anti-aliasing (sub-pixel offsets would
-    // restart the path tracer's mean at every frame, so it goes without).
-    const int antiAliasing = scene.output.antiAliasing;
-    const auto renderImage = [&](bool timed) {
-        if (timed) timer.begin();
-        compositor.render(camera, target);
-        if (timed) times.push_back(timer.endMilliseconds());
-        if (antiAliasing <= 1 || multipleScattering) return target.readColor();
-        sss::FrameAccumulator accumulator(width, height);
-        for (int i = 0; i < antiAliasing; ++i) {
-            camera.setSubpixelOffset(sss::FrameAccumulator::subpixelOffset(i, width, height));
-            compositor.render(camera, target);
-            accumulator.add(target);
+/// The scene to render: the --scene file with the command line's output options, or the flags'.
+sss::SceneDescription chooseScene(const CLI::App& app, Args& a) {
+    if (a.input.scene.empty()) return sceneFromFlags(app, a);
+    for (const std::string& flag : sceneFlags())
+        if (given(app, flag)) throw UsageError(flag + " cannot be combined with --scene: the scene file describes it");
+    sss::SceneDescription scene = sss::loadSceneFile(a.input.scene);
+    if (given(app, "--size")) scene.output.width = a.output.width, scene.output.height = a.output.height;
+    if (given(app, "--aa")) scene.output.antiAliasing = a.output.antiAliasing;
+    if (given(app, "--exposure")) scene.output.display.exposure = a.output.display.exposure;
+    if (given(app, "--tonemap")) scene.output.display.toneMap = a.output.display.toneMap;
+    return scene;
+}
+
+/// One sss-render run on a loaded, validated scene: the GL objects, the timings and the images.
+class Render {
+public:
+    Render(const Args& a, sss::SceneDescription sceneIn, sss::SceneAssets assetsIn)
+        : m_args(a), m_scene(std::move(sceneIn)), m_assets(std::move(assetsIn)), m_context(sss::EglContext::create()),
+          m_width(m_scene.output.width), m_height(m_scene.output.height), m_target(m_width, m_height),
+          m_timer(*m_context) {
+        sss::populateCompositor(m_compositor, m_scene, m_assets);
+        if (m_scene.lights.empty()) setCornellBoxLight();
+        if (!a.saveScene.empty()) {
+            sss::saveSceneFile(m_scene, a.saveScene);
+            std::printf("wrote %s\n", a.saveScene.c_str());
         }
-        camera.setSubpixelOffset({0.0f, 0.0f});
-        return accumulator.result().readColor();
-    };
-    const auto write = [&](const sss::Image& image, const fs::path& path) {
+        m_camera = sss::sceneCamera(m_scene, m_assets, m_compositor.bounds(), float(m_width) / float(m_height));
+        m_scattering = std::any_of(m_scene.meshes.begin(), m_scene.meshes.end(), [](const sss::SceneMesh& m) {
+            return m.options.shading == sss::MeshShading::Scattering;
+        });
+        m_multipleScattering = std::any_of(m_scene.volumes.begin(), m_scene.volumes.end(),
+                                           [](const sss::SceneVolume& v) { return v.options.multipleScattering; });
+        // The path tracer's frames before the timed ones: the first mesh's --frames.
+        m_pathTraceFrames = m_scene.meshes.empty() ? a.mesh.accumulationFrames
+                                                   : m_scene.meshes.front().options.accumulationFrames;
+    }
+
+    /// Scattering maps and the path tracer's mean converge before the timed frames, so the
+    /// timing shows what a static scene costs ("fixed": no view-independent pass reruns).
+    void converge() {
+        if (m_scattering) {
+            m_timer.begin();
+            convergeMeshes();
+            m_convergeMs = m_timer.endMilliseconds();
+        }
+        if (m_multipleScattering) {
+            m_timer.begin();
+            pathTrace();
+            m_pathTraceMs = m_timer.endMilliseconds();
+        }
+    }
+
+    void renderStill(int repeat) {
+        for (int i = 1; i < repeat; ++i) {
+            m_timer.begin();
+            m_compositor.render(m_camera, m_target);
+            m_times.push_back(m_timer.endMilliseconds());
+        }
+        m_image = renderImage(true);
+        write(m_image, m_args.out);
+    }
+
+    void renderTurntable(int frames);
+    void warnIfEmpty() const;
+    void report();
+
+private:
+    void setCornellBoxLight();
+    void convergeMeshes();
+    void pathTrace() {
+        for (int i = 0; i < m_pathTraceFrames; ++i) m_compositor.render(m_camera, m_target);
+    }
+    sss::Image renderImage(bool timed);
+    void write(const sss::Image& image, const fs::path& path) const {
         if (path.extension() == ".exr") image.saveExr(path);  // linear radiance, as rendered
-        else sss::toDisplay(image, scene.output.display).savePng(path);
-    };
-
-    sss::Image image(1, 1);
-    if (a.turntable > 0) {
-        // Only the camera moves: the scattering maps and light volumes stay as they are, and each
-        // frame costs a fixed frame (the path tracer restarts at every view). The camera circles
-        // the centre of the scene's bounding sphere at the distance where the sphere fits the
-        // view (Camera::frame), so the subject stays whole and the same size all the way round.
-        const sss::Bounds content =
-            scene.options.cornellBox ? sss::makeCornellBox(compositor.bounds()).bounds : compositor.bounds();
-        if (!scene.camera.target) {
-            camera.frame(content);
-            if (width < height) camera.setDistance(camera.distance() * float(height) / float(width));
-            if (scene.camera.zoom != 1.0f) camera.zoom(scene.camera.zoom);
-            const float radius = 0.5f * glm::length(content.size());
-            camera.setClipPlanes(std::max(camera.distance() - 1.2f * radius, 1e-4f * camera.distance()),
-                                 camera.distance() + 1.2f * radius);
-        }
-        const float startYaw = camera.yaw();
-        for (int frame = 0; frame < a.turntable; ++frame) {
-            camera.setYaw(startYaw + 360.0f * float(frame) / float(a.turntable));
-            if (multipleScattering && frame > 0) pathTrace();
-            image = renderImage(true);
-            write(image, numbered(a.out, frame));
-        }
-    } else {
-        for (int i = 1; i < a.repeat; ++i) {
-            timer.begin();
-            compositor.render(camera, target);
-            times.push_back(timer.endMilliseconds());
-        }
-        image = renderImage(true);
-        write(image, a.out);
+        else sss::toDisplay(image, m_scene.output.display).savePng(path);
     }
-    if (showsOnlyBackground(image, glm::vec3(scene.options.background)))
+    void reportScattering();
+
+    const Args& m_args;
+    sss::SceneDescription m_scene;
+    sss::SceneAssets m_assets;
+    std::unique_ptr<sss::EglContext> m_context;
+    int m_width, m_height;
+    sss::RenderTarget m_target;
+    sss::HybridCompositor m_compositor;
+    sss::Camera m_camera;
+    sss::GpuTimer m_timer;
+    bool m_scattering = false, m_multipleScattering = false;
+    int m_pathTraceFrames = 0;
+    double m_convergeMs = 0.0, m_pathTraceMs = 0.0;
+    std::vector<double> m_times;
+    sss::Image m_image{1, 1};
+};
+
+// The default Cornell-box light, in the colour and intensity the command line gives.
+void Render::setCornellBoxLight() {
+    m_scene.lights = sss::defaultSceneLights(m_scene, m_compositor.bounds());
+    for (sss::Light& light : m_scene.lights)
+        if (auto* p = std::get_if<sss::PointLight>(&light))
+            p->color = m_args.light.directional.color, p->intensity *= m_args.light.directional.intensity;
+    m_compositor.setLights(m_scene.lights);
+}
+
+// Every scattering mesh's maps accumulate their frames (each render() adds one to all).
+void Render::convergeMeshes() {
+    for (std::size_t i = 0; i < m_compositor.meshCount(); ++i)
+        if (m_scene.meshes[i].options.shading == sss::MeshShading::Scattering)
+            for (int frame = 0; !m_compositor.mesh(i).converged(); ++frame) {
+                if (frame > m_scene.meshes[i].options.accumulationFrames + 8)
+                    throw sss::Error(sss::ErrorKind::Gl,
+                                     "meshes[" + std::to_string(i) + "]: the scattering maps did not converge");
+                m_compositor.render(m_camera, m_target);
+            }
+}
+
+// One image of the current view: the timed frame, then anti-aliasing (sub-pixel offsets would
+// restart the path tracer's mean at every frame, so it goes without).
+sss::Image Render::renderImage(bool timed) {
+    if (timed) m_timer.begin();
+    m_compositor.render(m_camera, m_target);
+    if (timed) m_times.push_back(m_timer.endMilliseconds());
+    const int antiAliasing = m_scene.output.antiAliasing;
+    if (antiAliasing <= 1 || m_multipleScattering) return m_target.readColor();
+    sss::FrameAccumulator accumulator(m_width, m_height);
+    for (int i = 0; i < antiAliasing; ++i) {
+        m_camera.setSubpixelOffset(sss::FrameAccumulator::subpixelOffset(i, m_width, m_height));
+        m_compositor.render(m_camera, m_target);
+        accumulator.add(m_target);
+    }
+    m_camera.setSubpixelOffset({0.0f, 0.0f});
+    return accumulator.result().readColor();
+}
+
+// Only the camera moves: the scattering maps and light volumes stay as they are, and each frame
+// costs a fixed frame (the path tracer restarts at every view). The camera circles the centre of
+// the scene's bounding sphere at the distance where the sphere fits the view (Camera::frame), so
+// the subject stays whole and the same size all the way round.
+void Render::renderTurntable(int frames) {
+    const sss::Bounds content =
+        m_scene.options.cornellBox ? sss::makeCornellBox(m_compositor.bounds()).bounds : m_compositor.bounds();
+    if (!m_scene.camera.target) {
+        m_camera.frame(content);
+        if (m_width < m_height) m_camera.setDistance(m_camera.distance() * float(m_height) / float(m_width));
+        if (m_scene.camera.zoom != 1.0f) m_camera.zoom(m_scene.camera.zoom);
+        const float radius = 0.5f * glm::length(content.size());
+        m_camera.setClipPlanes(std::max(m_camera.distance() - 1.2f * radius, 1e-4f * m_camera.distance()),
+                               m_camera.distance() + 1.2f * radius);
+    }
+    const float startYaw = m_camera.yaw();
+    for (int frame = 0; frame < frames; ++frame) {
+        m_camera.setYaw(startYaw + 360.0f * float(frame) / float(frames));
+        if (m_multipleScattering && frame > 0) pathTrace();
+        m_image = renderImage(true);
+        write(m_image, numbered(m_args.out, frame));
+    }
+}
+
+void Render::warnIfEmpty() const {
+    if (showsOnlyBackground(m_image, glm::vec3(m_scene.options.background)))
         std::fprintf(stderr, "sss-render: warning: the image shows only the background: nothing of the scene is in "
                              "view (check --mesh-offset, --volume-offset, --zoom, --step and the scene's size)\n");
+}
 
+void Render::report() {
+    std::vector<double> times = m_times;
     std::sort(times.begin(), times.end());
-    std::printf("renderer: %s (%s)\n", context->info().renderer.c_str(), context->info().backend.c_str());
-    for (std::size_t i = 0; i < assets.meshes.size(); ++i)
-        std::printf("mesh: %zu vertices, %zu triangles\n", assets.meshes[i].vertexCount(), assets.meshes[i].triangleCount());
-    for (const sss::Volume& volume : assets.volumes)
+    std::printf("renderer: %s (%s)\n", m_context->info().renderer.c_str(), m_context->info().backend.c_str());
+    for (const sss::Mesh& mesh : m_assets.meshes)
+        std::printf("mesh: %zu vertices, %zu triangles\n", mesh.vertexCount(), mesh.triangleCount());
+    for (const sss::Volume& volume : m_assets.volumes)
         std::printf("volume: %dx%dx%d %s, spacing %g,%g,%g, values %g..%g, TF range %g..%g\n", volume.dims().x,
                     volume.dims().y, volume.dims().z, sss::voxelTypeName(volume.type()), volume.spacing().x,
                     volume.spacing().y, volume.spacing().z, volume.valueRange().first, volume.valueRange().second,
                     volume.transferFunctionRange().first, volume.transferFunctionRange().second);
     std::printf("frame: %.2f ms median, %.2f min, %.2f max over %zu run(s) at %dx%d, %s; first run includes "
                 "shader compilation\n",
-                times[times.size() / 2], times.front(), times.back(), times.size(), width, height,
-                timer.method() == sss::TimingMethod::GlTimerQuery ? "GL timer query" : "CPU clock around glFinish");
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-        const sss::SceneMesh& m = scene.meshes[i];
+                times[times.size() / 2], times.front(), times.back(), times.size(), m_width, m_height,
+                m_timer.method() == sss::TimingMethod::GlTimerQuery ? "GL timer query" : "CPU clock around glFinish");
+    reportScattering();
+    if (m_multipleScattering)
+        for (std::size_t i = 0; i < m_compositor.volumeCount(); ++i)
+            std::printf("multiple scattering: %d paths per pixel (%d frames took %.2f ms before the timed frames, "
+                        "includes shader compilation)\n",
+                        m_compositor.volume(i).accumulatedSamples(), m_pathTraceFrames, m_pathTraceMs);
+}
+
+void Render::reportScattering() {
+    for (std::size_t i = 0; i < m_scene.meshes.size(); ++i) {
+        const sss::SceneMesh& m = m_scene.meshes[i];
         if (m.options.shading != sss::MeshShading::Scattering) continue;
-        const sss::MeshScatteringRenderer& renderer = compositor.mesh(i);
-        const bool automatic = m.options.combine == sss::MeshCombine::Automatic;
+        const sss::MeshScatteringRenderer& renderer = m_compositor.mesh(i);
         char why[64] = "";
-        if (automatic) std::snprintf(why, sizeof why, " (auto: edges %.3g diffusion lengths)", renderer.edgeToDiffusionLength());
+        if (m.options.combine == sss::MeshCombine::Automatic)
+            std::snprintf(why, sizeof why, " (auto: edges %.3g diffusion lengths)", renderer.edgeToDiffusionLength());
         if (renderer.activeCombine() == sss::MeshCombine::VertexEstimate)
             std::printf("scattering: %s, vertex estimate (no maps)%s, N = %d; converging took %.2f ms (includes "
                         "shader compilation)\n",
-                        m.material.name.c_str(), why, m.options.samples, convergeMs);
+                        m.material.name.c_str(), why, m.options.samples, m_convergeMs);
         else
             std::printf("scattering: %s, K = %d, N = %d, maps %d^2, %s combine%s; converging took %.2f ms (includes "
                         "shader compilation)\n",
                         m.material.name.c_str(), m.options.cameras, m.options.samples, m.options.mapResolution,
-                        std::string(sss::enumName(renderer.activeCombine())).c_str(), why, convergeMs);
+                        std::string(sss::enumName(renderer.activeCombine())).c_str(), why, m_convergeMs);
     }
-    if (multipleScattering)
-        for (std::size_t i = 0; i < compositor.volumeCount(); ++i)
-            std::printf("multiple scattering: %d paths per pixel (%d frames took %.2f ms before the timed frames, "
-                        "includes shader compilation)\n",
-                        compositor.volume(i).accumulatedSamples(), pathTraceFrames, pathTraceMs);
+}
+
+int run(CLI::App& app, Args& a) {
+    if (listOrExport(a)) return 0;
+    const std::string ext = fs::path(a.out).extension().string();
+    if (ext != ".png" && ext != ".exr") throw UsageError("--out: the file must end in .png or .exr, got \"" + a.out + "\"");
+    if (a.turntable < 0 || a.turntable > 100000) throw UsageError("--turntable: must be in 0..100000 frames");
+    sss::SceneDescription scene = chooseScene(app, a);
+    // Load and validate everything before touching GL, so bad input fails fast and clearly.
+    const std::vector<fs::path> searchDirs = {dataDirectory(a.input.dataDir)};
+    sss::SceneAssets assets = sss::loadSceneAssets(scene, searchDirs);
+    for (const sss::SceneMesh& m : scene.meshes) sss::validate(m.options), sss::validate(m.baseline);
+    for (const sss::SceneVolume& v : scene.volumes) sss::validate(v.options);
+    sss::validate(scene.options);
+
+    Render render(a, std::move(scene), std::move(assets));
+    render.converge();
+    if (a.turntable > 0) render.renderTurntable(a.turntable);
+    else render.renderStill(a.repeat);
+    render.warnIfEmpty();
+    render.report();
     if (a.turntable > 0) {
         std::printf("wrote %d turntable frames %s .. %s\n", a.turntable, numbered(a.out, 0).string().c_str(),
                     numbered(a.out, a.turntable - 1).string().c_str());

@@ -4,6 +4,8 @@
 // and the GL context every GL object of the module is made with.
 #include <sss/context.h>
 #include <sss/error.h>
+#include <sss/option_names.h>
+#include <sss/option_table.h>
 #include <sss/image.h>
 
 #include <glm/mat4x4.hpp>
@@ -103,6 +105,21 @@ public:
     Struct& field(const char* name, M T::*member, const char* doc) {
         m_cls.def_readwrite(name, member, doc);
         m_names->push_back(name);
+        return *this;
+    }
+
+    /// Every field of T's option table (sss/option_table.h): its snake_case name, its help, its
+    /// range and the default of a default-constructed T.
+    Struct& tableFields() {
+        sss::forEachOptionField<T>([this](const auto& f) {
+            using M = std::remove_cvref_t<decltype(T{}.*f.member)>;
+            std::string doc(f.help);
+            constexpr bool integer = std::is_same_v<M, int>;
+            if constexpr (integer || std::is_floating_point_v<M>) doc += ", " + sss::describeRange(f.range, integer);
+            if constexpr (!std::is_enum_v<M>) doc += " (default " + std::string(py::repr(py::cast(T{}.*f.member))) + ")";
+            else doc += " (default " + std::string(sss::enumName(T{}.*f.member)) + ")";
+            field(sss::snakeCase(f.name).c_str(), f.member, doc.c_str());
+        });
         return *this;
     }
 

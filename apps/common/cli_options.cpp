@@ -159,41 +159,16 @@ void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string&
         ->type_name("NAME")
         ->default_str(material)
         ->group(group);
-    addEnum(app, "--profile", options.profile,
-            "subsurface profile: calibrated (the directional dipole rescaled to a random walk, plus single "
-            "scattering) or dipole (the paper's, as the thesis)")
-        ->group(group);
-    addEnum(app, "--combine", options.combine,
-            "auto (the default: vertex-estimate on meshes fine against the diffusion length, per-pixel on coarse "
-            "ones), per-pixel (the K maps looked up at every pixel), per-vertex (resolved once per vertex after each "
-            "map update: fixed frames cost about a Blinn-Phong frame) or vertex-estimate (evaluate-once: no maps, "
-            "the radiosity estimated at each vertex; needs a finely tessellated mesh)")
-        ->group(group);
-    addInt(app, "--cameras", options.cameras, "scattering maps K, 1..32", "K")->group(group);
-    addInt(app, "--samples", options.samples, "samples per texel and frame, 1..4096", "N")->group(group);
+    addTableOptions(app, options, group);
+    // Front-end shorthands over several fields.
     addParsed(app, "--map-resolution", options.mapResolution,
               [&options](const std::string& name, const std::string& text) {
                   return options.lightMapResolution = parseInt(name, text);
               },
               "scattering-map and light-buffer side in texels", "R", std::to_string(options.mapResolution))
         ->group(group);
-    addInt(app, "--frames", options.accumulationFrames, "frames accumulated into the scattering maps", "F")
-        ->group(group);
-    addParsed(app, "--scale", options.millimetresPerUnit,
-              [](const std::string& name, const std::string& text) {
-                  const float mm = parseFloat(name, text);
-                  if (!(mm > 0.0f)) throw UsageError(name + ": must be > 0");
-                  return double(mm);
-              },
-              "millimetres per scene unit", "MM", defaultText(float(options.millimetresPerUnit)))
-        ->group(group);
     app.add_flag_callback("--no-specular", [&options] { options.specular = 0.0f; },
                           "no specular highlight on the translucent surface")
-        ->group(group);
-    addVec3(app, "--environment", options.environment,
-            "radiance of a uniform environment lighting the translucent mesh, so faces the light misses are "
-            "not black",
-            "R,G,B")
         ->group(group);
 }
 
@@ -205,53 +180,10 @@ void addBaselineOptions(CLI::App& app, sss::BlinnPhongMaterial& material) {
 
 void addVolumeOptions(CLI::App& app, sss::VolumeRenderOptions& options) {
     const std::string group = "volume";
-    addFloat(app, "--step", options.stepSize, "ray step in voxels", "VOXELS")->group(group);
-    addFloat(app, "--early-termination", options.earlyTermination, "stop rays at this opacity, (0,1]", "A")
-        ->group(group);
-    app.add_flag_callback("--no-jitter", [&options] { options.jitter = false; }, "no per-pixel ray offset")
-        ->group(group);
+    addTableOptions(app, options, group);
     app.add_flag_callback("--preintegration", [&options] { options.preintegration = true; },
                           "pre-integrated classification: each sample shades the segment since the previous one "
                           "with the transfer function integrated over it (catches thin structures between samples)")
-        ->group(group);
-    app.add_flag_callback("--no-preintegration", [&options] { options.preintegration = false; },
-                          "classify each sample alone (the thesis's post-classification)")
-        ->group(group);
-    app.add_flag_callback("--no-skipping", [&options] { options.emptySpaceSkipping = false; },
-                          "no empty-space skipping (same image, slower)")
-        ->group(group);
-    app.add_flag_callback("--no-gradient-volume", [&options] { options.gradientVolume = false; },
-                          "gradient modes compute gradients per sample instead of reading a gradient volume "
-                          "computed once (8 bytes per voxel)")
-        ->group(group);
-    addFloat(app, "--light-volume-scale", options.lightVolumeScale,
-             "light-volume resolution relative to the data, (0,1]", "S")
-        ->group(group);
-    addFloat(app, "--light-volume-reach", options.lightVolumeReach,
-             "light-volume texels towards the light at which each sample reads the light volume, then carries the "
-             "light back through the data, [0,16]",
-             "T")
-        ->group(group);
-    addEnum(app, "--light-volume-fallback", options.lightVolumeFallback,
-            "when the light volume does not fit the GPU: halve its resolution until it fits, with a warning, or "
-            "fail")
-        ->group(group);
-    addFloat(app, "--anisotropy", options.anisotropy, "Henyey-Greenstein g for the scattering cone, (-1,1)", "G")
-        ->group(group);
-    addEnum(app, "--volume-model", options.model,
-            "paper (Ropinski: ambient + diffuse x light-volume colour) or physical (single scattering: TF colour "
-            "as albedo x phase function x light; about 4 pi dimmer, raise --light-intensity or --exposure)")
-        ->group(group);
-    app.add_flag_callback("--eye-pass", [&options] { options.eyePass = true; },
-                          "add the second, view-dependent pass towards the viewer")
-        ->group(group);
-    app.add_flag_callback("--multiple-scattering", [&options] { options.multipleScattering = true; },
-                          "progressive GPU path tracing of all orders of scattering (the physical model)")
-        ->group(group);
-    addInt(app, "--max-bounces", options.maxBounces,
-           "with --multiple-scattering: scatterings per path, >= 1 (1 = single scattering; Russian roulette "
-           "ends paths earlier)",
-           "B")
         ->group(group);
 }
 

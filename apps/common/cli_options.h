@@ -7,6 +7,7 @@
 #include <sss/display.h>
 #include <sss/mesh_scattering_renderer.h>
 #include <sss/option_names.h>
+#include <sss/option_table.h>
 #include <sss/scene.h>
 #include <sss/volume_scattering_renderer.h>
 
@@ -78,6 +79,12 @@ CLI::Option* addVec3(CLI::App& app, const std::string& name, glm::vec3& target, 
 template <class Enum>
 CLI::Option* addEnum(CLI::App& app, const std::string& name, Enum& target, const std::string& help);
 
+/// Registers every field of an option table (sss/option_table.h) that has a command-line flag:
+/// numbers and vectors take a value, enums their names, bools are switches ("--no-jitter" sets
+/// false, "--eye-pass" true). Help and default come from the table and `options`.
+template <class Owner>
+void addTableOptions(CLI::App& app, Owner& options, const std::string& group);
+
 /// Formats a default for help texts ("0.5", "1,1,1").
 std::string defaultText(float value);
 std::string defaultText(glm::vec3 value);
@@ -122,6 +129,40 @@ std::string choices() {
 template <class Enum>
 CLI::Option* addEnum(CLI::App& app, const std::string& name, Enum& target, const std::string& help) {
     return addParsed(app, name, target, parseEnum<Enum>, help, choices<Enum>(), std::string(sss::enumName(target)));
+}
+
+template <class Owner>
+void addTableOptions(CLI::App& app, Owner& options, const std::string& group) {
+    sss::forEachOptionField<Owner>([&](const auto& field) {
+        if (field.flag.empty()) return;
+        const std::string flag(field.flag), valueName(field.valueName);
+        std::string help(field.help);
+        auto& member = options.*field.member;
+        using T = std::remove_cvref_t<decltype(member)>;
+        constexpr bool integer = std::is_same_v<T, int>;
+        if constexpr (integer || std::is_floating_point_v<T> || std::is_same_v<T, glm::vec3>) {
+            const std::string rule = sss::describeRange(field.range, integer);
+            if (rule != "finite" && rule != "an integer") help += ", " + rule;
+        }
+        CLI::Option* option = nullptr;
+        if constexpr (std::is_same_v<T, bool>) {
+            const bool value = !flag.starts_with("--no-");
+            option = app.add_flag_callback(flag, [&member, value] { member = value; }, help);
+        } else if constexpr (std::is_enum_v<T>) {
+            option = addEnum(app, flag, member, help);
+        } else if constexpr (integer) {
+            option = addInt(app, flag, member, help, valueName);
+        } else if constexpr (std::is_same_v<T, float>) {
+            option = addFloat(app, flag, member, help, valueName);
+        } else if constexpr (std::is_same_v<T, double>) {
+            option = addParsed(app, flag, member,
+                               [](const std::string& name, const std::string& text) { return double(parseFloat(name, text)); },
+                               help, valueName, defaultText(float(member)));
+        } else {
+            option = addVec3(app, flag, member, help, valueName);
+        }
+        option->group(group);
+    });
 }
 
 }  // namespace examples

@@ -7,10 +7,16 @@
 /// context current; backends never change GL state other than what context creation implies.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
 namespace sss {
+
+/// A GL entry point as context libraries return it (glfwGetProcAddress, eglGetProcAddress).
+using GlProc = void (*)();
+/// Looks up a GL entry point by name; a null result means the context lacks it.
+using GlProcLoader = std::function<GlProc(const char* name)>;
 
 /// What the driver says about a context.
 struct ContextInfo {
@@ -55,7 +61,7 @@ protected:
     GlContext() = default;
     /// Called by backends once the context is current: loads GL, checks for 4.5 core, fills
     /// info() and installs the debug callback when requested. Throws Error(Gl) on failure.
-    void initializeGl(void* (*getProcAddress)(const char*), bool debug, std::string backend);
+    void initializeGl(const GlProcLoader& getProcAddress, bool debug, std::string backend);
 
 public:
     struct DebugState;  ///< @private implementation detail of the KHR_debug callback
@@ -95,6 +101,41 @@ private:
     EglContext() = default;
     struct Native;
     std::unique_ptr<Native> m_native;
+};
+
+/// Options of HostContext::adopt.
+struct HostContextOptions {
+    /// How the host's context library finds GL entry points: glfwGetProcAddress works as is;
+    /// SDL_GL_GetProcAddress, eglGetProcAddress or Qt's QOpenGLContext::getProcAddress through a
+    /// lambda. Required.
+    GlProcLoader getProcAddress{};
+    /// Makes the host's context current (for GlContext::makeCurrent); empty: makeCurrent() does
+    /// nothing, and the host keeps its context current whenever it calls libsss.
+    std::function<void()> makeCurrent{};
+    /// Install libsss's KHR_debug callback (replacing the host's) and count messages, as the
+    /// other contexts do with `debug`. Default off: the host's own callback stays.
+    bool debug = false;
+    /// Names the context in info().backend and in messages (default: "host context").
+    std::string name = "host context";
+};
+
+/// The host application's own OpenGL 4.5 core context, adopted: libsss loads its GL entry
+/// points from it and draws with it, but neither creates nor destroys it. The host's context
+/// must be current when adopt() runs and whenever libsss is called; libsss objects must be
+/// destroyed before the host destroys its context. To draw into the host's framebuffer with its
+/// depth, see sss/host_frame.h.
+class HostContext final : public GlContext {
+public:
+    /// Throws Error(InvalidArgument) without getProcAddress, Error(Gl) if no context is current
+    /// or it is not OpenGL 4.5 core.
+    static std::unique_ptr<HostContext> adopt(const HostContextOptions& options);
+    ~HostContext() override;
+    void makeCurrent() override;
+
+private:
+    HostContext() = default;
+    std::function<void()> m_makeCurrent;
+    bool m_ownsDebugCallback = false;
 };
 
 }  // namespace sss

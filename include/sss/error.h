@@ -31,10 +31,21 @@ enum class ErrorKind { InvalidArgument, Io, Parse, Gl, GpuLimit, Unsupported };
 class Error : public std::runtime_error {
 public:
     Error(ErrorKind kind, const std::string& message) : std::runtime_error(message), m_kind(kind) {}
+    /// An error about one field of a struct: what() is "[<context>: ]<owner>::<field> <reason>",
+    /// e.g. "MeshRenderOptions::cameras must be in 1..32, got 0".
+    Error(ErrorKind kind, const std::string& owner, const std::string& field, const std::string& reason,
+          const std::string& context = {})
+        : std::runtime_error((context.empty() ? "" : context + ": ") + owner + "::" + field + " " + reason),
+          m_kind(kind), m_field(field), m_reason(reason) {}
     ErrorKind kind() const noexcept { return m_kind; }
+    /// The offending field's name ("cameras"), or empty when the error is not about one field.
+    const std::string& field() const noexcept { return m_field; }
+    /// What is wrong with field() ("must be in 1..32, got 0"); empty when field() is.
+    const std::string& reason() const noexcept { return m_reason; }
 
 private:
     ErrorKind m_kind;
+    std::string m_field, m_reason;
 };
 
 }  // namespace sss

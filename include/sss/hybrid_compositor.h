@@ -53,6 +53,9 @@ struct HybridOptions {
     bool meshShadowsOnMeshes = true;    ///< meshes shadow meshes and the Cornell box (default: on)
     bool volumeShadowsOnMeshes = true;  ///< volumes tint and dim the light reaching meshes (default: on)
     int shadowMapResolution = 1024;   ///< the meshes' shadow maps, texels per side, 64..8192 (default: 1024)
+    /// Clear the target to `background` (depth to far) before drawing (default: on). Off: draw
+    /// over what the target holds, its depth included, as in a HostTarget frame.
+    bool clearTarget = true;
 };
 
 /// Throws Error(InvalidArgument) naming the bad field of `options`.

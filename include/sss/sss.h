@@ -1,6 +1,9 @@
 #pragma once
 /// @file
-/// Everything in the public libsss API.
+/// Everything in the public libsss API. The renderers (sss::sss) define most of it; the CPU
+/// ground truths of sss/mesh_reference.h, sss/volume_reference.h, sss/volume_path_tracer.h and
+/// sss/random_walk.h need sss::reference, and the file functions (Mesh::load, Volume::load,
+/// Image::savePng, ...) need sss::io: find_package(sss COMPONENTS io reference).
 #include "sss/bounds.h"
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
@@ -12,6 +15,7 @@
 #ifdef SSS_WITH_GLFW
 #include "sss/glfw_context.h"
 #endif
+#include "sss/host_frame.h"
 #include "sss/hybrid_compositor.h"
 #include "sss/image.h"
 #include "sss/image_compare.h"

@@ -19,52 +19,47 @@ std::string str(glm::vec3 v) { return detail::formatVec(v); }
 
 bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+[[noreturn]] void fail(std::string_view what, const char* type, const char* field, const std::string& reason) {
+    throw Error(ErrorKind::InvalidArgument, type, field, reason, std::string(what));
+}
+
+template <class T>
+std::string text(const T& value) {
+    std::ostringstream s;
+    s << value;
+    return s.str();
+}
+
 void checkColor(std::string_view what, const char* type, glm::vec3 color, float intensity) {
     if (!isFinite(color) || color.x < 0.0f || color.y < 0.0f || color.z < 0.0f)
-        throw Error(ErrorKind::InvalidArgument, std::string(what) + ": " + type +
-                                                    "::color must be finite and >= 0, got " + str(color));
-    if (!std::isfinite(intensity) || intensity < 0.0f) {
-        std::ostringstream s;
-        s << what << ": " << type << "::intensity must be finite and >= 0, got " << intensity;
-        throw Error(ErrorKind::InvalidArgument, s.str());
-    }
+        fail(what, type, "color", "must be finite and >= 0, got " + str(color));
+    if (!std::isfinite(intensity) || intensity < 0.0f)
+        fail(what, type, "intensity", "must be finite and >= 0, got " + text(intensity));
+}
+
+void checkDirection(std::string_view what, const char* type, glm::vec3 direction) {
+    const float len = glm::length(direction);
+    if (!isFinite(direction) || !std::isfinite(len) || len <= 0.0f)
+        fail(what, type, "direction", "must be finite and non-zero, got " + str(direction));
 }
 
 }  // namespace
 
 void validateLight(const Light& light, std::string_view what) {
     if (const auto* d = std::get_if<DirectionalLight>(&light)) {
-        const float len = glm::length(d->direction);
-        if (!isFinite(d->direction) || !std::isfinite(len) || len <= 0.0f)
-            throw Error(ErrorKind::InvalidArgument, std::string(what) +
-                                                        ": DirectionalLight::direction must be finite and non-zero, got " +
-                                                        str(d->direction));
+        checkDirection(what, "DirectionalLight", d->direction);
         checkColor(what, "DirectionalLight", d->color, d->intensity);
     } else if (const auto* p = std::get_if<PointLight>(&light)) {
-        if (!isFinite(p->position))
-            throw Error(ErrorKind::InvalidArgument,
-                        std::string(what) + ": PointLight::position must be finite, got " + str(p->position));
+        if (!isFinite(p->position)) fail(what, "PointLight", "position", "must be finite, got " + str(p->position));
         checkColor(what, "PointLight", p->color, p->intensity);
     } else {
         const auto& s = std::get<SpotLight>(light);
-        if (!isFinite(s.position))
-            throw Error(ErrorKind::InvalidArgument,
-                        std::string(what) + ": SpotLight::position must be finite, got " + str(s.position));
-        const float len = glm::length(s.direction);
-        if (!isFinite(s.direction) || !std::isfinite(len) || len <= 0.0f)
-            throw Error(ErrorKind::InvalidArgument, std::string(what) +
-                                                        ": SpotLight::direction must be finite and non-zero, got " +
-                                                        str(s.direction));
-        if (!(s.coneAngle > 0.0f && s.coneAngle <= 90.0f)) {
-            std::ostringstream m;
-            m << what << ": SpotLight::coneAngle must be in (0, 90] degrees, got " << s.coneAngle;
-            throw Error(ErrorKind::InvalidArgument, m.str());
-        }
-        if (!(s.falloff >= 0.0f && s.falloff <= 1.0f)) {
-            std::ostringstream m;
-            m << what << ": SpotLight::falloff must be in [0, 1], got " << s.falloff;
-            throw Error(ErrorKind::InvalidArgument, m.str());
-        }
+        if (!isFinite(s.position)) fail(what, "SpotLight", "position", "must be finite, got " + str(s.position));
+        checkDirection(what, "SpotLight", s.direction);
+        if (!(s.coneAngle > 0.0f && s.coneAngle <= 90.0f))
+            fail(what, "SpotLight", "coneAngle", "must be in (0, 90] degrees, got " + text(s.coneAngle));
+        if (!(s.falloff >= 0.0f && s.falloff <= 1.0f))
+            fail(what, "SpotLight", "falloff", "must be in [0, 1], got " + text(s.falloff));
         checkColor(what, "SpotLight", s.color, s.intensity);
     }
 }

@@ -94,6 +94,9 @@ void Program::set(std::string_view name, glm::vec3 v) const {
 void Program::set(std::string_view name, glm::vec4 v) const {
     glProgramUniform4fv(id(), uniformLocation(name), 1, glm::value_ptr(v));
 }
+void Program::set(std::string_view name, glm::ivec2 v) const {
+    glProgramUniform2i(id(), uniformLocation(name), v.x, v.y);
+}
 void Program::set(std::string_view name, glm::ivec3 v) const {
     glProgramUniform3iv(id(), uniformLocation(name), 1, glm::value_ptr(v));
 }

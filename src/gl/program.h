@@ -61,6 +61,7 @@ public:
     void set(std::string_view name, glm::vec2 v) const;
     void set(std::string_view name, glm::vec3 v) const;
     void set(std::string_view name, glm::vec4 v) const;
+    void set(std::string_view name, glm::ivec2 v) const;
     void set(std::string_view name, glm::ivec3 v) const;
     void set(std::string_view name, const glm::mat3& v) const;
     void set(std::string_view name, const glm::mat4& v) const;

@@ -13,7 +13,11 @@ std::uint64_t bytesPerTexel(GLenum internalFormat) {
     switch (internalFormat) {
         case GL_R8: return 1;
         case GL_R16: case GL_R16F: case GL_R16UI: return 2;
-        case GL_RGBA8: case GL_R32F: case GL_RG16F: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
+        case GL_DEPTH_COMPONENT16: return 2;
+        case GL_DEPTH_COMPONENT24: return 3;
+        case GL_RGBA8: case GL_R32F: case GL_RG16F: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8:
+        case GL_DEPTH_COMPONENT32: return 4;
+        case GL_DEPTH32F_STENCIL8: return 8;
         case GL_RGBA16: case GL_RGBA16F: case GL_RGBA16_SNORM: case GL_RG32F: return 8;
         case GL_RGBA32F: return 16;
         default: throw Error(ErrorKind::InvalidArgument, "gl::Texture: internal format " + std::to_string(internalFormat) +
@@ -32,6 +36,10 @@ const char* formatName(GLenum internalFormat) {
         case GL_RG16F: return "RG16F";
         case GL_DEPTH_COMPONENT32F: return "DEPTH32F";
         case GL_DEPTH24_STENCIL8: return "DEPTH24_STENCIL8";
+        case GL_DEPTH_COMPONENT16: return "DEPTH16";
+        case GL_DEPTH_COMPONENT24: return "DEPTH24";
+        case GL_DEPTH_COMPONENT32: return "DEPTH32";
+        case GL_DEPTH32F_STENCIL8: return "DEPTH32F_STENCIL8";
         case GL_RGBA16F: return "RGBA16F";
         case GL_RGBA16: return "RGBA16";
         case GL_RGBA16_SNORM: return "RGBA16_SNORM";

@@ -9,6 +9,7 @@
 #include "mesh/light_buffer_pass.h"
 #include "sss/log.h"
 #include "sss/error.h"
+#include "sss/option_table.h"
 #include "sss/procedural.h"
 #include "sss/timing.h"
 
@@ -23,11 +24,7 @@ namespace {
 
 }  // namespace
 
-void validate(const HybridOptions& o) {
-    if (o.shadowMapResolution < 64 || o.shadowMapResolution > 8192)
-        throw Error(ErrorKind::InvalidArgument, "HybridOptions::shadowMapResolution must be in 64..8192, got " +
-                                                    std::to_string(o.shadowMapResolution));
-}
+void validate(const HybridOptions& o) { validateOptionRanges(o); }
 
 struct HybridCompositor::Impl {
     HybridOptions options;
@@ -219,7 +216,7 @@ void HybridCompositor::render(const Camera& camera, RenderTarget& target) {
     r.shareShadows(shadowsOnMeshes && meshMaps);
 
     // 3. Opaque surfaces with depth, then volumes back to front, each stopping at that depth.
-    target.clear(r.options.background);
+    if (r.options.clearTarget) target.clear(r.options.background);
     if (!r.walls.empty()) {
         const auto start = std::chrono::steady_clock::now();
         for (auto& w : r.walls) w->render(camera, target);

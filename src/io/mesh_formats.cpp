@@ -491,190 +491,228 @@ MeshFormat chooseMeshFormat(const std::filesystem::path& path, std::string_view 
 
 #if SSS_WITH_ASSIMP
 
-Mesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view bytes, MeshFormat format) {
-    const std::string file = path.string();
-    const std::string name = meshFormatName(format);
-    auto fail = [&](const std::string& what) { throw Error(ErrorKind::Parse, file + ": " + what); };
-    if (skipSpace(bytes).empty()) fail("has no triangles (the file is empty)");
+namespace {
 
-    if (format == MeshFormat::Ply || format == MeshFormat::Off) {
-        const std::string problem = format == MeshFormat::Ply ? checkPlyStructure(bytes) : checkOffStructure(bytes);
+// One file through Assimp: the structure checks, the read, the checks Mesh::load promises, the
+// post-processing and the merge of every placed mesh into one. Messages start with the file.
+class AssimpReader {
+public:
+    AssimpReader(const std::filesystem::path& path, std::string_view bytes, MeshFormat format)
+        : m_path(path), m_file(path.string()), m_name(meshFormatName(format)), m_bytes(bytes), m_format(format) {}
+
+    Mesh read() {
+        if (skipSpace(m_bytes).empty()) fail("has no triangles (the file is empty)");
+        checkStructure();
+        readScene();
+        checkMeshes();
+        postProcess();
+        const std::vector<Instance> instances = instancesOf(*m_scene, m_file);
+        const bool smooth = needsSmoothNormals(instances);
+        for (const Instance& instance : instances) merge(instance, smooth);
+        return finish();
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const { throw Error(ErrorKind::Parse, m_file + ": " + what); }
+    std::string where(unsigned m) const {
+        return m_scene->mNumMeshes > 1 ? "mesh " + std::to_string(m) + " " : std::string();
+    }
+
+    // What Assimp would crash or hang on, found first (tests/fuzz).
+    void checkStructure() const {
+        std::string problem;
+        if (m_format == MeshFormat::Ply) problem = checkPlyStructure(m_bytes);
+        if (m_format == MeshFormat::Off) problem = checkOffStructure(m_bytes);
+        if (m_format == MeshFormat::Glb || (m_format == MeshFormat::Gltf && m_bytes.substr(0, 4) == "glTF"))
+            problem = checkGlbStructure(m_bytes);
+        if (m_format == MeshFormat::Stl) problem = checkStlStructure(m_bytes);
         if (!problem.empty()) fail(problem);
     }
-    if (format == MeshFormat::Glb || (format == MeshFormat::Gltf && bytes.substr(0, 4) == "glTF")) {
-        const std::string problem = checkGlbStructure(bytes);
-        if (!problem.empty()) fail(problem);
-    }
-    if (format == MeshFormat::Stl) {
-        const std::string problem = checkStlStructure(bytes);
-        if (!problem.empty()) fail(problem);
-    }
 
-    Assimp::Importer importer;
-    const aiScene* scene = nullptr;
-    try {
-        // From the path where Assimp's choice by extension agrees (glTF buffers beside the file
-        // are found then); from memory with a hint otherwise.
-        const std::optional<MeshFormat> byExtension = meshFormatFromExtension(path);
-        const bool gltfEither = (format == MeshFormat::Gltf || format == MeshFormat::Glb) &&
-                                (byExtension == MeshFormat::Gltf || byExtension == MeshFormat::Glb);
-        if (byExtension == format || gltfEither)
-            scene = importer.ReadFile(file, 0);
-        else
-            scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, assimpHint(format));
-    } catch (const std::exception& e) {
-        fail(std::string("cannot read ") + name + " (Assimp): " + e.what());
-    }
-    if (!scene) fail("cannot read " + name + " (Assimp): " + trimmed(importer.GetErrorString()));
-
-    // The checks Mesh::load promises, on the meshes as read and before any post-processing
-    // step (which would index out of range or hash NaNs). Vertices and faces are numbered from
-    // 0 within each mesh, as Assimp stores them; "mesh M" is named only when there are several.
-    const bool several = scene->mNumMeshes > 1;
-    auto where = [&](unsigned m) { return several ? "mesh " + std::to_string(m) + " " : std::string(); };
-    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-        const aiMesh* mesh = scene->mMeshes ? scene->mMeshes[m] : nullptr;
-        if (!mesh) fail("mesh " + std::to_string(m) + " is missing");
-        if ((mesh->mNumVertices > 0 && !mesh->mVertices) || (mesh->mNumFaces > 0 && !mesh->mFaces))
-            fail(where(m) + "has no vertex or face data");
-        for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-            const aiVector3D& p = mesh->mVertices[v];
-            const glm::dvec3 d(p.x, p.y, p.z);
-            if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z))
-                fail(where(m) + "vertex " + std::to_string(v) + " has a non-finite coordinate " +
-                     formatVec(glm::vec3(p.x, p.y, p.z)));
-            if (!isInRange(d))
-                fail(where(m) + "vertex " + std::to_string(v) + " has a coordinate " +
-                     formatVec(glm::vec3(p.x, p.y, p.z)) + " outside the supported range [-1e18, 1e18]");
+    // From the path where Assimp's choice by extension agrees (glTF buffers beside the file are
+    // found then); from memory with a hint otherwise.
+    void readScene() {
+        try {
+            const std::optional<MeshFormat> byExtension = meshFormatFromExtension(m_path);
+            const bool gltfEither = (m_format == MeshFormat::Gltf || m_format == MeshFormat::Glb) &&
+                                    (byExtension == MeshFormat::Gltf || byExtension == MeshFormat::Glb);
+            if (byExtension == m_format || gltfEither)
+                m_scene = m_importer.ReadFile(m_file, 0);
+            else
+                m_scene = m_importer.ReadFileFromMemory(m_bytes.data(), m_bytes.size(), 0, assimpHint(m_format));
+        } catch (const std::exception& e) {
+            fail("cannot read " + m_name + " (Assimp): " + e.what());
         }
-        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-            const aiFace& face = mesh->mFaces[f];
-            // Assimp's triangulation aborts on empty faces (an ai_assert in Debian's build).
-            if (face.mNumIndices == 0 || !face.mIndices) fail(where(m) + "face " + std::to_string(f) + " has no vertices");
-            for (unsigned k = 0; k < face.mNumIndices; ++k)
-                if (face.mIndices[k] >= mesh->mNumVertices)
-                    fail(where(m) + "face " + std::to_string(f) + " references vertex " +
-                         std::to_string(face.mIndices[k]) + ", but the mesh has " +
-                         std::to_string(mesh->mNumVertices) + " vertices");
+        if (!m_scene) fail("cannot read " + m_name + " (Assimp): " + trimmed(m_importer.GetErrorString()));
+    }
+
+    // The checks Mesh::load promises, on the meshes as read and before any post-processing step
+    // (which would index out of range or hash NaNs). Vertices and faces are numbered from 0
+    // within each mesh, as Assimp stores them; "mesh M" is named only when there are several.
+    void checkMeshes() const {
+        for (unsigned m = 0; m < m_scene->mNumMeshes; ++m) {
+            const aiMesh* mesh = m_scene->mMeshes ? m_scene->mMeshes[m] : nullptr;
+            if (!mesh) fail("mesh " + std::to_string(m) + " is missing");
+            if ((mesh->mNumVertices > 0 && !mesh->mVertices) || (mesh->mNumFaces > 0 && !mesh->mFaces))
+                fail(where(m) + "has no vertex or face data");
+            for (unsigned v = 0; v < mesh->mNumVertices; ++v) checkVertex(m, v, mesh->mVertices[v]);
+            for (unsigned f = 0; f < mesh->mNumFaces; ++f) checkFace(m, f, mesh->mFaces[f], mesh->mNumVertices);
         }
+    }
+
+    void checkVertex(unsigned m, unsigned v, const aiVector3D& p) const {
+        const glm::dvec3 d(p.x, p.y, p.z);
+        if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z))
+            fail(where(m) + "vertex " + std::to_string(v) + " has a non-finite coordinate " +
+                 formatVec(glm::vec3(p.x, p.y, p.z)));
+        if (!isInRange(d))
+            fail(where(m) + "vertex " + std::to_string(v) + " has a coordinate " + formatVec(glm::vec3(p.x, p.y, p.z)) +
+                 " outside the supported range [-1e18, 1e18]");
+    }
+
+    void checkFace(unsigned m, unsigned f, const aiFace& face, unsigned vertexCount) const {
+        // Assimp's triangulation aborts on empty faces (an ai_assert in Debian's build).
+        if (face.mNumIndices == 0 || !face.mIndices) fail(where(m) + "face " + std::to_string(f) + " has no vertices");
+        for (unsigned k = 0; k < face.mNumIndices; ++k)
+            if (face.mIndices[k] >= vertexCount)
+                fail(where(m) + "face " + std::to_string(f) + " references vertex " + std::to_string(face.mIndices[k]) +
+                     ", but the mesh has " + std::to_string(vertexCount) + " vertices");
     }
 
     // STL facet normals are per face (flat shading) and often zero: they are dropped, and the
     // corners of adjacent facets are joined, so that the mesh gets smooth normals like an OBJ
     // without normals.
-    unsigned steps = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
-    if (format == MeshFormat::Stl) {
-        importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS);
-        steps |= aiProcess_RemoveComponent;
+    void postProcess() {
+        unsigned steps = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
+        if (m_format == MeshFormat::Stl) {
+            m_importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS);
+            steps |= aiProcess_RemoveComponent;
+        }
+        try {
+            m_scene = m_importer.ApplyPostProcessing(steps);
+        } catch (const std::exception& e) {
+            fail("cannot process " + m_name + " (Assimp): " + e.what());
+        }
+        if (!m_scene) fail("cannot process " + m_name + " (Assimp): " + trimmed(m_importer.GetErrorString()));
     }
-    try {
-        scene = importer.ApplyPostProcessing(steps);
-    } catch (const std::exception& e) {
-        fail(std::string("cannot process ") + name + " (Assimp): " + e.what());
-    }
-    if (!scene) fail("cannot process " + name + " (Assimp): " + trimmed(importer.GetErrorString()));
-
-    const std::vector<Instance> instances = instancesOf(*scene, file);
 
     // File normals are used only if every placed mesh with triangles has usable ones, as for
-    // OBJ; otherwise the whole mesh gets smooth area-weighted normals.
-    bool smooth = false;
-    std::size_t pointsAndLines = 0;
-    for (const Instance& instance : instances) {
-        const aiMesh* mesh = scene->mMeshes[instance.mesh];
-        if (!mesh || !mesh->mFaces) continue;
-        bool hasTriangles = false;
-        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-            if (mesh->mFaces[f].mNumIndices == 3)
-                hasTriangles = true;
-            else
-                ++pointsAndLines;
+    // OBJ; otherwise the whole mesh gets smooth area-weighted normals. Counts the points and
+    // lines on the way.
+    bool needsSmoothNormals(const std::vector<Instance>& instances) {
+        bool smooth = false;
+        for (const Instance& instance : instances) {
+            const aiMesh* mesh = m_scene->mMeshes[instance.mesh];
+            if (!mesh || !mesh->mFaces) continue;
+            bool hasTriangles = false;
+            for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+                if (mesh->mFaces[f].mNumIndices == 3)
+                    hasTriangles = true;
+                else
+                    ++m_pointsAndLines;
+            }
+            if (!hasTriangles) continue;
+            if (!mesh->mNormals) {
+                smooth = true;
+                continue;
+            }
+            for (unsigned v = 0; v < mesh->mNumVertices && !smooth; ++v) {
+                const aiVector3D& n = mesh->mNormals[v];
+                if (!isUsableNormal(glm::vec3(n.x, n.y, n.z))) smooth = true;
+            }
         }
-        if (!hasTriangles) continue;
-        if (!mesh->mNormals) {
-            smooth = true;
-            continue;
-        }
-        for (unsigned v = 0; v < mesh->mNumVertices && !smooth; ++v) {
-            const aiVector3D& n = mesh->mNormals[v];
-            if (!isUsableNormal(glm::vec3(n.x, n.y, n.z))) smooth = true;
-        }
+        return smooth;
     }
 
-    // Merge every placed mesh into one array in world space (node transforms applied). When
-    // smoothing, corners at the same position share one vertex across meshes, so there are no
-    // seams in the normals.
-    std::vector<glm::vec3> positions, normals;
-    std::vector<uint32_t> indices;
-    std::unordered_map<PositionBits, uint32_t, PositionBitsHash> welded;
-    auto weld = [&](glm::vec3 p) -> uint32_t {
+    // When smoothing, corners at the same position share one vertex across meshes, so there are
+    // no seams in the normals.
+    uint32_t weld(glm::vec3 p) {
         const glm::vec3 q = p + glm::vec3(0.0f);  // -0 becomes +0
         static_assert(sizeof q == sizeof(PositionBits::bits));
         PositionBits key;
         std::memcpy(key.bits.data(), &q, sizeof key.bits);
-        auto [it, inserted] = welded.try_emplace(key, static_cast<uint32_t>(positions.size()));
-        if (inserted) positions.push_back(q);
+        auto [it, inserted] = m_welded.try_emplace(key, static_cast<uint32_t>(m_positions.size()));
+        if (inserted) m_positions.push_back(q);
         return it->second;
-    };
-    std::size_t skippedInstances = 0;
-    for (const Instance& instance : instances) {
-        const aiMesh* mesh = scene->mMeshes[instance.mesh];
-        if (!mesh || !mesh->mFaces || !mesh->mVertices) continue;
+    }
+
+    // One placed mesh into the merged arrays, in world space (its node's transform applied).
+    void merge(const Instance& instance, bool smooth) {
+        const aiMesh* mesh = m_scene->mMeshes[instance.mesh];
+        if (!mesh || !mesh->mFaces || !mesh->mVertices) return;
         const glm::dmat3 linear(instance.transform);
         const double det = glm::determinant(linear);
-        if (!std::isfinite(det))
-            fail("node \"" + instance.node + "\" has a non-finite transform");
+        if (!std::isfinite(det)) fail("node \"" + instance.node + "\" has a non-finite transform");
         if (det == 0.0) {  // a zero scale hides the node; its triangles would all be degenerate
-            ++skippedInstances;
-            continue;
+            ++m_skippedInstances;
+            return;
         }
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
-        const unsigned m = instance.mesh;
         std::vector<uint32_t> remap(mesh->mNumVertices, std::numeric_limits<uint32_t>::max());
         auto vertex = [&](unsigned v) -> uint32_t {
             if (!smooth && remap[v] != std::numeric_limits<uint32_t>::max()) return remap[v];
             const aiVector3D& a = mesh->mVertices[v];
             const glm::dvec3 p = glm::dvec3(instance.transform * glm::dvec4(a.x, a.y, a.z, 1.0));
             if (!isInRange(p))
-                fail(where(m) + "vertex " + std::to_string(v) + " lies at " + formatVec(p) + " after the transform of node \"" +
-                     instance.node + "\": non-finite or outside the supported range [-1e18, 1e18]");
-            if (positions.size() >= std::numeric_limits<uint32_t>::max())
+                fail(where(instance.mesh) + "vertex " + std::to_string(v) + " lies at " + formatVec(p) +
+                     " after the transform of node \"" + instance.node +
+                     "\": non-finite or outside the supported range [-1e18, 1e18]");
+            if (m_positions.size() >= std::numeric_limits<uint32_t>::max())
                 fail("has more vertices than 32-bit indices can address");
             if (smooth) return weld(glm::vec3(p));
             const aiVector3D& an = mesh->mNormals[v];
             const glm::dvec3 n = normalMatrix * glm::dvec3(an.x, an.y, an.z);
             const double largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
-            remap[v] = static_cast<uint32_t>(positions.size());
-            positions.emplace_back(p);
-            normals.emplace_back(n / largest);  // scaled so that float keeps it usable
+            remap[v] = static_cast<uint32_t>(m_positions.size());
+            m_positions.emplace_back(p);
+            m_normals.emplace_back(n / largest);  // scaled so that float keeps it usable
             return remap[v];
         };
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
             if (face.mNumIndices != 3) continue;
             const uint32_t a = vertex(face.mIndices[0]), b = vertex(face.mIndices[1]), c = vertex(face.mIndices[2]);
-            if (indices.size() > std::numeric_limits<std::size_t>::max() / 2) fail("has too many triangles");
-            indices.push_back(a);
+            if (m_indices.size() > std::numeric_limits<std::size_t>::max() / 2) fail("has too many triangles");
+            m_indices.push_back(a);
             // A mirroring transform turns counter-clockwise triangles clockwise; undo it.
-            indices.push_back(det < 0.0 ? c : b);
-            indices.push_back(det < 0.0 ? b : c);
+            m_indices.push_back(det < 0.0 ? c : b);
+            m_indices.push_back(det < 0.0 ? b : c);
         }
     }
-    if (pointsAndLines > 0)
-        log(LogLevel::Warning, file + ": ignored " + std::to_string(pointsAndLines) +
-                                   " point and line primitives (only triangles are rendered)");
-    if (skippedInstances > 0)
-        log(LogLevel::Warning, file + ": skipped " + std::to_string(skippedInstances) +
-                                   " mesh placements whose node transform is singular (zero scale)");
-    if (indices.empty())
-        fail(pointsAndLines > 0 ? "has no triangles, only " + std::to_string(pointsAndLines) + " points and lines"
-                                : "has no triangles");
 
-    try {
-        return Mesh::fromArrays(std::move(positions), std::move(indices), std::move(normals), file);
-    } catch (const Error& e) {
-        throw Error(ErrorKind::Parse, e.what());  // the message already starts with the file
+    Mesh finish() {
+        if (m_pointsAndLines > 0)
+            log(LogLevel::Warning, m_file + ": ignored " + std::to_string(m_pointsAndLines) +
+                                       " point and line primitives (only triangles are rendered)");
+        if (m_skippedInstances > 0)
+            log(LogLevel::Warning, m_file + ": skipped " + std::to_string(m_skippedInstances) +
+                                       " mesh placements whose node transform is singular (zero scale)");
+        if (m_indices.empty())
+            fail(m_pointsAndLines > 0 ? "has no triangles, only " + std::to_string(m_pointsAndLines) + " points and lines"
+                                      : "has no triangles");
+        try {
+            return Mesh::fromArrays(std::move(m_positions), std::move(m_indices), std::move(m_normals), m_file);
+        } catch (const Error& e) {
+            throw Error(ErrorKind::Parse, e.what());  // the message already starts with the file
+        }
     }
+
+    const std::filesystem::path& m_path;
+    std::string m_file, m_name;
+    std::string_view m_bytes;
+    MeshFormat m_format;
+    Assimp::Importer m_importer;
+    const aiScene* m_scene = nullptr;
+    std::vector<glm::vec3> m_positions, m_normals;
+    std::vector<uint32_t> m_indices;
+    std::unordered_map<PositionBits, uint32_t, PositionBitsHash> m_welded;
+    std::size_t m_pointsAndLines = 0, m_skippedInstances = 0;
+};
+
+}  // namespace
+
+Mesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view bytes, MeshFormat format) {
+    return AssimpReader(path, bytes, format).read();
 }
 
 #else

@@ -33,7 +33,7 @@ std::string str(const glm::dvec3& v) {
 bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 [[noreturn]] void fail(const std::string& field, const std::string& rule, const std::string& got) {
-    throw Error(ErrorKind::InvalidArgument, "ScatteringMaterial::" + field + " must be " + rule + ", got " + got);
+    throw Error(ErrorKind::InvalidArgument, "ScatteringMaterial", field, "must be " + rule + ", got " + got);
 }
 
 std::string num(double v) {

@@ -12,6 +12,7 @@
 #include "mesh/renderer_access.h"
 #include "mesh/vertex_estimate_pass.h"
 #include "sss/error.h"
+#include "sss/option_table.h"
 #include "sss/timing.h"
 
 #include <algorithm>
@@ -69,33 +70,13 @@ void validate(const BlinnPhongMaterial& m) {
     if (bad(m.diffuse) || bad(m.specular) || bad(m.ambient))
         throw Error(ErrorKind::InvalidArgument, "BlinnPhongMaterial: colours must be finite and >= 0");
     if (!(m.shininess > 0.0f) || !std::isfinite(m.shininess))
-        throw Error(ErrorKind::InvalidArgument,
-                    "BlinnPhongMaterial::shininess must be finite and > 0, got " + detail::formatNumber(m.shininess));
+        throw Error(ErrorKind::InvalidArgument, "BlinnPhongMaterial", "shininess",
+                    "must be finite and > 0, got " + detail::formatNumber(m.shininess));
 }
 
 void validate(const MeshRenderOptions& o) {
-    auto fail = [](const std::string& field, const std::string& rule, auto value) {
-        throw Error(ErrorKind::InvalidArgument,
-                    "MeshRenderOptions::" + field + " must be " + rule + ", got " + detail::formatNumber(value));
-    };
-    auto finite = [](double v) { return std::isfinite(v); };
-    if (o.cameras < 1 || o.cameras > detail::kMaxScatteringCameras) fail("cameras", "in 1..32", o.cameras);
-    if (o.samples < 1 || o.samples > 4096) fail("samples", "in 1..4096", o.samples);
-    if (o.mapResolution < 16 || o.mapResolution > 8192) fail("mapResolution", "in 16..8192", o.mapResolution);
-    if (o.lightMapResolution < 16 || o.lightMapResolution > 8192)
-        fail("lightMapResolution", "in 16..8192", o.lightMapResolution);
-    if (!(o.millimetresPerUnit > 0.0) || !finite(o.millimetresPerUnit))
-        fail("millimetresPerUnit", "finite and > 0", o.millimetresPerUnit);
-    if (!(o.sampleRadius >= 0.0f) || !finite(o.sampleRadius)) fail("sampleRadius", "finite and >= 0", o.sampleRadius);
-    if (!(o.spread >= 0.1f) || !finite(o.spread)) fail("spread", "finite and >= 0.1", o.spread);
-    if (o.accumulationFrames < 1) fail("accumulationFrames", ">= 1", o.accumulationFrames);
-    if (!(o.depthBias >= 0.0f) || !finite(o.depthBias)) fail("depthBias", "finite and >= 0", o.depthBias);
-    if (!(o.seamShrink >= 0.0f) || !finite(o.seamShrink)) fail("seamShrink", "finite and >= 0", o.seamShrink);
-    if (!(o.specular >= 0.0f) || !finite(o.specular)) fail("specular", "finite and >= 0", o.specular);
-    if (!(o.shininess > 0.0f) || !finite(o.shininess)) fail("shininess", "finite and > 0", o.shininess);
-    for (int i = 0; i < 3; ++i)
-        if (!(o.environment[i] >= 0.0f) || !finite(o.environment[i]))
-            fail("environment", "finite and >= 0 in every channel", o.environment[i]);
+    static_assert(detail::kMaxScatteringCameras == 32, "the option table says cameras in 1..32");
+    validateOptionRanges(o);
 }
 
 struct MeshScatteringRenderer::Impl {

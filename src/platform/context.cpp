@@ -71,11 +71,6 @@ void GLAD_API_PTR onDebugMessage(GLenum source, GLenum type, GLuint id, GLenum s
     log(level, text);
 }
 
-bool envFlag(const char* name) {
-    const char* v = std::getenv(name);
-    return v && *v && std::strcmp(v, "0") != 0;
-}
-
 std::string glString(GLenum name) {
     const GLubyte* s = glGetString(name);
     return s ? reinterpret_cast<const char*>(s) : "";
@@ -83,8 +78,11 @@ std::string glString(GLenum name) {
 
 }  // namespace
 
-void GlContext::initializeGl(void* (*getProcAddress)(const char*), bool debug, std::string backend) {
-    int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(getProcAddress));
+void GlContext::initializeGl(const GlProcLoader& getProcAddress, bool debug, std::string backend) {
+    const auto load = [](void* loader, const char* name) -> GLADapiproc {
+        return (*static_cast<const GlProcLoader*>(loader))(name);
+    };
+    int version = gladLoadGLUserPtr(load, const_cast<GlProcLoader*>(&getProcAddress));
     if (version == 0)
         throw Error(ErrorKind::Gl, "GlContext: could not load OpenGL entry points (" + backend + ")");
     m_info.vendor = glString(GL_VENDOR);
@@ -101,7 +99,8 @@ void GlContext::initializeGl(void* (*getProcAddress)(const char*), bool debug, s
     for (const char* soft : {"llvmpipe", "softpipe", "SwiftShader", "Software Rasterizer"})
         if (m_info.renderer.find(soft) != std::string::npos) m_info.software = true;
 
-    debug = debug || envFlag("SSS_GL_DEBUG");
+    // The backends that make their own contexts also switch this on for SSS_GL_DEBUG=1; an
+    // adopted host context only when asked (HostContextOptions::debug).
     if (debug) {
         m_debug = std::make_shared<DebugState>();
         glEnable(GL_DEBUG_OUTPUT);

@@ -225,7 +225,7 @@ std::unique_ptr<EglContext> EglContext::create(const EglContextOptions& options)
         std::unique_ptr<EglContext> result(new EglContext());
         result->m_native = std::move(native);
         for (const std::string& f : failures) log(LogLevel::Info, "EglContext: skipped " + f);
-        result->initializeGl(reinterpret_cast<void* (*)(const char*)>(&eglGetProcAddress), debug,
+        result->initializeGl(eglGetProcAddress, debug,
                              candidate.description);
         return result;
     }

@@ -55,7 +55,7 @@ std::unique_ptr<GlfwContext> GlfwContext::create(const GlfwContextOptions& optio
     context->m_native->window = window;
     glfwMakeContextCurrent(window);
     glfwSwapInterval(options.vsync ? 1 : 0);
-    context->initializeGl(reinterpret_cast<void* (*)(const char*)>(&glfwGetProcAddress), debug,
+    context->initializeGl(glfwGetProcAddress, debug,
                           "GLFW window (" + std::string(glfwGetVersionString()) + ")");
     return context;
 }

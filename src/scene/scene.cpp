@@ -5,6 +5,7 @@
 #include "sss/error.h"
 #include "sss/materials.h"
 #include "sss/option_names.h"
+#include "sss/option_table.h"
 #include "sss/procedural.h"
 
 #include <glm/geometric.hpp>
@@ -31,66 +32,22 @@ namespace sss {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// The fields of the option structs, listed once for reading and writing: f(name, member).
+// The fields of the structs, for reading and writing: f(name, member). The renderers' options
+// come from their tables (sss/option_table.h).
 
 template <class F>
 void fields(MeshRenderOptions& o, F&& f) {
-    f("shading", o.shading);
-    f("profile", o.profile);
-    f("combine", o.combine);
-    f("cameras", o.cameras);
-    f("samples", o.samples);
-    f("mapResolution", o.mapResolution);
-    f("lightMapResolution", o.lightMapResolution);
-    f("millimetresPerUnit", o.millimetresPerUnit);
-    f("sampleRadius", o.sampleRadius);
-    f("spread", o.spread);
-    f("accumulationFrames", o.accumulationFrames);
-    f("depthBias", o.depthBias);
-    f("seamShrink", o.seamShrink);
-    f("specular", o.specular);
-    f("shininess", o.shininess);
-    f("environment", o.environment);
-    f("finishEachPass", o.finishEachPass);
+    forEachOptionField<MeshRenderOptions>([&](const auto& field) { f(field.name, o.*field.member); });
 }
 
 template <class F>
 void fields(VolumeRenderOptions& o, F&& f) {
-    f("shading", o.shading);
-    f("stepSize", o.stepSize);
-    f("earlyTermination", o.earlyTermination);
-    f("jitter", o.jitter);
-    f("preintegration", o.preintegration);
-    f("emptySpaceSkipping", o.emptySpaceSkipping);
-    f("transferFunctionEntries", o.transferFunctionEntries);
-    f("ambient", o.ambient);
-    f("diffuse", o.diffuse);
-    f("emission", o.emission);
-    f("specular", o.specular);
-    f("shininess", o.shininess);
-    f("gradientThreshold", o.gradientThreshold);
-    f("gradientVolume", o.gradientVolume);
-    f("lightVolumeScale", o.lightVolumeScale);
-    f("lightVolumeReach", o.lightVolumeReach);
-    f("lightVolumeFallback", o.lightVolumeFallback);
-    f("anisotropy", o.anisotropy);
-    f("model", o.model);
-    f("eyePass", o.eyePass);
-    f("eyePassStrength", o.eyePassStrength);
-    f("multipleScattering", o.multipleScattering);
-    f("samplesPerFrame", o.samplesPerFrame);
-    f("maxBounces", o.maxBounces);
-    f("finishEachPass", o.finishEachPass);
+    forEachOptionField<VolumeRenderOptions>([&](const auto& field) { f(field.name, o.*field.member); });
 }
 
 template <class F>
 void fields(HybridOptions& o, F&& f) {
-    f("background", o.background);
-    f("cornellBox", o.cornellBox);
-    f("meshShadowsInVolumes", o.meshShadowsInVolumes);
-    f("meshShadowsOnMeshes", o.meshShadowsOnMeshes);
-    f("volumeShadowsOnMeshes", o.volumeShadowsOnMeshes);
-    f("shadowMapResolution", o.shadowMapResolution);
+    forEachOptionField<HybridOptions>([&](const auto& field) { f(field.name, o.*field.member); });
 }
 
 template <class F>
@@ -274,18 +231,15 @@ const json& arrayAt(const json& root, const char* key, const std::string& file) 
 
 std::string indexed(std::string_view array, std::size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
-/// Runs a library validation and re-words its message ("MeshRenderOptions::cameras must be in
-/// 1..32, got 0") to name the JSON path ("scene.json: meshes[0].options.cameras: must be ...").
+/// Runs a library validation and names the JSON path of the field it rejects: "MeshRenderOptions::
+/// cameras must be in 1..32, got 0" becomes "scene.json: meshes[0].options.cameras: must be ...".
 template <class F>
 void validateAt(const std::string& file, const std::string& path, F&& validation) {
     try {
         validation();
     } catch (const Error& e) {
-        static const std::regex field(R"((?:^|: )[A-Za-z]+::([A-Za-z]+) (.*)$)");
-        std::smatch m;
-        const std::string message = e.what();
-        if (std::regex_search(message, m, field)) fail(file, path + "." + m[1].str(), m[2].str());
-        fail(file, path, message);
+        if (!e.field().empty()) fail(file, path + "." + e.field(), e.reason());
+        fail(file, path, e.what());
     }
 }
 

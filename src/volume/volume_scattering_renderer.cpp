@@ -6,6 +6,7 @@
 #include "lighting/light_uniforms.h"
 #include "lighting/texture_units.h"
 #include "sss/error.h"
+#include "sss/option_table.h"
 #include "sss/log.h"
 #include "sss/timing.h"
 #include "volume/empty_space.h"
@@ -69,38 +70,13 @@ std::optional<VolumeModel> parseVolumeModel(std::string_view name) {
 }
 
 void validate(const VolumeRenderOptions& o) {
-    auto fail = [](const std::string& field, const std::string& rule, auto value) {
-        throw Error(ErrorKind::InvalidArgument,
-                    "VolumeRenderOptions::" + field + " must be " + rule + ", got " + detail::formatNumber(value));
-    };
-    if (!(o.stepSize > 0.0f) || !std::isfinite(o.stepSize)) fail("stepSize", "finite and > 0 (voxels)", o.stepSize);
-    if (o.stepSize < 0.01f) fail("stepSize", "at least 0.01 voxels (smaller steps cannot finish)", o.stepSize);
-    if (!(o.earlyTermination > 0.0f && o.earlyTermination <= 1.0f))
-        fail("earlyTermination", "in (0, 1]", o.earlyTermination);
-    if (o.transferFunctionEntries < 2 || o.transferFunctionEntries > 65536)
-        fail("transferFunctionEntries", "in 2..65536", o.transferFunctionEntries);
-    if (!(o.ambient >= 0.0f) || !std::isfinite(o.ambient)) fail("ambient", "finite and >= 0", o.ambient);
-    if (!(o.diffuse >= 0.0f) || !std::isfinite(o.diffuse)) fail("diffuse", "finite and >= 0", o.diffuse);
-    if (!(o.emission >= 0.0f) || !std::isfinite(o.emission)) fail("emission", "finite and >= 0", o.emission);
-    if (!(o.shininess > 0.0f) || !std::isfinite(o.shininess)) fail("shininess", "finite and > 0", o.shininess);
-    if (!(o.gradientThreshold > 0.0f) || !std::isfinite(o.gradientThreshold))
-        fail("gradientThreshold", "finite and > 0", o.gradientThreshold);
-    if (!(o.lightVolumeScale > 0.0f && o.lightVolumeScale <= 1.0f))
-        fail("lightVolumeScale", "in (0, 1]", o.lightVolumeScale);
-    if (!(o.lightVolumeReach >= 0.0f && o.lightVolumeReach <= 16.0f))
-        fail("lightVolumeReach", "in [0, 16]", o.lightVolumeReach);
-    if (!(o.anisotropy > -1.0f && o.anisotropy < 1.0f)) fail("anisotropy", "in (-1, 1)", o.anisotropy);
-    if (!(o.eyePassStrength >= 0.0f) || !std::isfinite(o.eyePassStrength))
-        fail("eyePassStrength", "finite and >= 0", o.eyePassStrength);
-    if (o.samplesPerFrame < 1 || o.samplesPerFrame > 4096) fail("samplesPerFrame", "in 1..4096", o.samplesPerFrame);
-    if (o.maxBounces < 1) fail("maxBounces", ">= 1", o.maxBounces);
+    validateOptionRanges(o);
+    if (o.stepSize < 0.01f)
+        throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions", "stepSize",
+                    "must be at least 0.01 voxels (smaller steps cannot finish), got " + detail::formatNumber(o.stepSize));
     if (o.multipleScattering && (o.shading != VolumeShading::Scattering || o.model != VolumeModel::Physical))
-        throw Error(ErrorKind::InvalidArgument,
-                    "VolumeRenderOptions::multipleScattering needs shading Scattering and model Physical (it "
-                    "path-traces the physical model)");
-    const glm::vec3 s = o.specular;
-    if (!(s.x >= 0 && s.y >= 0 && s.z >= 0) || !std::isfinite(s.x + s.y + s.z))
-        throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions::specular must be finite and >= 0");
+        throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions", "multipleScattering",
+                    "needs shading Scattering and model Physical (it path-traces the physical model)");
 }
 
 struct VolumeScatteringRenderer::Impl {
