@@ -200,16 +200,69 @@ int plyTypeSize(std::string_view t, bool& isSigned) {
     return 0;
 }
 
-// An empty string if the PLY file's header is complete and its body holds every item the
-// header declares; else what is wrong.
-std::string checkPlyStructure(std::string_view bytes) {
-    enum class Format { None, Ascii, Little, Big } format = Format::None;
+enum class PlyFormat { None, Ascii, Little, Big };
+
+struct PlyHeader {
+    PlyFormat format = PlyFormat::None;
     std::vector<PlyElement> elements;
+    std::size_t bodyStart = 0;
+};
+
+// One "property ..." line of a PLY header into `p`; an error message, or empty.
+std::string parsePlyProperty(const std::vector<std::string_view>& t, std::string_view line, PlyProperty& p) {
+    bool itemSigned = false;
+    if (t.size() == 5 && t[1] == "list") {
+        p.list = true;
+        p.countSize = plyTypeSize(t[2], p.countSigned);
+        p.size = plyTypeSize(t[3], itemSigned);
+        if (p.countSize == 0 || p.size == 0 || p.countSize == 8 || t[2] == "float" || t[2] == "float32")
+            return "the PLY header has a bad list property \"" + trimmed(std::string(line)) + "\"";
+        return "";
+    }
+    if (t.size() != 3) return "the PLY header has a bad property line \"" + trimmed(std::string(line)) + "\"";
+    p.size = plyTypeSize(t[1], itemSigned);
+    if (p.size == 0) return "the PLY header has an unknown property type \"" + std::string(t[1]) + "\"";
+    return "";
+}
+
+// One header line after "ply"; sets `ended` at end_header. An error message, or empty.
+std::string parsePlyHeaderLine(std::string_view line, PlyHeader& header, bool& ended) {
+    const std::vector<std::string_view> t = splitBlank(line);
+    if (t.empty() || t[0] == "comment" || t[0] == "obj_info") return "";
+    if (t[0] == "end_header") {
+        ended = true;
+        return t.size() == 1 ? "" : "the PLY header has text after end_header on its line";
+    }
+    if (t[0] == "format") {
+        if (t.size() < 2 || header.format != PlyFormat::None) return "the PLY header has a bad format line";
+        if (t[1] == "ascii") header.format = PlyFormat::Ascii;
+        else if (t[1] == "binary_little_endian") header.format = PlyFormat::Little;
+        else if (t[1] == "binary_big_endian") header.format = PlyFormat::Big;
+        else return "unknown PLY format \"" + std::string(t[1]) + "\"";
+        return "";
+    }
+    if (t[0] == "element") {
+        const std::optional<uint64_t> count = t.size() == 3 ? parseCount(t[2]) : std::nullopt;
+        if (!count) return "the PLY header has a bad element line \"" + trimmed(std::string(line)) + "\"";
+        header.elements.push_back({std::string(t[1]), *count, {}});
+        return "";
+    }
+    if (t[0] == "property") {
+        if (header.elements.empty()) return "the PLY header has a property before any element";
+        PlyProperty p;
+        const std::string problem = parsePlyProperty(t, line, p);
+        if (problem.empty()) header.elements.back().properties.push_back(p);
+        return problem;
+    }
+    return "the PLY header has an unknown line \"" + trimmed(std::string(line.substr(0, 80))) + "\"";
+}
+
+// The header's lines up to end_header; an error message, or empty.
+std::string parsePlyHeader(std::string_view bytes, PlyHeader& header) {
     std::size_t pos = 0;
     bool first = true, ended = false;
     while (!ended) {
-        if (pos >= bytes.size()) return "the PLY header has no end_header line (the file is truncated)";
-        const std::size_t end = bytes.find('\n', pos);  // a header line without one is cut off
+        const std::size_t end = pos < bytes.size() ? bytes.find('\n', pos) : std::string_view::npos;
         if (end == std::string_view::npos) return "the PLY header has no end_header line (the file is truncated)";
         std::string_view line = bytes.substr(pos, end - pos);
         pos = end + 1;
@@ -218,86 +271,60 @@ std::string checkPlyStructure(std::string_view bytes) {
         // finds end_header), so the header must be plain text.
         for (char c : line)
             if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
-                return "the PLY header has a control character (byte " +
-                       std::to_string(static_cast<unsigned char>(c)) + ")";
-        const std::vector<std::string_view> t = splitBlank(line);
+                return "the PLY header has a control character (byte " + std::to_string(static_cast<unsigned char>(c)) +
+                       ")";
         if (first) {
+            const std::vector<std::string_view> t = splitBlank(line);
             if (t.size() != 1 || t[0] != "ply") return "the first line is not \"ply\"";
             first = false;
             continue;
         }
-        if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;
-        if (t[0] == "end_header") {
-            if (t.size() != 1) return "the PLY header has text after end_header on its line";
-            ended = true;
-        } else if (t[0] == "format") {
-            if (t.size() < 2 || format != Format::None) return "the PLY header has a bad format line";
-            if (t[1] == "ascii") format = Format::Ascii;
-            else if (t[1] == "binary_little_endian") format = Format::Little;
-            else if (t[1] == "binary_big_endian") format = Format::Big;
-            else return "unknown PLY format \"" + std::string(t[1]) + "\"";
-        } else if (t[0] == "element") {
-            const std::optional<uint64_t> count = t.size() == 3 ? parseCount(t[2]) : std::nullopt;
-            if (!count) return "the PLY header has a bad element line \"" + trimmed(std::string(line)) + "\"";
-            elements.push_back({std::string(t[1]), *count, {}});
-        } else if (t[0] == "property") {
-            if (elements.empty()) return "the PLY header has a property before any element";
-            PlyProperty p;
-            bool itemSigned = false;
-            if (t.size() == 5 && t[1] == "list") {
-                p.list = true;
-                p.countSize = plyTypeSize(t[2], p.countSigned);
-                p.size = plyTypeSize(t[3], itemSigned);
-                if (p.countSize == 0 || p.size == 0 || p.countSize == 8 || t[2] == "float" || t[2] == "float32")
-                    return "the PLY header has a bad list property \"" + trimmed(std::string(line)) + "\"";
-            } else if (t.size() == 3) {
-                p.size = plyTypeSize(t[1], itemSigned);
-                if (p.size == 0) return "the PLY header has an unknown property type \"" + std::string(t[1]) + "\"";
-            } else {
-                return "the PLY header has a bad property line \"" + trimmed(std::string(line)) + "\"";
-            }
-            elements.back().properties.push_back(p);
-        } else {
-            return "the PLY header has an unknown line \"" + trimmed(std::string(line.substr(0, 80))) + "\"";
-        }
+        const std::string problem = parsePlyHeaderLine(line, header, ended);
+        if (!problem.empty()) return problem;
     }
-    if (format == Format::None) return "the PLY header has no format line";
+    if (header.format == PlyFormat::None) return "the PLY header has no format line";
+    header.bodyStart = std::min(pos, bytes.size());
+    return "";
+}
 
-    const std::string_view body = bytes.substr(std::min(pos, bytes.size()));
-    auto truncated = [](const PlyElement& e, uint64_t item) {
-        return "the file is truncated: it ends in " + e.name + " " + std::to_string(item) + " of the " +
-               std::to_string(e.count) + " the PLY header declares";
+std::string plyTruncated(const PlyElement& e, uint64_t item) {
+    return "the file is truncated: it ends in " + e.name + " " + std::to_string(item) + " of the " +
+           std::to_string(e.count) + " the PLY header declares";
+}
+
+// An ASCII body holds every value and list item the header declares.
+std::string checkPlyAsciiBody(std::string_view body, const std::vector<PlyElement>& elements) {
+    std::size_t i = 0;
+    auto next = [&]() -> std::optional<std::string_view> {
+        while (i < body.size() && isSpace(body[i])) ++i;
+        if (i >= body.size()) return std::nullopt;
+        const std::size_t start = i;
+        while (i < body.size() && !isSpace(body[i])) ++i;
+        return body.substr(start, i - start);
     };
-    if (format == Format::Ascii) {
-        std::size_t i = 0;
-        auto next = [&]() -> std::optional<std::string_view> {
-            while (i < body.size() && isSpace(body[i])) ++i;
-            if (i >= body.size()) return std::nullopt;
-            const std::size_t start = i;
-            while (i < body.size() && !isSpace(body[i])) ++i;
-            return body.substr(start, i - start);
-        };
-        for (const PlyElement& e : elements) {
-            if (e.properties.empty()) continue;
-            for (uint64_t item = 0; item < e.count; ++item)
-                for (const PlyProperty& p : e.properties) {
-                    const std::optional<std::string_view> token = next();
-                    if (!token) return truncated(e, item);
-                    if (!p.list) continue;
-                    const std::optional<uint64_t> n = parseCount(*token);
-                    if (!n)
-                        return e.name + " " + std::to_string(item) + " has the list length \"" + std::string(*token) +
-                               "\", which is not a count";
-                    for (uint64_t k = 0; k < *n; ++k)
-                        if (!next()) return truncated(e, item);
-                }
-        }
-        return "";
+    for (const PlyElement& e : elements) {
+        if (e.properties.empty()) continue;
+        for (uint64_t item = 0; item < e.count; ++item)
+            for (const PlyProperty& p : e.properties) {
+                const std::optional<std::string_view> token = next();
+                if (!token) return plyTruncated(e, item);
+                if (!p.list) continue;
+                const std::optional<uint64_t> n = parseCount(*token);
+                if (!n)
+                    return e.name + " " + std::to_string(item) + " has the list length \"" + std::string(*token) +
+                           "\", which is not a count";
+                for (uint64_t k = 0; k < *n; ++k)
+                    if (!next()) return plyTruncated(e, item);
+            }
     }
-    // Binary: fixed-size elements are skipped in one step, others item by item (each item
-    // takes at least one byte, so this is bounded by the file size).
+    return "";
+}
+
+// A binary body is long enough for what the header declares: fixed-size elements are skipped in
+// one step, others item by item (each item takes at least one byte, so this is bounded by the
+// file size).
+std::string checkPlyBinaryBody(std::string_view body, const std::vector<PlyElement>& elements, bool big) {
     std::size_t at = 0;
-    const bool big = format == Format::Big;
     auto readCount = [&](const PlyProperty& p, uint64_t& n) {
         uint64_t v = 0;
         for (int b = 0; b < p.countSize; ++b) {
@@ -316,25 +343,35 @@ std::string checkPlyStructure(std::string_view bytes) {
             uint64_t stride = 0;
             for (const PlyProperty& p : e.properties) stride += static_cast<uint64_t>(p.size);
             const uint64_t left = body.size() - at;
-            if (e.count > left / stride) return truncated(e, left / stride);
+            if (e.count > left / stride) return plyTruncated(e, left / stride);
             at += static_cast<std::size_t>(e.count * stride);
             continue;
         }
         for (uint64_t item = 0; item < e.count; ++item)
             for (const PlyProperty& p : e.properties) {
                 const std::size_t need = static_cast<std::size_t>(p.list ? p.countSize : p.size);
-                if (body.size() - at < need) return truncated(e, item);
+                if (body.size() - at < need) return plyTruncated(e, item);
                 if (!p.list) {
                     at += need;
                     continue;
                 }
                 uint64_t n = 0;
                 if (!readCount(p, n)) return e.name + " " + std::to_string(item) + " has a negative list length";
-                if (n > (body.size() - at) / static_cast<uint64_t>(p.size)) return truncated(e, item);
+                if (n > (body.size() - at) / static_cast<uint64_t>(p.size)) return plyTruncated(e, item);
                 at += static_cast<std::size_t>(n) * static_cast<std::size_t>(p.size);
             }
     }
     return "";
+}
+
+// An empty string if the PLY file's header is complete and its body holds every item the
+// header declares; else what is wrong.
+std::string checkPlyStructure(std::string_view bytes) {
+    PlyHeader header;
+    if (std::string problem = parsePlyHeader(bytes, header); !problem.empty()) return problem;
+    const std::string_view body = bytes.substr(header.bodyStart);
+    if (header.format == PlyFormat::Ascii) return checkPlyAsciiBody(body, header.elements);
+    return checkPlyBinaryBody(body, header.elements, header.format == PlyFormat::Big);
 }
 
 // An empty string unless the STL file is neither ASCII (text starting with "solid") nor a

@@ -1,6 +1,6 @@
 #pragma once
 // Mesh file formats other than OBJ: which reader a file goes to (extension, then content), and
-// the Assimp path for PLY, STL, glTF 2.0 and OFF. Used by Mesh::load (src/mesh.cpp).
+// the Assimp path for PLY, STL, glTF 2.0 and OFF. Used by Mesh::load (src/io/mesh_load.cpp).
 #include "sss/mesh.h"
 
 #include <filesystem>

@@ -169,134 +169,167 @@ ObjTextCheck checkObjText(std::string_view text) {
 
 }  // namespace
 
-Mesh Mesh::load(const std::filesystem::path& path) {
+namespace {
+
+// What an OBJ file holds, as Mesh::load needs it: one vertex per distinct (position, normal)
+// pair, or per position when the mesh gets smooth normals.
+struct ObjArrays {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<uint32_t> indices;
+    bool smooth = false;
+};
+
+// An OBJ file through tinyobjloader, with the checks Mesh::load promises. Triangulates itself:
+// tinyobjloader silently drops polygons with out-of-range indices (and keeps triangles with
+// them), so the raw faces are needed to report bad indices. Materials are not read.
+class ObjParser {
+public:
+    ObjParser(std::string file, std::string text) : m_file(std::move(file)), m_text(std::move(text)) {}
+
+    ObjArrays parse() {
+        checkText();
+        tinyobj::ObjReaderConfig config;
+        config.triangulate = false;
+        config.vertex_color = false;
+        if (!m_reader.ParseFromString(m_text, "", config))
+            fail("cannot parse OBJ: " + trimmed(m_reader.Error()));
+        const tinyobj::attrib_t& attrib = m_reader.GetAttrib();
+        m_vertexCount = attrib.vertices.size() / 3;
+        m_normalCount = attrib.normals.size() / 3;
+        for (std::size_t i = 0; i < m_vertexCount; ++i)
+            if (!isInRange(position(i)))
+                fail("vertex " + std::to_string(i + 1) + " has a coordinate " + str(position(i)) +
+                     " that is non-finite or outside the supported range [-1e18, 1e18]");
+        triangulate();
+        if (m_corners.empty()) fail("has no faces");
+        return weld();
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const { throw Error(ErrorKind::Parse, m_file + ": " + what); }
+
+    void checkText() {
+        const ObjTextCheck check = checkObjText(m_text);
+        if (!check.error.empty()) fail(check.error);
+        if (check.shortFaces > 0)
+            log(LogLevel::Warning, m_file + ": skipped " + std::to_string(check.shortFaces) +
+                                       (check.shortFaces == 1 ? " face" : " faces") +
+                                       " with fewer than 3 vertices (the first is face " +
+                                       std::to_string(check.firstShortFace) + ")");
+        blankVertexWeights(m_text);
+    }
+
+    glm::vec3 position(std::size_t i) const {
+        const auto& v = m_reader.GetAttrib().vertices;
+        return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+    }
+    glm::vec3 normal(std::size_t i) const {
+        const auto& n = m_reader.GetAttrib().normals;
+        return {n[3 * i], n[3 * i + 1], n[3 * i + 2]};
+    }
+
+    // Pass 1: every face checked and triangulated into (position, normal) index corners. Faces
+    // are numbered from 1 over all shapes, as users count them.
+    void triangulate() {
+        std::size_t faceNumber = 0;
+        for (const tinyobj::shape_t& shape : m_reader.GetShapes()) {
+            std::size_t offset = 0;
+            for (auto faceSize : shape.mesh.num_face_vertices) {
+                const tinyobj::index_t* face = shape.mesh.indices.data() + offset;
+                offset += faceSize;
+                checkFace(++faceNumber, face, faceSize);
+                if (faceSize >= 3) addTriangles(face, faceSize);  // shorter faces: reported by checkText
+            }
+        }
+    }
+
+    void checkFace(std::size_t number, const tinyobj::index_t* face, std::size_t n) {
+        for (std::size_t k = 0; k < n; ++k) {
+            const int v = face[k].vertex_index;
+            if (v < 0 || static_cast<std::size_t>(v) >= m_vertexCount)
+                fail("face " + std::to_string(number) + " references vertex " + std::to_string(v + 1) +
+                     ", but the file has " + std::to_string(m_vertexCount) + " vertices");
+            const int vn = face[k].normal_index;
+            if (vn >= 0 && static_cast<std::size_t>(vn) >= m_normalCount)
+                fail("face " + std::to_string(number) + " references normal " + std::to_string(vn + 1) +
+                     ", but the file has " + std::to_string(m_normalCount) + " normals");
+            if (vn < 0 || !isUsableNormal(normal(static_cast<std::size_t>(vn)))) m_smooth = true;
+        }
+    }
+
+    void addTriangles(const tinyobj::index_t* face, std::size_t n) {
+        auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
+            m_corners.insert(m_corners.end(), {face[a], face[b], face[c]});
+        };
+        if (n != 4) {
+            for (std::size_t k = 1; k + 1 < n; ++k) emit(0, k, k + 1);
+            return;
+        }
+        // A quad is split along its shorter diagonal (as tinyobjloader does) for better triangles.
+        auto p = [&](std::size_t k) { return position(static_cast<std::size_t>(face[k].vertex_index)); };
+        if (glm::length(p(2) - p(0)) <= glm::length(p(3) - p(1))) {
+            emit(0, 1, 2);
+            emit(0, 2, 3);
+        } else {
+            emit(0, 1, 3);
+            emit(1, 2, 3);
+        }
+    }
+
+    // Pass 2: one output vertex per distinct (position, normal) pair; per position when smoothing.
+    ObjArrays weld() const {
+        ObjArrays out;
+        out.smooth = m_smooth;
+        out.indices.reserve(m_corners.size());
+        std::unordered_map<uint64_t, uint32_t> remap;
+        remap.reserve(m_corners.size());
+        for (const tinyobj::index_t& c : m_corners) {
+            const uint64_t v = static_cast<uint32_t>(c.vertex_index);
+            const uint64_t key = m_smooth ? v : (v << 32) | static_cast<uint32_t>(c.normal_index);
+            auto [it, inserted] = remap.try_emplace(key, static_cast<uint32_t>(out.positions.size()));
+            if (inserted) {
+                out.positions.push_back(position(static_cast<std::size_t>(v)));
+                if (!m_smooth) out.normals.push_back(unitNormal(normal(static_cast<std::size_t>(c.normal_index))));
+            }
+            out.indices.push_back(it->second);
+        }
+        return out;
+    }
+
+    std::string m_file, m_text;
+    tinyobj::ObjReader m_reader;
+    std::size_t m_vertexCount = 0, m_normalCount = 0;
+    std::vector<tinyobj::index_t> m_corners;
+    bool m_smooth = false;
+};
+
+std::string readWholeFile(const std::filesystem::path& path) {
     const std::string file = path.string();
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec))
-        throw Error(ErrorKind::Io, file + ": file does not exist");
+    if (!std::filesystem::exists(path, ec)) throw Error(ErrorKind::Io, file + ": file does not exist");
     if (std::filesystem::is_directory(path, ec))
         throw Error(ErrorKind::Io, file + ": is a directory, not a mesh file");
-    if (!std::ifstream(path))
-        throw Error(ErrorKind::Io, file + ": cannot be opened for reading");
-
+    if (!std::ifstream(path)) throw Error(ErrorKind::Io, file + ": cannot be opened for reading");
     std::ifstream in(path, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) throw Error(ErrorKind::Io, file + ": read error");
+    return text;
+}
+
+}  // namespace
+
+Mesh Mesh::load(const std::filesystem::path& path) {
+    std::string text = readWholeFile(path);
     const detail::MeshFormat format = detail::chooseMeshFormat(path, text);
     if (format != detail::MeshFormat::Obj) return detail::loadMeshWithAssimp(path, text, format);
-
-    // OBJ, through tinyobjloader.
-    const ObjTextCheck check = checkObjText(text);
-    if (!check.error.empty()) throw Error(ErrorKind::Parse, file + ": " + check.error);
-    if (check.shortFaces > 0)
-        log(LogLevel::Warning, file + ": skipped " + std::to_string(check.shortFaces) +
-                                   (check.shortFaces == 1 ? " face" : " faces") +
-                                   " with fewer than 3 vertices (the first is face " +
-                                   std::to_string(check.firstShortFace) + ")");
-    blankVertexWeights(text);
-
-    // Triangulate ourselves: tinyobjloader silently drops polygons with out-of-range indices
-    // (and keeps triangles with them), so we need the raw faces to report bad indices.
-    // Materials are not used, so none are read.
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = false;
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(text, "", config))
-        throw Error(ErrorKind::Parse, file + ": cannot parse OBJ: " + trimmed(reader.Error()));
-
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
-    const std::size_t vertexCount = attrib.vertices.size() / 3;
-    const std::size_t normalCount = attrib.normals.size() / 3;
-    auto filePosition = [&](std::size_t i) {
-        return glm::vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-    };
-    auto fileNormal = [&](std::size_t i) {
-        return glm::vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
-    };
-    for (std::size_t i = 0; i < vertexCount; ++i)
-        if (!isInRange(filePosition(i)))
-            throw Error(ErrorKind::Parse, file + ": vertex " + std::to_string(i + 1) + " has a coordinate " +
-                                              str(filePosition(i)) +
-                                              " that is non-finite or outside the supported range [-1e18, 1e18]");
-
-    // Pass 1: validate every face and triangulate into (position, normal) index corners.
-    std::vector<tinyobj::index_t> corners;
-    bool smooth = false;
-    std::size_t faceNumber = 0;  // 1-based over all shapes, like the message users expect
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-        std::size_t offset = 0;
-        for (auto faceSize : shape.mesh.num_face_vertices) {
-            ++faceNumber;
-            const std::size_t n = faceSize;
-            const tinyobj::index_t* face = shape.mesh.indices.data() + offset;
-            offset += n;
-            for (std::size_t k = 0; k < n; ++k) {
-                int v = face[k].vertex_index;
-                if (v < 0 || static_cast<std::size_t>(v) >= vertexCount)
-                    throw Error(ErrorKind::Parse, file + ": face " + std::to_string(faceNumber) +
-                                                      " references vertex " + std::to_string(v + 1) +
-                                                      ", but the file has " +
-                                                      std::to_string(vertexCount) + " vertices");
-                int vn = face[k].normal_index;
-                if (vn < 0) {
-                    smooth = true;
-                } else if (static_cast<std::size_t>(vn) >= normalCount) {
-                    throw Error(ErrorKind::Parse, file + ": face " + std::to_string(faceNumber) +
-                                                      " references normal " + std::to_string(vn + 1) +
-                                                      ", but the file has " +
-                                                      std::to_string(normalCount) + " normals");
-                } else if (!isUsableNormal(fileNormal(static_cast<std::size_t>(vn)))) {
-                    smooth = true;
-                }
-            }
-            if (n < 3) continue;  // reported by checkObjText
-            auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
-                corners.push_back(face[a]);
-                corners.push_back(face[b]);
-                corners.push_back(face[c]);
-            };
-            if (n == 4) {
-                // Split along the shorter diagonal (as tinyobjloader does) for better triangles.
-                auto p = [&](std::size_t k) { return filePosition(static_cast<std::size_t>(face[k].vertex_index)); };
-                if (glm::length(p(2) - p(0)) <= glm::length(p(3) - p(1))) {
-                    emit(0, 1, 2);
-                    emit(0, 2, 3);
-                } else {
-                    emit(0, 1, 3);
-                    emit(1, 2, 3);
-                }
-            } else {
-                for (std::size_t k = 1; k + 1 < n; ++k) emit(0, k, k + 1);
-            }
-        }
-    }
-    if (corners.empty()) throw Error(ErrorKind::Parse, file + ": has no faces");
-
-    // Pass 2: one output vertex per distinct (position, normal) pair; per position when smoothing.
-    std::vector<glm::vec3> positions, normals;
-    std::vector<uint32_t> indices;
-    indices.reserve(corners.size());
-    std::unordered_map<uint64_t, uint32_t> remap;
-    remap.reserve(corners.size());
-    for (const tinyobj::index_t& c : corners) {
-        const uint64_t v = static_cast<uint32_t>(c.vertex_index);
-        const uint64_t key = smooth ? v : (v << 32) | static_cast<uint32_t>(c.normal_index);
-        auto [it, inserted] = remap.try_emplace(key, static_cast<uint32_t>(positions.size()));
-        if (inserted) {
-            positions.push_back(filePosition(static_cast<std::size_t>(v)));
-            if (!smooth) normals.push_back(unitNormal(fileNormal(static_cast<std::size_t>(c.normal_index))));
-        }
-        indices.push_back(it->second);
-    }
-
+    ObjArrays obj = ObjParser(path.string(), std::move(text)).parse();
     Mesh mesh;
-    mesh.m_bounds = boundsOf(positions);
-    if (smooth) normals = smoothNormals(positions, indices, mesh.m_bounds.center());
-    mesh.m_positions = std::move(positions);
-    mesh.m_normals = std::move(normals);
-    mesh.m_indices = std::move(indices);
-    mesh.m_name = file;
+    mesh.m_bounds = boundsOf(obj.positions);
+    if (obj.smooth) obj.normals = smoothNormals(obj.positions, obj.indices, mesh.m_bounds.center());
+    mesh.m_positions = std::move(obj.positions);
+    mesh.m_normals = std::move(obj.normals);
+    mesh.m_indices = std::move(obj.indices);
+    mesh.m_name = path.string();
     return mesh;
 }
 

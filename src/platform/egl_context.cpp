@@ -101,71 +101,138 @@ Devices enumerateDevices(const char* clientExtensions) {
 
 }  // namespace
 
-struct EglContext::Native {
+namespace {
+
+// The EGL objects behind one context.
+struct EglHandles {
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
     EGLSurface surface = EGL_NO_SURFACE;
 };
 
+// The platforms to try. Surfaceless, device, default display + pbuffer — except that when a
+// hardware EGL device exists (an NVIDIA GPU, say) the device goes first: Mesa's surfaceless
+// platform would pick llvmpipe on such a machine, and NVIDIA's own surfaceless platform its GPU,
+// so only the device list tells hardware and software apart.
+std::vector<EglPlatform> platformOrder(EglPlatform asked, const Devices& devices) {
+    if (asked != EglPlatform::Auto) return {asked};
+    if (!devices.hardware.empty()) return {EglPlatform::Device, EglPlatform::Surfaceless, EglPlatform::DefaultPbuffer};
+    return {EglPlatform::Surfaceless, EglPlatform::Device, EglPlatform::DefaultPbuffer};
+}
+
+// What EGL needs to look for displays, found once.
+struct DisplaySearch {
+    const char* clientExtensions;
+    PFNEGLGETPLATFORMDISPLAYEXTPROC getPlatformDisplay;
+    Devices devices;
+    bool preferSoftware;
+};
+
+// The display of one platform (EGL_NO_DISPLAY with the reason in `failure` if there is none).
+DisplayCandidate findDisplay(EglPlatform platform, const DisplaySearch& search, std::string& failure) {
+    DisplayCandidate candidate{platform, EGL_NO_DISPLAY, ""};
+    auto extension = [&](const char* name) {
+        if (search.getPlatformDisplay && hasExtension(search.clientExtensions, name)) return true;
+        failure = candidate.description + ": extension not available";
+        return false;
+    };
+    switch (platform) {
+        case EglPlatform::Surfaceless:
+            candidate.description = "EGL surfaceless (EGL_MESA_platform_surfaceless)";
+            if (!extension("EGL_MESA_platform_surfaceless")) return candidate;
+            candidate.display = search.getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+            break;
+        case EglPlatform::Device: {
+            candidate.description = "EGL device (EGL_EXT_platform_device)";
+            if (!extension("EGL_EXT_platform_device")) return candidate;
+            const Devices& d = search.devices;
+            const auto& first = search.preferSoftware ? d.software : d.hardware;
+            const auto& second = search.preferSoftware ? d.hardware : d.software;
+            const auto& list = first.empty() ? second : first;
+            if (list.empty()) {
+                failure = candidate.description + ": no EGL devices found";
+                return candidate;
+            }
+            candidate.description = std::string("EGL device (") + (&list == &d.software ? "software" : "hardware") + ")";
+            candidate.display = search.getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, list.front(), nullptr);
+            break;
+        }
+        case EglPlatform::DefaultPbuffer:
+        case EglPlatform::Auto:
+            candidate.description = "EGL default display + pbuffer";
+            candidate.display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+            break;
+    }
+    if (candidate.display == EGL_NO_DISPLAY)
+        failure = candidate.description + ": no display (" + eglErrorName(eglGetError()) + ")";
+    return candidate;
+}
+
+// An RGBA8 OpenGL config, with pbuffer support where a surface is needed.
+std::optional<EGLConfig> chooseConfig(EGLDisplay display, bool needsPbuffer) {
+    for (EGLint surfaceType : {EGL_PBUFFER_BIT, 0}) {
+        if (needsPbuffer && surfaceType == 0) break;
+        const EGLint attribs[] = {EGL_SURFACE_TYPE, surfaceType, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_RED_SIZE, 8,
+                                  EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8, EGL_NONE};
+        EGLConfig config = nullptr;
+        EGLint count = 0;
+        if (eglChooseConfig(display, attribs, &config, 1, &count) && count > 0) return config;
+    }
+    return std::nullopt;
+}
+
+// A current OpenGL 4.5 core context on an initialized display, or nothing with the reason added
+// to `failures` (and everything made so far released).
+std::optional<EglHandles> makeCurrentContext(const DisplayCandidate& candidate, bool debug,
+                                             std::vector<std::string>& failures) {
+    EglHandles handles;
+    EglHandles* native = &handles;
+    native->display = candidate.display;
+    auto fail = [&](const std::string& what) -> std::optional<EglHandles> {
+        failures.push_back(candidate.description + ": " + what + " (" + eglErrorName(eglGetError()) + ")");
+        if (native->surface != EGL_NO_SURFACE) eglDestroySurface(native->display, native->surface);
+        if (native->context != EGL_NO_CONTEXT) eglDestroyContext(native->display, native->context);
+        releaseDisplay(native->display);
+        return std::nullopt;
+    };
+    if (!eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(EGL_OPENGL_API) failed");
+    const bool needsPbuffer = candidate.platform == EglPlatform::DefaultPbuffer ||
+                              !hasExtension(eglQueryString(native->display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context");
+    const std::optional<EGLConfig> config = chooseConfig(native->display, needsPbuffer);
+    if (!config) return fail("no EGL config with OpenGL and RGBA8");
+    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
+    native->context = eglCreateContext(native->display, *config, EGL_NO_CONTEXT, contextAttribs);
+    if (native->context == EGL_NO_CONTEXT) return fail("no OpenGL 4.5 core context");
+    if (needsPbuffer) {
+        const EGLint pbufferAttribs[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
+        native->surface = eglCreatePbufferSurface(native->display, *config, pbufferAttribs);
+        if (native->surface == EGL_NO_SURFACE) return fail("eglCreatePbufferSurface failed");
+    }
+    if (!eglMakeCurrent(native->display, native->surface, native->surface, native->context))
+        return fail("eglMakeCurrent failed");
+    return handles;
+}
+
+}  // namespace
+
+struct EglContext::Native : EglHandles {};
+
 std::unique_ptr<EglContext> EglContext::create(const EglContextOptions& options) {
     const bool debug = options.debug || envFlag("SSS_GL_DEBUG");
-    const bool preferSoftware = options.preferSoftware || envFlag("SSS_EGL_SOFTWARE");
-    const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    auto getPlatformDisplay =
+    DisplaySearch search{eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), nullptr, {},
+                         options.preferSoftware || envFlag("SSS_EGL_SOFTWARE")};
+    search.getPlatformDisplay =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    search.devices = enumerateDevices(search.clientExtensions);
 
     std::vector<std::string> failures;
-    const Devices devices = enumerateDevices(clientExtensions);
-
-    // Order: surfaceless, device, default display + pbuffer — except that when a hardware EGL
-    // device exists (an NVIDIA GPU, say) the device goes first: Mesa's surfaceless platform
-    // would pick llvmpipe on such a machine, and NVIDIA's own surfaceless platform its GPU, so
-    // only the device list tells hardware and software apart.
-    std::vector<EglPlatform> order;
-    if (options.platform != EglPlatform::Auto)
-        order = {options.platform};
-    else if (!devices.hardware.empty())
-        order = {EglPlatform::Device, EglPlatform::Surfaceless, EglPlatform::DefaultPbuffer};
-    else
-        order = {EglPlatform::Surfaceless, EglPlatform::Device, EglPlatform::DefaultPbuffer};
-
-    for (EglPlatform platform : order) {
-        DisplayCandidate candidate{platform, EGL_NO_DISPLAY, ""};
-        switch (platform) {
-            case EglPlatform::Surfaceless:
-                candidate.description = "EGL surfaceless (EGL_MESA_platform_surfaceless)";
-                if (!getPlatformDisplay || !hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
-                    failures.push_back(candidate.description + ": extension not available");
-                    continue;
-                }
-                candidate.display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-                break;
-            case EglPlatform::Device: {
-                candidate.description = "EGL device (EGL_EXT_platform_device)";
-                if (!getPlatformDisplay || !hasExtension(clientExtensions, "EGL_EXT_platform_device")) {
-                    failures.push_back(candidate.description + ": extension not available");
-                    continue;
-                }
-                const auto& first = preferSoftware ? devices.software : devices.hardware;
-                const auto& second = preferSoftware ? devices.hardware : devices.software;
-                const auto& list = first.empty() ? second : first;
-                if (list.empty()) {
-                    failures.push_back(candidate.description + ": no EGL devices found");
-                    continue;
-                }
-                const bool software = (&list == &devices.software);
-                candidate.description = std::string("EGL device (") + (software ? "software" : "hardware") + ")";
-                candidate.display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, list.front(), nullptr);
-                break;
-            }
-            case EglPlatform::DefaultPbuffer:
-            case EglPlatform::Auto:
-                candidate.description = "EGL default display + pbuffer";
-                candidate.display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
-                break;
-        }
+    for (EglPlatform platform : platformOrder(options.platform, search.devices)) {
+        std::string failure;
+        const DisplayCandidate candidate = findDisplay(platform, search, failure);
         if (candidate.display == EGL_NO_DISPLAY) {
-            failures.push_back(candidate.description + ": no display (" + eglErrorName(eglGetError()) + ")");
+            failures.push_back(failure);
             continue;
         }
         EGLint major = 0, minor = 0;
@@ -174,59 +241,12 @@ std::unique_ptr<EglContext> EglContext::create(const EglContextOptions& options)
             continue;
         }
         retainDisplay(candidate.display);
-        auto native = std::make_unique<Native>();
-        native->display = candidate.display;
-        auto fail = [&](const std::string& what) {
-            failures.push_back(candidate.description + ": " + what + " (" + eglErrorName(eglGetError()) + ")");
-            if (native->surface != EGL_NO_SURFACE) eglDestroySurface(native->display, native->surface);
-            if (native->context != EGL_NO_CONTEXT) eglDestroyContext(native->display, native->context);
-            releaseDisplay(native->display);
-        };
-        if (!eglBindAPI(EGL_OPENGL_API)) {
-            fail("eglBindAPI(EGL_OPENGL_API) failed");
-            continue;
-        }
-        const char* displayExtensions = eglQueryString(native->display, EGL_EXTENSIONS);
-        const bool needsPbuffer = platform == EglPlatform::DefaultPbuffer ||
-                                  !hasExtension(displayExtensions, "EGL_KHR_surfaceless_context");
-        EGLConfig config = nullptr;
-        EGLint configCount = 0;
-        for (EGLint surfaceType : {EGL_PBUFFER_BIT, 0}) {
-            if (needsPbuffer && surfaceType == 0) break;
-            const EGLint configAttribs[] = {EGL_SURFACE_TYPE, surfaceType, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                            EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
-                                            EGL_NONE};
-            if (eglChooseConfig(native->display, configAttribs, &config, 1, &configCount) && configCount > 0) break;
-        }
-        if (configCount <= 0) {
-            fail("no EGL config with OpenGL and RGBA8");
-            continue;
-        }
-        const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                         EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                         EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
-        native->context = eglCreateContext(native->display, config, EGL_NO_CONTEXT, contextAttribs);
-        if (native->context == EGL_NO_CONTEXT) {
-            fail("no OpenGL 4.5 core context");
-            continue;
-        }
-        if (needsPbuffer) {
-            const EGLint pbufferAttribs[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
-            native->surface = eglCreatePbufferSurface(native->display, config, pbufferAttribs);
-            if (native->surface == EGL_NO_SURFACE) {
-                fail("eglCreatePbufferSurface failed");
-                continue;
-            }
-        }
-        if (!eglMakeCurrent(native->display, native->surface, native->surface, native->context)) {
-            fail("eglMakeCurrent failed");
-            continue;
-        }
+        const std::optional<EglHandles> handles = makeCurrentContext(candidate, debug, failures);
+        if (!handles) continue;
         std::unique_ptr<EglContext> result(new EglContext());
-        result->m_native = std::move(native);
+        result->m_native = std::make_unique<Native>(Native{*handles});
         for (const std::string& f : failures) log(LogLevel::Info, "EglContext: skipped " + f);
-        result->initializeGl(eglGetProcAddress, debug,
-                             candidate.description);
+        result->initializeGl(eglGetProcAddress, debug, candidate.description);
         return result;
     }
 

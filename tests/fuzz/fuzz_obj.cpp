@@ -143,7 +143,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
         return 0;  // any other exception escapes: a bug
     }
     // Content with a PLY, GLB or OFF signature goes to Assimp whatever the extension
-    // (src/mesh_formats.h); the OBJ reference check does not apply to it.
+    // (src/io/mesh_formats.h); the OBJ reference check does not apply to it.
     const bool obj = !sss::detail::sniffMeshFormat(text, false).has_value();
     checkMesh(*mesh, obj ? referenceVertices(text) : std::nullopt, text);
     return 0;

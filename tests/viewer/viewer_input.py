@@ -231,7 +231,7 @@ def find_point(state, value, opacity, tolerance):
 
 
 def camera_basis(camera):
-    """Camera.right() and Camera.up() (src/camera.cpp) from yaw and pitch."""
+    """Camera.right() and Camera.up() (src/core/camera.cpp) from yaw and pitch."""
     yaw, pitch = math.radians(camera["yaw"]), math.radians(camera["pitch"])
     towards_eye = (math.sin(yaw) * math.cos(pitch), math.sin(pitch), math.cos(yaw) * math.cos(pitch))
     forward = tuple(-c for c in towards_eye)
