@@ -29,7 +29,8 @@
 
 namespace sss {
 
-/// A rectangle of one of the host's framebuffers.
+/// A rectangle of one of the host's framebuffers. A host that renders into its own colour and
+/// depth textures attaches them to a framebuffer object (glNamedFramebufferTexture) and names it.
 struct HostFramebuffer {
     std::uint32_t framebuffer = 0;  ///< GL name; 0 is the default framebuffer (the window)
     int x = 0;                      ///< lower-left corner, in pixels

@@ -1,5 +1,7 @@
 #include "io/mesh_formats.h"
 
+#include "core/mesh_checks.h"
+
 #include "util/format.h"
 
 #include "sss/error.h"
@@ -77,11 +79,6 @@ const char* assimpHint(MeshFormat format) {
 bool isInRange(glm::dvec3 v) {
     const auto ok = [](double c) { return std::abs(c) <= Mesh::kMaxCoordinate; };  // false for NaN
     return ok(v.x) && ok(v.y) && ok(v.z);
-}
-
-bool isUsableNormal(glm::vec3 n) {
-    const float largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
-    return std::isfinite(largest) && largest > 0.0f;
 }
 
 std::string trimmed(std::string s) {

@@ -20,4 +20,4 @@ foreach(step
     message(FATAL_ERROR "step failed (${rc}): ${step}\n${out}\n${err}")
   endif()
 endforeach()
-message("the consumer found libsss with find_package(sss), linked and ran: ${out}")
+message("the consumer project configured, built and ran: ${out}")
