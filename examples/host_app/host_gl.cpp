@@ -102,7 +102,6 @@ Gl Gl::load() {
     host::load(gl.BindFramebuffer, "glBindFramebuffer");
     host::load(gl.BlitNamedFramebuffer, "glBlitNamedFramebuffer");
     host::load(gl.Finish, "glFinish");
-    host::load(gl.DepthFunc, "glDepthFunc");
     return gl;
 }
 

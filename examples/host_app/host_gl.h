@@ -50,7 +50,6 @@ struct Gl {
     PFNGLBINDFRAMEBUFFERPROC BindFramebuffer;
     PFNGLBLITNAMEDFRAMEBUFFERPROC BlitNamedFramebuffer;
     PFNGLFINISHPROC Finish;
-    PFNGLDEPTHFUNCPROC DepthFunc;
 
     /// Loads every entry point through glfwGetProcAddress; throws std::runtime_error naming a
     /// missing one.

@@ -1,6 +1,9 @@
 #include "sss/display.h"
 
+#include "frame/display_uniforms.h"
+
 #include "util/format.h"
+#include "gl/fullscreen.h"
 #include "gl/framebuffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
@@ -99,20 +102,20 @@ void DisplayEncoder::encode(const RenderTarget& linear, const DisplayTransform& 
     }
     const gl::Program& p = r.program;
     p.set("linearColor", 0);
-    p.set("exposureScale", std::exp2(t.exposure));
-    p.set("toneMap", toneMapCode(t.toneMap));
-    p.set("srgb", t.srgb ? 1 : 0);
+    detail::setDisplayUniforms(p, t);
     glBindTextureUnit(0, linear.colorTextureId());
     r.framebuffer.bind();
     glViewport(0, 0, size.x, size.y);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
-    p.use();
-    r.emptyVertexArray.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    glUseProgram(0);
+    gl::drawFullscreenTriangle(p, r.emptyVertexArray);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void detail::setDisplayUniforms(const gl::Program& program, const DisplayTransform& t) {
+    program.set("exposureScale", std::exp2(t.exposure));
+    program.set("toneMap", toneMapCode(t.toneMap));
+    program.set("srgb", t.srgb ? 1 : 0);
 }
 
 std::uint32_t DisplayEncoder::framebufferId() const { return m_impl->framebuffer.id(); }

@@ -1,5 +1,6 @@
 #include "sss/frame_accumulator.h"
 
+#include "gl/fullscreen.h"
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gl/vertex_array.h"
@@ -62,11 +63,7 @@ void FrameAccumulator::add(const RenderTarget& frame) {
     glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
     r.program.set("frameColor", 0);
     glBindTextureUnit(0, frame.colorTextureId());
-    r.program.use();
-    r.emptyVertexArray.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    glUseProgram(0);
+    gl::drawFullscreenTriangle(r.program, r.emptyVertexArray);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

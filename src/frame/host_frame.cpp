@@ -2,14 +2,15 @@
 // colour and depth back into the host's framebuffer.
 #include "sss/host_frame.h"
 
+#include "frame/display_uniforms.h"
 #include "gl/framebuffer.h"
+#include "gl/fullscreen.h"
 #include "gl/gl.h"
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "gl/vertex_array.h"
 #include "sss/error.h"
 
-#include <cmath>
 #include <optional>
 #include <string>
 
@@ -50,14 +51,6 @@ void checkFramebuffer(const HostFramebuffer& f) {
         throw Error(ErrorKind::InvalidArgument,
                     "HostFramebuffer::framebuffer: " + std::to_string(f.framebuffer) + " is not complete");
     if (!f.linear) validate(f.display);
-}
-
-void drawFullscreen(const gl::Program& program, const gl::VertexArray& emptyVertexArray) {
-    program.use();
-    emptyVertexArray.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    glUseProgram(0);
 }
 
 }  // namespace
@@ -102,7 +95,7 @@ void HostTarget::Impl::copyDepthIn(const HostFramebuffer& f) {
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     depthIn.set("hostDepth", 0);
     hostDepth.bind(0);
-    drawFullscreen(depthIn, emptyVertexArray);
+    gl::drawFullscreenTriangle(depthIn, emptyVertexArray);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthFunc(GL_LESS);
     glDisable(GL_DEPTH_TEST);
@@ -120,12 +113,10 @@ void HostTarget::Impl::presentInto(const HostFramebuffer& f) const {
     present.set("depth", 1);
     present.set("origin", glm::ivec2(f.x, f.y));
     present.set("encode", f.linear ? 0 : 1);
-    present.set("exposureScale", std::exp2(f.display.exposure));
-    present.set("toneMap", f.display.toneMap == ToneMap::Filmic ? 1 : 0);
-    present.set("srgb", f.display.srgb ? 1 : 0);
+    detail::setDisplayUniforms(present, f.display);
     glBindTextureUnit(0, target->colorTextureId());
     glBindTextureUnit(1, target->depthTextureId());
-    drawFullscreen(present, emptyVertexArray);
+    gl::drawFullscreenTriangle(present, emptyVertexArray);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
     glDisable(GL_DEPTH_TEST);

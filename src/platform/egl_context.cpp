@@ -186,31 +186,30 @@ std::optional<EGLConfig> chooseConfig(EGLDisplay display, bool needsPbuffer) {
 std::optional<EglHandles> makeCurrentContext(const DisplayCandidate& candidate, bool debug,
                                              std::vector<std::string>& failures) {
     EglHandles handles;
-    EglHandles* native = &handles;
-    native->display = candidate.display;
+    handles.display = candidate.display;
     auto fail = [&](const std::string& what) -> std::optional<EglHandles> {
         failures.push_back(candidate.description + ": " + what + " (" + eglErrorName(eglGetError()) + ")");
-        if (native->surface != EGL_NO_SURFACE) eglDestroySurface(native->display, native->surface);
-        if (native->context != EGL_NO_CONTEXT) eglDestroyContext(native->display, native->context);
-        releaseDisplay(native->display);
+        if (handles.surface != EGL_NO_SURFACE) eglDestroySurface(handles.display, handles.surface);
+        if (handles.context != EGL_NO_CONTEXT) eglDestroyContext(handles.display, handles.context);
+        releaseDisplay(handles.display);
         return std::nullopt;
     };
     if (!eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(EGL_OPENGL_API) failed");
     const bool needsPbuffer = candidate.platform == EglPlatform::DefaultPbuffer ||
-                              !hasExtension(eglQueryString(native->display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context");
-    const std::optional<EGLConfig> config = chooseConfig(native->display, needsPbuffer);
+                              !hasExtension(eglQueryString(handles.display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context");
+    const std::optional<EGLConfig> config = chooseConfig(handles.display, needsPbuffer);
     if (!config) return fail("no EGL config with OpenGL and RGBA8");
     const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                      EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
-    native->context = eglCreateContext(native->display, *config, EGL_NO_CONTEXT, contextAttribs);
-    if (native->context == EGL_NO_CONTEXT) return fail("no OpenGL 4.5 core context");
+    handles.context = eglCreateContext(handles.display, *config, EGL_NO_CONTEXT, contextAttribs);
+    if (handles.context == EGL_NO_CONTEXT) return fail("no OpenGL 4.5 core context");
     if (needsPbuffer) {
         const EGLint pbufferAttribs[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
-        native->surface = eglCreatePbufferSurface(native->display, *config, pbufferAttribs);
-        if (native->surface == EGL_NO_SURFACE) return fail("eglCreatePbufferSurface failed");
+        handles.surface = eglCreatePbufferSurface(handles.display, *config, pbufferAttribs);
+        if (handles.surface == EGL_NO_SURFACE) return fail("eglCreatePbufferSurface failed");
     }
-    if (!eglMakeCurrent(native->display, native->surface, native->surface, native->context))
+    if (!eglMakeCurrent(handles.display, handles.surface, handles.surface, handles.context))
         return fail("eglMakeCurrent failed");
     return handles;
 }
