@@ -15,6 +15,9 @@
 #   --tests         also the test suite under ctest (the GL tests then run on this GPU; the
 #                   golden images still use llvmpipe, see tests/README or the H100 report)
 #   --data-dir DIR  data sets (default: $SSS_DATA_DIR, else ../shared/data)
+#   --bundle FILE   use the programs, libraries and data packed by benchmarks/gpu-bundle.sh
+#                   (for a machine with no compilers or packages); NVIDIA's EGL vendor file under
+#                   /usr/local/nvidia is then used when the system has none
 # Environment: SSS_BUILD_DIR (default build), as scripts/test.sh.
 # Writes <table>-<name>.{json,md} per table (baseline, 5.3, 5.4, 5.5), and with --sweeps
 # error-sweep-{mesh,volume}-<name>.* and accuracy-volume-<name>.*; with --tests
@@ -22,22 +25,36 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-expect=NVIDIA name="" out=benchmarks/results build=0 sweeps=0 tests=0 data=()
+expect=NVIDIA name="" out=benchmarks/results build=0 sweeps=0 tests=0 data=() bundle=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --expect) expect=${2:?--expect needs TEXT}; shift 2 ;;
     --name) name=${2:?--name needs NAME}; shift 2 ;;
     --out) out=${2:?--out needs DIR}; shift 2 ;;
     --data-dir) data=(--data-dir "${2:?--data-dir needs DIR}"); shift 2 ;;
+    --bundle) bundle=${2:?--bundle needs FILE}; shift 2 ;;
     --build) build=1; shift ;;
     --sweeps) sweeps=1; shift ;;
     --tests) tests=1; shift ;;
-    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run-gpu.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 
 builddir=${SSS_BUILD_DIR:-build}
+if [[ -n $bundle ]]; then
+  builddir=$(mktemp -d)
+  tar -C "$builddir" -xzf "$bundle"
+  export LD_LIBRARY_PATH="$builddir/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  data=(--data-dir "$builddir/data")
+  for d in /usr/local/nvidia/lib64 /usr/local/nvidia/lib; do
+    [[ -d $d ]] && export LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$d"
+  done
+  vendor_file=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+  if [[ -z ${__EGL_VENDOR_LIBRARY_FILENAMES:-} && ! -d /usr/share/glvnd/egl_vendor.d && -f $vendor_file ]]; then
+    export __EGL_VENDOR_LIBRARY_FILENAMES=$vendor_file
+  fi
+fi
 bench=$builddir/bin/sss-bench
 if [[ $build -eq 1 ]]; then
   scripts/install-deps.sh
