@@ -708,7 +708,7 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                 const bool exactRay = settings == "exact ray";
                 const bool scaled = settings.rfind("LV ", 0) == 0;
                 sss::VolumeRenderOptions o =
-                    settings == "thesis" ? thesisVolumeOptions(sss::VolumeShading::Scattering) : sss::VolumeRenderOptions{};
+                    settings == "thesis" ? thesisVolumeOptions(bench.options(), sss::VolumeShading::Scattering) : sss::VolumeRenderOptions{};
                 o.shading = sss::VolumeShading::Scattering;
                 o.model = model;
                 o.anisotropy = kG;

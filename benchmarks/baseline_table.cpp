@@ -141,7 +141,7 @@ void runVolume(BenchmarkContext& bench, const VolumeCase& c) {
                               ModeCase{sss::VolumeShading::Gradient, "gradient", c.thesisGradientMs}}) {
         // The thesis's ray casting (step 1 voxel, post-classification), library defaults
         // otherwise (early termination 0.99, jitter), so the rows compare with the thesis's.
-        const sss::VolumeRenderOptions options = thesisVolumeOptions(m.shading);
+        const sss::VolumeRenderOptions options = thesisVolumeOptions(bench.options(), m.shading);
         renderer.setOptions(options);
 
         Record r;

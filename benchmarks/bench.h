@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -40,6 +41,8 @@ struct Options {
     std::optional<std::filesystem::path> plotPath;  // default: the JSON path with .png
     std::filesystem::path referenceCache;  // --reference-cache: CPU references kept as EXR (empty: none)
     std::string scene;  // --scene: time this scene file instead of the tables
+    sss::RayCaster rayCaster = sss::RayCaster::Auto;  // --ray-caster: the volume rows' ray caster
+    bool passes = false;  // --passes: GPU timestamps per pass; records with pass, gpu_ms, cpu_ms
 };
 
 struct Stats {
@@ -118,7 +121,12 @@ public:
     /// reads the image back once and throws BenchFailure if it is empty, has non-finite
     /// pixels, or the debug context saw GL errors. `id` names the case in messages and in the
     /// file name of the saved image (--images), e.g. "baseline-bunny-blinn-phong".
-    Measurement measure(const std::function<void(sss::RenderTarget&)>& render, const std::string& id);
+    /// `size`, if given, replaces the viewport for this measurement (the scaling runs).
+    /// `timedRuns`, if given, is called with true before the first timed frame and with false
+    /// after the last (the per-pass records take the renderer's statistics there).
+    Measurement measure(const std::function<void(sss::RenderTarget&)>& render, const std::string& id,
+                        std::optional<glm::ivec2> size = std::nullopt,
+                        const std::function<void(bool starting)>& timedRuns = {});
 
     void addRecord(Record record);
     void addSkipped(Skipped skipped);
@@ -144,15 +152,35 @@ sss::DirectionalLight keyLight(const sss::Camera& camera);
 /// view-independent pass reruns) at almost the same image.
 sss::DirectionalLight nudged(const sss::DirectionalLight& light);
 /// The thesis's ray casting, which its tables measured: step 1 voxel, post-classification (the
-/// library's defaults since are step 0.5 with pre-integration).
-sss::VolumeRenderOptions thesisVolumeOptions(sss::VolumeShading shading);
+/// library's defaults since are step 0.5 with pre-integration); with the run's --ray-caster and
+/// --passes.
+sss::VolumeRenderOptions thesisVolumeOptions(const Options& run, sss::VolumeShading shading);
+
+/// --passes: what one renderer's passes cost over the timed frames of one measurement.
+class PassRecorder {
+public:
+    explicit PassRecorder(const sss::RenderStats& stats) : m_stats(stats) {}
+    /// For BenchmarkContext::measure's timedRuns.
+    std::function<void(bool)> hook();
+    /// One record per pass that ran: `row`'s table, model and size, mode "pass", and pass,
+    /// frame, gpu_ms, cpu_ms (means over the timed frames; gpu_ms null without timestamps).
+    void addRecords(BenchmarkContext& bench, const Record& row, const std::string& frame) const;
+
+private:
+    const sss::RenderStats& m_stats;
+    std::map<std::string, sss::PassStats, std::less<>> m_before, m_after;
+};
 
 /// Times `renderer` (a mesh or volume renderer) in two ways: "change" frames alternate `key` and
-/// its nudged twin, so every view-independent pass reruns; "fixed" frames change nothing.
+/// its nudged twin, so every view-independent pass reruns; "fixed" frames change nothing. With
+/// `passes` (--passes), the renderer's per-pass costs of each go to passes->change / ->fixed.
+struct ChangeAndFixedPasses {
+    PassRecorder change, fixed;
+};
 template <typename Renderer>
 std::pair<Measurement, Measurement> measureChangeAndFixed(BenchmarkContext& bench, Renderer& renderer,
                                                           const sss::Camera& camera, const sss::DirectionalLight& key,
-                                                          const std::string& id) {
+                                                          const std::string& id, ChangeAndFixedPasses* passes = nullptr) {
     const sss::DirectionalLight other = nudged(key);
     bool useOther = false;
     Measurement change = bench.measure(
@@ -161,9 +189,10 @@ std::pair<Measurement, Measurement> measureChangeAndFixed(BenchmarkContext& benc
             renderer.setLights({useOther ? other : key});
             renderer.render(camera, t);
         },
-        id + "-change");
+        id + "-change", std::nullopt, passes ? passes->change.hook() : std::function<void(bool)>{});
     renderer.setLights({key});
-    Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed");
+    Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed",
+                                      std::nullopt, passes ? passes->fixed.hook() : std::function<void(bool)>{});
     return {std::move(change), std::move(fixed)};
 }
 
@@ -178,6 +207,11 @@ void runTable53(BenchmarkContext& bench);
 /// Thesis Table 5.4: volume scattering: change (light volume + ray cast), fixed, emission-
 /// absorption, EA + gradient, fixed + gradient.
 void runTable54(BenchmarkContext& bench);
+/// Fragment against compute ray casting, side by side, per volume and mode.
+void runCastersTable(BenchmarkContext& bench);
+/// Time against viewport size and step: EA and fixed scattering on the bonsai, the mesh change
+/// and fixed frames on the bunny, with the intercept and slope of a line through each series.
+void runScalingTable(BenchmarkContext& bench);
 /// Thesis Table 5.5: hybrid scenes (volume + mesh in a Cornell box), whole frame and parts.
 void runTable55(BenchmarkContext& bench);
 namespace sss { struct SceneDescription; }

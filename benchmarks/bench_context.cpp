@@ -77,8 +77,11 @@ std::optional<std::filesystem::path> BenchmarkContext::findData(const std::strin
     return std::nullopt;
 }
 
-Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget&)>& render, const std::string& id) {
-    sss::RenderTarget& target = *m_target;
+Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget&)>& render, const std::string& id,
+                                      std::optional<glm::ivec2> size, const std::function<void(bool)>& timedRuns) {
+    std::optional<sss::RenderTarget> resized;
+    if (size && *size != glm::ivec2(m_target->width(), m_target->height())) resized.emplace(size->x, size->y);
+    sss::RenderTarget& target = resized ? *resized : *m_target;
     // Warm-up frames are not timed: the first one compiles shaders and uploads lookup tables.
     for (int i = 0; i < m_options.warmup; ++i) {
         target.clear(kBackground);
@@ -88,12 +91,14 @@ Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget
 
     Measurement m;
     m.samplesMs.reserve(static_cast<std::size_t>(m_options.runs));
+    if (timedRuns) timedRuns(true);
     for (int i = 0; i < m_options.runs; ++i) {
         m_timer->begin();
         target.clear(kBackground);
         render(target);
         m.samplesMs.push_back(m_timer->endMilliseconds());
     }
+    if (timedRuns) timedRuns(false);
     m.stats = summarize(m.samplesMs);
 
     // Verify once, after timing, so the read-back is not billed to any frame.
@@ -142,10 +147,42 @@ sss::DirectionalLight nudged(const sss::DirectionalLight& light) {
     return other;
 }
 
-sss::VolumeRenderOptions thesisVolumeOptions(sss::VolumeShading shading) {
+sss::VolumeRenderOptions thesisVolumeOptions(const Options& run, sss::VolumeShading shading) {
     sss::VolumeRenderOptions o;
     o.shading = shading;
     o.stepSize = 1.0f;
     o.preintegration = false;
+    o.rayCaster = run.rayCaster;
+    o.gpuPassTimes = run.passes;
     return o;
+}
+
+std::function<void(bool)> PassRecorder::hook() {
+    return [this](bool starting) { (starting ? m_before : m_after) = m_stats.passes(); };
+}
+
+void PassRecorder::addRecords(BenchmarkContext& bench, const Record& row, const std::string& frame) const {
+    for (const auto& [pass, after] : m_after) {
+        const auto it = m_before.find(pass);
+        const sss::PassStats before = it == m_before.end() ? sss::PassStats{} : it->second;
+        const auto runs = after.runs - before.runs;
+        if (runs == 0) continue;  // the pass did not run in these frames (its inputs were cached)
+        const auto gpuRuns = after.gpuRuns - before.gpuRuns;
+        const double cpuMs = (after.totalMs - before.totalMs) / static_cast<double>(runs);
+        const bool timed = gpuRuns > 0;
+        const double gpuMs = timed ? (after.totalGpuMs - before.totalGpuMs) / static_cast<double>(gpuRuns) : 0.0;
+        Record r;
+        r.table = row.table;
+        r.model = row.model;
+        r.mode = "pass";
+        r.dataSize = row.dataSize;
+        r.params = pass + " (" + frame + "; median = " + (timed ? "GPU" : "CPU") + " mean)";
+        r.width = row.width;
+        r.height = row.height;
+        r.measurement.stats = summarize({timed ? gpuMs : cpuMs});
+        r.measurement.stats.runs = static_cast<int>(runs);
+        r.details = {{"pass", pass}, {"frame", frame}, {"gpu_ms", timed ? nlohmann::ordered_json(gpuMs) : nullptr},
+                     {"cpu_ms", cpuMs}, {"gpu_samples", gpuRuns}};
+        bench.addRecord(std::move(r));
+    }
 }

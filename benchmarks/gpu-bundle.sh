@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Packs what benchmarks/run-gpu.sh needs on a GPU machine that has no compilers and no Debian
+# Packs what benchmarks/run-gpu.sh needs (and the GL test program) on a GPU machine that has no compilers and no Debian
 # packages (a rented or lent machine, a container): the benchmark programs built here, the shared
 # libraries they load that such a machine may lack (everything but the C and C++ runtimes, which a
 # newer system has in newer versions), GLVND's libEGL, and the data sets the tables read,
@@ -25,7 +25,7 @@ while [[ $# -gt 0 ]]; do
 done
 
 builddir=${SSS_BUILD_DIR:-build}
-programs=(sss-bench sss-render)
+programs=(sss-bench sss-render sss_gl_tests)
 for p in "${programs[@]}"; do
   [[ -x $builddir/bin/$p ]] || { echo "gpu-bundle.sh: $builddir/bin/$p not found: build first" >&2; exit 2; }
 done

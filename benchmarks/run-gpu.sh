@@ -13,13 +13,15 @@
 #   --sweeps        also the time-against-error sweeps and the volume accuracy (CPU references:
 #                   minutes on many cores)
 #   --tests         also the test suite under ctest (the GL tests then run on this GPU; the
-#                   golden images still use llvmpipe, see tests/README or the H100 report)
+#                   golden images still use llvmpipe, see tests/README or the H100 report);
+#                   with --bundle, the GL test program without the golden cases
 #   --data-dir DIR  data sets (default: $SSS_DATA_DIR, else ../shared/data)
 #   --bundle FILE   use the programs, libraries and data packed by benchmarks/gpu-bundle.sh
 #                   (for a machine with no compilers or packages); NVIDIA's EGL vendor file under
 #                   /usr/local/nvidia is then used when the system has none
 # Environment: SSS_BUILD_DIR (default build), as scripts/test.sh.
-# Writes <table>-<name>.{json,md} per table (baseline, 5.3, 5.4, 5.5), and with --sweeps
+# Writes <table>-<name>.{json,md} per table (baseline, 5.3, 5.4, 5.5, casters, scaling, and the
+# per-pass passes-5.4 and passes-5.3), and with --sweeps
 # error-sweep-{mesh,volume}-<name>.* and accuracy-volume-<name>.*; with --tests
 # test-suite-<name>.log. Exit status: 0 done, 2 usage, 3 wrong device, else the failing step's.
 set -euo pipefail
@@ -93,6 +95,12 @@ run() {  # run LABEL SSS-BENCH-ARGS...
 for table in baseline 5.3 5.4 5.5; do
   run "table $table" --table "$table" --json "$out/$( [[ $table == baseline ]] && echo baseline || echo "table-$table")-$name.json"
 done
+# Fragment against compute ray casting side by side, time against viewport and step, and where
+# each frame's time goes (GPU timestamps per pass).
+run "ray casters" --table casters --json "$out/casters-$name.json"
+run "scaling" --table scaling --json "$out/scaling-$name.json"
+run "passes 5.4" --passes --table 5.4 --only bonsai,engine --json "$out/passes-5.4-$name.json"
+run "passes 5.3" --passes --table 5.3 --only bunny --json "$out/passes-5.3-$name.json"
 if [[ $sweeps -eq 1 ]]; then
   run "error sweep mesh" --error-sweep mesh --json "$out/error-sweep-mesh-$name.json"
   run "error sweep volume" --error-sweep volume --json "$out/error-sweep-volume-$name.json"
@@ -100,7 +108,13 @@ if [[ $sweeps -eq 1 ]]; then
 fi
 if [[ $tests -eq 1 ]]; then
   echo "run-gpu.sh: test suite"
-  SSS_REQUIRE_GL=1 ctest --test-dir "$builddir" -j "$(nproc)" -E "install|fuzz|viewer|glfw" --output-on-failure \
-    2>&1 | tee "$out/test-suite-$name.log"
+  if [[ -n $bundle ]]; then
+    # No ctest files travel in a bundle: the GL tests' own program, golden cases left out (their
+    # images are llvmpipe's). Their data and golden paths are this checkout's, as built.
+    SSS_REQUIRE_GL=1 "$builddir/bin/sss_gl_tests" "~[golden]" 2>&1 | tee "$out/test-suite-$name.log"
+  else
+    SSS_REQUIRE_GL=1 ctest --test-dir "$builddir" -j "$(nproc)" -E "install|fuzz|viewer|glfw" --output-on-failure \
+      2>&1 | tee "$out/test-suite-$name.log"
+  fi
 fi
 echo "run-gpu.sh: results in $out (tag $name)"

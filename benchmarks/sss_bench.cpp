@@ -95,15 +95,20 @@ Options parseArgs(int argc, char** argv) {
               [](const std::string& name, const std::string& text) {
                   std::vector<std::string> tables;
                   for (const std::string& t : splitList(text)) {
-                      if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5")
-                          throw UsageError(name + ": unknown table \"" + t + "\" (baseline, 5.3, 5.4, 5.5)");
+                      if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5" && t != "casters" && t != "scaling")
+                          throw UsageError(name + ": unknown table \"" + t + "\" (baseline, 5.3, 5.4, 5.5, casters, scaling)");
                       tables.push_back(t);
                   }
                   return tables;
               },
               "thesis tables to reproduce: baseline (default), 5.3 (mesh scattering), 5.4 (volume scattering), 5.5 "
-              "(hybrid scenes)",
+              "(hybrid scenes); casters: fragment against compute ray casting side by side; scaling: time against "
+              "viewport size and ray step, with the fixed and per-pixel costs fitted",
               "T[,T...]");
+    addEnum(app, "--ray-caster", o.rayCaster, "the ray caster of every volume row (casters: both)");
+    app.add_flag("--passes", o.passes,
+                 "GL timestamps around each pass (non-blocking): tables 5.3 and 5.4 add one record per pass and frame "
+                 "(change, fixed) with pass, gpu_ms and cpu_ms, means over the timed frames");
     addParsed(app, "--error-sweep", o.errorSweep,
               [](const std::string& name, const std::string& text) {
                   return std::optional(oneOf(name, text, {"mesh", "volume"}));
@@ -233,6 +238,8 @@ int main(int argc, char** argv) {
                 if (t == "5.3") runTable53(bench);
                 if (t == "5.4") runTable54(bench);
                 if (t == "5.5") runTable55(bench);
+                if (t == "casters") runCastersTable(bench);
+                if (t == "scaling") runScalingTable(bench);
             }
         }
 

@@ -74,6 +74,7 @@ void runTable53(BenchmarkContext& bench) {
             options.mapResolution = options.lightMapResolution = quick ? 256 : 904;
             options.sampleRadius = 0.025f;
             options.accumulationFrames = 1;  // the thesis timed single passes
+            options.gpuPassTimes = bench.options().passes;
             options.millimetresPerUnit = 1000.0;
             sss::MeshScatteringRenderer renderer(options);
             renderer.setMesh(*mesh);
@@ -81,7 +82,9 @@ void runTable53(BenchmarkContext& bench) {
             renderer.setLights({key});
             const std::string id = std::string(kTable) + "-" + model +
                                    (estimate ? "-vertex-estimate" : "-k" + std::to_string(configs[c].cameras));
-            const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, id);
+            ChangeAndFixedPasses passes{PassRecorder(renderer.stats()), PassRecorder(renderer.stats())};
+            const auto [change, fixed] =
+                measureChangeAndFixed(bench, renderer, camera, key, id, bench.options().passes ? &passes : nullptr);
             // The same maps through the cached combine (MeshCombine::PerVertex, issue 11): its fixed
             // frame, and how far its image is from the per-pixel combine's.
             std::optional<Measurement> fixedPerVertex;
@@ -137,7 +140,12 @@ void runTable53(BenchmarkContext& bench) {
                                               {"fixed_ms", it->second.fixed[c]},
                                               {"blinn_phong_ms", it->second.blinnPhong}};
             }
+            const Record row = r;
             bench.addRecord(std::move(r));
+            if (bench.options().passes) {
+                passes.change.addRecords(bench, row, "change");
+                passes.fixed.addRecords(bench, row, "fixed");
+            }
         }
     }
 }

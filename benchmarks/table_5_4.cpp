@@ -48,13 +48,15 @@ void runTable54(BenchmarkContext& bench) {
         const std::string id = std::string(kTable) + "-" + model;
         auto withShading = [&](sss::VolumeShading shading) {
             // The thesis's configuration (full-resolution light volume, step 1, post-classification).
-            renderer.setOptions(thesisVolumeOptions(shading));
+            renderer.setOptions(thesisVolumeOptions(bench.options(), shading));
         };
         withShading(sss::VolumeShading::Scattering);
-        const auto [change, fixed] = measureChangeAndFixed(bench, renderer, camera, key, id);
+        ChangeAndFixedPasses passes{PassRecorder(renderer.stats()), PassRecorder(renderer.stats())};
+        const auto [change, fixed] =
+            measureChangeAndFixed(bench, renderer, camera, key, id, bench.options().passes ? &passes : nullptr);
         // The same light change without empty-space skipping (same images): what skipping saves,
         // in the ray cast and in the light-volume sweep.
-        sss::VolumeRenderOptions unskipped = thesisVolumeOptions(sss::VolumeShading::Scattering);
+        sss::VolumeRenderOptions unskipped = thesisVolumeOptions(bench.options(), sss::VolumeShading::Scattering);
         unskipped.emptySpaceSkipping = false;
         renderer.setOptions(unskipped);
         const auto [changeUnskipped, fixedUnskipped] =
@@ -98,6 +100,11 @@ void runTable54(BenchmarkContext& bench) {
                                           {"ea_gradient_ms", it->second.eaGradient},
                                           {"fixed_gradient_ms", it->second.fixedGradient}};
         }
+        const Record row = r;
         bench.addRecord(std::move(r));
+        if (bench.options().passes) {
+            passes.change.addRecords(bench, row, "change");
+            passes.fixed.addRecords(bench, row, "fixed");
+        }
     }
 }

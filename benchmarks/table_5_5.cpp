@@ -42,7 +42,7 @@ void runTable55(BenchmarkContext& bench) {
         meshOptions.mapResolution = meshOptions.lightMapResolution = quick ? 256 : 904;
         meshOptions.accumulationFrames = 1;
         meshOptions.millimetresPerUnit = 250.0;
-        const sss::VolumeRenderOptions volumeOptions = thesisVolumeOptions(sss::VolumeShading::Scattering);
+        const sss::VolumeRenderOptions volumeOptions = thesisVolumeOptions(bench.options(), sss::VolumeShading::Scattering);
         const sss::TransferFunction tf = sss::TransferFunction::preset(volume->second);
 
         sss::HybridCompositor scene({.cornellBox = true});

@@ -301,6 +301,10 @@ void bindOptions(py::module_& m) {
     bindEnum<sss::LightVolumeFallback>(m, "LightVolumeFallback",
                                        {{"REDUCE", sss::LightVolumeFallback::Reduce}, {"FAIL", sss::LightVolumeFallback::Fail}},
                                        "What happens when a light volume does not fit the GPU.");
+    bindEnum<sss::RayCaster>(m, "RayCaster",
+                             {{"AUTO", sss::RayCaster::Auto}, {"FRAGMENT", sss::RayCaster::Fragment},
+                              {"COMPUTE", sss::RayCaster::Compute}},
+                             "Which ray caster draws a volume (the same image either way).");
 
     using MO = sss::MeshRenderOptions;
     Struct<MO>(m, "MeshRenderOptions", "Options of the mesh renderer (see sss::MeshRenderOptions for each range).")

@@ -109,6 +109,9 @@ struct MeshRenderOptions {
     glm::vec3 environment{0.0f};
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).
     bool finishEachPass = false;
+    /// Write GL timestamps around each pass; RenderStats then holds each pass's GPU time too,
+    /// collected without waiting a frame or more later (PassStats::lastGpuMs) (default: off).
+    bool gpuPassTimes = false;
 };
 
 /// Throws Error(InvalidArgument) if a colour is negative or non-finite or shininess is not > 0.

@@ -27,8 +27,8 @@ struct EnumName {
 };
 
 /// Every value of `Enum` with its name, in declaration order. Specialized for MeshShading,
-/// MeshCombine, ScatteringProfile, VolumeShading, VolumeModel, LightVolumeFallback, ToneMap,
-/// Projection and VoxelType.
+/// MeshCombine, ScatteringProfile, VolumeShading, VolumeModel, LightVolumeFallback, RayCaster,
+/// ToneMap, Projection and VoxelType.
 template <class Enum>
 std::span<const EnumName<Enum>> enumNames();
 
@@ -66,6 +66,7 @@ template <> std::span<const EnumName<ScatteringProfile>> enumNames<ScatteringPro
 template <> std::span<const EnumName<VolumeShading>> enumNames<VolumeShading>();
 template <> std::span<const EnumName<VolumeModel>> enumNames<VolumeModel>();
 template <> std::span<const EnumName<LightVolumeFallback>> enumNames<LightVolumeFallback>();
+template <> std::span<const EnumName<RayCaster>> enumNames<RayCaster>();
 template <> std::span<const EnumName<ToneMap>> enumNames<ToneMap>();
 template <> std::span<const EnumName<Projection>> enumNames<Projection>();
 template <> std::span<const EnumName<VoxelType>> enumNames<VoxelType>();

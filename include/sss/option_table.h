@@ -100,6 +100,7 @@ struct OptionTable<MeshRenderOptions> {
             "radiance of a uniform environment lighting the translucent mesh, so faces the light misses are not "
             "black", atLeast(0), "--environment", "R,G,B"},
         OptionField<O, bool>{&O::finishEachPass, "finishEachPass", "wait for the GPU after each pass (timings)"},
+        OptionField<O, bool>{&O::gpuPassTimes, "gpuPassTimes", "GL timestamps around each pass (GPU time per pass in the stats)"},
     };
 };
 
@@ -155,7 +156,11 @@ struct OptionTable<VolumeRenderOptions> {
         OptionField<O, int>{&O::maxBounces, "maxBounces",
             "with --multiple-scattering: scatterings per path (1 = single scattering; Russian roulette ends paths "
             "earlier)", atLeast(1), "--max-bounces", "B"},
+        OptionField<O, RayCaster>{&O::rayCaster, "rayCaster",
+            "ray caster: fragment (fullscreen triangle), compute (dispatch over the volume's screen rectangle) or auto "
+            "(per device: compute on hardware GPUs)", {}, "--ray-caster"},
         OptionField<O, bool>{&O::finishEachPass, "finishEachPass", "wait for the GPU after each pass (timings)"},
+        OptionField<O, bool>{&O::gpuPassTimes, "gpuPassTimes", "GL timestamps around each pass (GPU time per pass in the stats)"},
     };
 };
 

@@ -15,11 +15,18 @@ struct PassStats {
     double lastMs = 0.0;       ///< CPU time of the last run (submission only unless the
                                ///< renderer's `finishEachPass` option waits for the GPU)
     double totalMs = 0.0;
+    /// GPU times, with the renderer's `gpuPassTimes` option on: the time between timestamps
+    /// written before and after the pass, read without waiting once the GPU has passed them, so
+    /// they lag the CPU times by a frame or more (gpuRuns <= runs).
+    std::uint64_t gpuRuns = 0;
+    double lastGpuMs = 0.0;
+    double totalGpuMs = 0.0;
 };
 
 class RenderStats {
 public:
     void record(std::string_view pass, double ms);
+    void recordGpu(std::string_view pass, double ms);
     /// Runs of `pass` so far (0 for a pass that never ran).
     std::uint64_t runs(std::string_view pass) const;
     const PassStats* find(std::string_view pass) const;

@@ -60,6 +60,20 @@ std::string_view toString(VolumeModel model);
 /// Parses "paper" or "physical"; nullopt otherwise.
 std::optional<VolumeModel> parseVolumeModel(std::string_view name);
 
+/// Which ray caster draws the volume. Both cast the same rays with the same shader code and give
+/// the same image (within 1/255); they differ in how the GPU runs them.
+enum class RayCaster {
+    /// Picked per device from measurements (benchmarks/README.md, "Fragment or compute"): compute
+    /// on hardware GPUs, whose datacenter parts run fragment work on a fraction of the chip;
+    /// fragment on software rasterisers, where it is measured faster.
+    Auto,
+    /// A fullscreen triangle whose fragments are blended over the target (the thesis's way).
+    Fragment,
+    /// A compute dispatch over the volume's screen rectangle that composites into the target's
+    /// colour through image load/store.
+    Compute,
+};
+
 /// What the renderer does when a light volume does not fit the GPU at the requested
 /// resolution (a side over GL_MAX_3D_TEXTURE_SIZE, the memory budget, or GL_OUT_OF_MEMORY).
 enum class LightVolumeFallback {
@@ -160,8 +174,13 @@ struct VolumeRenderOptions {
     /// Scatterings after which a path ends, >= 1: 1 is single scattering (default: 100000, as
     /// VolumePathTracerOptions::maxBounces; Russian roulette ends paths long before).
     int maxBounces = 100000;
+    /// The ray caster: fragment or compute, or picked per device (default: Auto; see RayCaster).
+    RayCaster rayCaster = RayCaster::Auto;
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).
     bool finishEachPass = false;
+    /// Write GL timestamps around each pass; RenderStats then holds each pass's GPU time too,
+    /// collected without waiting a frame or more later (PassStats::lastGpuMs) (default: off).
+    bool gpuPassTimes = false;
 };
 
 /// Throws Error(InvalidArgument) naming the first field of `options` that breaks its documented

@@ -49,6 +49,13 @@ std::span<const EnumName<LightVolumeFallback>> enumNames<LightVolumeFallback>() 
 }
 
 template <>
+std::span<const EnumName<RayCaster>> enumNames<RayCaster>() {
+    static constexpr EnumName<RayCaster> names[] = {
+        {RayCaster::Auto, "auto"}, {RayCaster::Fragment, "fragment"}, {RayCaster::Compute, "compute"}};
+    return names;
+}
+
+template <>
 std::span<const EnumName<ToneMap>> enumNames<ToneMap>() {
     static constexpr EnumName<ToneMap> names[] = {{ToneMap::None, "none"}, {ToneMap::Filmic, "filmic"}};
     return names;

@@ -3,6 +3,7 @@
 #include "util/format.h"
 
 #include "lighting/light_uniforms.h"
+#include "frame/pass_timer.h"
 #include "mesh/blinn_phong_pass.h"
 #include "mesh/combine_choice.h"
 #include "mesh/combine_pass.h"
@@ -89,6 +90,7 @@ struct MeshScatteringRenderer::Impl {
     std::optional<detail::GpuMesh> mesh;
     std::uint64_t meshGeneration = 0;
     RenderStats stats;
+    detail::PassTimer passTimer{stats};
     // Passes are built on first use, so a Blinn-Phong-only renderer compiles no scattering shaders.
     std::optional<detail::BlinnPhongPass> blinnPhong;
     std::optional<detail::LightBufferPass> lightBuffer;
@@ -165,10 +167,7 @@ struct MeshScatteringRenderer::Impl {
 
     template <typename Work>
     void timed(const char* pass, Work&& work) {
-        const auto start = std::chrono::steady_clock::now();
-        work();
-        if (options.finishEachPass) finishGpuWork();
-        stats.record(pass, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        passTimer.time(pass, {options.finishEachPass, options.gpuPassTimes}, std::forward<Work>(work));
     }
 
     double edgeToDiffusionLength() const {

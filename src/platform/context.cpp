@@ -1,6 +1,7 @@
 #include "sss/context.h"
 
 #include "gl/allocation.h"
+#include "gl/device.h"
 #include "gl/gl.h"
 #include "sss/error.h"
 #include "sss/log.h"
@@ -96,8 +97,7 @@ void GlContext::initializeGl(const GlProcLoader& getProcAddress, bool debug, std
     if (major * 10 + minor < 45 || !(profile & GL_CONTEXT_CORE_PROFILE_BIT))
         throw Error(ErrorKind::Gl, "GlContext: libsss needs OpenGL 4.5 core, but " + m_info.backend +
                                        " gave \"" + m_info.version + "\" on " + m_info.renderer);
-    for (const char* soft : {"llvmpipe", "softpipe", "SwiftShader", "Software Rasterizer"})
-        if (m_info.renderer.find(soft) != std::string::npos) m_info.software = true;
+    m_info.software = gl::isSoftwareRendererName(m_info.renderer);
 
     // The backends that make their own contexts also switch this on for SSS_GL_DEBUG=1; an
     // adopted host context only when asked (HostContextOptions::debug).

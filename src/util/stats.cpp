@@ -2,12 +2,28 @@
 
 namespace sss {
 
+namespace {
+
+PassStats& entry(std::map<std::string, PassStats, std::less<>>& passes, std::string_view pass) {
+    auto it = passes.find(pass);
+    if (it == passes.end()) it = passes.emplace(std::string(pass), PassStats{}).first;
+    return it->second;
+}
+
+}  // namespace
+
 void RenderStats::record(std::string_view pass, double ms) {
-    auto it = m_passes.find(pass);
-    if (it == m_passes.end()) it = m_passes.emplace(std::string(pass), PassStats{}).first;
-    ++it->second.runs;
-    it->second.lastMs = ms;
-    it->second.totalMs += ms;
+    PassStats& s = entry(m_passes, pass);
+    ++s.runs;
+    s.lastMs = ms;
+    s.totalMs += ms;
+}
+
+void RenderStats::recordGpu(std::string_view pass, double ms) {
+    PassStats& s = entry(m_passes, pass);
+    ++s.gpuRuns;
+    s.lastGpuMs = ms;
+    s.totalGpuMs += ms;
 }
 
 std::uint64_t RenderStats::runs(std::string_view pass) const {

@@ -1,6 +1,7 @@
 #include "volume/ray_cast_pass.h"
 
 #include "volume/composite_over.h"
+#include "gl/device.h"
 #include "lighting/texture_units.h"
 #include "sss/error.h"
 
@@ -11,6 +12,7 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <string>
 #include <variant>
@@ -21,6 +23,30 @@ bool usesGradient(VolumeShading s) { return s == VolumeShading::Gradient || s ==
 
 bool usesLightVolume(VolumeShading s) {
     return s == VolumeShading::Scattering || s == VolumeShading::ScatteringGradient;
+}
+
+bool usesComputeRayCaster(RayCaster caster) {
+    if (caster != RayCaster::Auto) return caster == RayCaster::Compute;
+    // Measured (benchmarks/README.md, "Fragment or compute"): on an H100 compute is several times
+    // faster; on llvmpipe the fragment path is.
+    return !gl::currentDeviceIsSoftware();
+}
+
+PixelRect screenRectangle(const glm::mat4& modelViewProjection, const Bounds& box, glm::ivec2 viewport) {
+    const PixelRect whole{{0, 0}, viewport};
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec4 corner((i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y,
+                               (i & 4) ? box.max.z : box.min.z, 1.0f);
+        const glm::vec4 clip = modelViewProjection * corner;
+        if (clip.w <= 1e-6f * std::abs(clip.z) || clip.w <= 0.0f) return whole;  // behind the eye
+        const glm::vec2 window = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(viewport);
+        lo = glm::min(lo, window);
+        hi = glm::max(hi, window);
+    }
+    const glm::ivec2 first = glm::max(glm::ivec2(glm::floor(lo)) - 1, glm::ivec2(0));
+    const glm::ivec2 last = glm::min(glm::ivec2(glm::ceil(hi)) + 1, viewport);
+    return {first, glm::max(last - first, glm::ivec2(0))};
 }
 
 bool usesEyePass(const VolumeRenderOptions& o) {
@@ -42,13 +68,17 @@ RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std:
     const float shininess = options.shininess;
     if (usesGradient(options.shading) && shininess >= 1.0f && shininess <= 256.0f && shininess == std::floor(shininess))
         v.integerShininess = static_cast<int>(shininess);
+    v.compute = usesComputeRayCaster(options.rayCaster);
     return v;
 }
 
 RayCastPass::RayCastPass(const RayCastVariant& variant)
     : m_variant(variant),
-      m_program(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                   {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
+      m_program(gl::Program::link(variant.compute ? std::initializer_list<gl::ShaderStage>{{GL_COMPUTE_SHADER,
+                                                                                         "volume/ray_cast.comp"}}
+                                                  : std::initializer_list<gl::ShaderStage>{
+                                                        {GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                        {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
                                   {{"SHADING_GRADIENT", usesGradient(variant.shading) ? "1" : "0"},
                                    {"SHADING_SCATTERING", usesLightVolume(variant.shading) ? "1" : "0"},
                                    {"EMPTY_SPACE_SKIPPING", variant.emptySpaceSkipping ? "1" : "0"},
@@ -62,6 +92,38 @@ RayCastPass::RayCastPass(const RayCastVariant& variant)
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const RayCastInputs& in) const {
+    bindInputs(in);
+    if (m_variant.compute) {
+        dispatchOverRectangle(in);
+        return;
+    }
+    // Premultiplied "over": the volume's colour in front of what the target already holds.
+    drawPremultipliedOver(m_program, m_emptyVertexArray);
+}
+
+void RayCastPass::dispatchOverRectangle(const RayCastInputs& in) const {
+    const glm::ivec2 viewport(in.target.width(), in.target.height());
+    const glm::mat4 modelViewProjection = in.camera.projection(in.aspect) * in.camera.view() * in.model;
+    const PixelRect rect = screenRectangle(modelViewProjection, in.volume.box, viewport);
+    if (rect.empty()) return;
+    const gl::Program& p = m_program;
+    p.set("rectOrigin", rect.origin);
+    p.set("rectSize", rect.size);
+    p.set("viewportSize", glm::vec2(viewport));
+    p.set("target", 0);
+    glBindImageTexture(0, in.target.colorTextureId(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    p.use();
+    const glm::ivec3 group = p.workGroupSize();
+    glDispatchCompute(static_cast<GLuint>((rect.size.x + group.x - 1) / group.x),
+                      static_cast<GLuint>((rect.size.y + group.y - 1) / group.y), 1);
+    // Later passes read the colour as a framebuffer attachment, a texture or a read-back.
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glUseProgram(0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+}
+
+void RayCastPass::bindInputs(const RayCastInputs& in) const {
     const GpuVolume& volume = in.volume;
     const glm::mat4& model = in.model;
     const std::vector<Light>& lights = in.lights;
@@ -146,7 +208,7 @@ void RayCastPass::run(const RayCastInputs& in) const {
         }
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
         // Reads the light volume this many texels towards the light and carries the light back
-        // through the data (shaders/volume/ray_cast.frag, shade()).
+        // through the data (shaders/volume/ray_cast.glsl, shade()).
         p.set("lightVolumeReach", options.lightVolumeReach);
         for (size_t i = 0; i < in.lightVolumes.size(); ++i) {
             const int unit = units::kLightVolumes + static_cast<int>(i);
@@ -170,8 +232,6 @@ void RayCastPass::run(const RayCastInputs& in) const {
         p.set("stepTransferFunctionEntries", static_cast<float>(in.stepTransferFunction->size().x));
         in.stepTransferFunction->bind(units::kStepTransferFunction);
     }
-    // Premultiplied "over": the volume's colour in front of what the target already holds.
-    drawPremultipliedOver(m_program, m_emptyVertexArray);
 }
 
 }  // namespace sss::detail

@@ -1,11 +1,13 @@
 #pragma once
-// Single-pass GPU ray casting of a volume with a transfer function (shaders/volume/ray_cast.frag):
+// Single-pass GPU ray casting of a volume with a transfer function (shaders/volume/ray_cast.glsl):
 // emission-absorption or gradient-shaded, front to back, early ray termination, opacity
-// correction and per-pixel jitter.
+// correction and per-pixel jitter; as fragments over the whole target or as a compute dispatch
+// over the volume's screen rectangle.
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "gl/vertex_array.h"
 #include "sss/camera.h"
+#include "sss/render_target.h"
 #include "sss/volume_scattering_renderer.h"
 #include "lighting/shadows.h"
 #include "volume/empty_space.h"
@@ -22,8 +24,24 @@ bool usesGradient(VolumeShading shading);
 /// Whether the eye pass runs for these options (the paper's model in a light-volume mode).
 bool usesEyePass(const VolumeRenderOptions& options);
 
+/// Whether `caster` resolves to the compute ray caster on the current context's device.
+bool usesComputeRayCaster(RayCaster caster);
+
+/// Pixels [origin, origin + size) of a viewport.
+struct PixelRect {
+    glm::ivec2 origin{0};
+    glm::ivec2 size{0};
+    bool empty() const { return size.x <= 0 || size.y <= 0; }
+};
+
+/// The pixels whose centres may see the box `box` under `modelViewProjection`, within a
+/// viewport of `viewport` pixels: its projected corners' bounds, a pixel wider on each side; the
+/// whole viewport when the box reaches behind the eye.
+PixelRect screenRectangle(const glm::mat4& modelViewProjection, const Bounds& box, glm::ivec2 viewport);
+
 /// What one ray-cast draw reads. References stay owned by the renderer.
 struct RayCastInputs {
+    RenderTarget& target;  ///< drawn over (the fragment caster draws into whatever is bound)
     const GpuVolume& volume;
     const gl::Texture& transferFunction;
     const gl::Texture& sceneDepth;  ///< a copy of the target's depth: rays stop there
@@ -62,6 +80,8 @@ struct RayCastVariant {
     /// shader then raises to it by repeated squaring (exact, and a few multiplications where
     /// pow() costs a logarithm and an exponential per sample); 0: pow() with the uniform.
     int integerShininess = 0;
+    /// The compute ray caster (ray_cast.comp) rather than the fragment one (ray_cast.frag).
+    bool compute = false;
 
     static RayCastVariant of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
                              GradientSource gradients, bool preintegration);
@@ -72,10 +92,14 @@ class RayCastPass {
 public:
     explicit RayCastPass(const RayCastVariant& variant);
     const RayCastVariant& variant() const { return m_variant; }
-    /// Draws into the bound target.
+    /// Composites the volume over in.target (bound for drawing).
     void run(const RayCastInputs& in) const;
 
 private:
+    /// Sets the uniforms and binds the textures both casters read.
+    void bindInputs(const RayCastInputs& in) const;
+    void dispatchOverRectangle(const RayCastInputs& in) const;
+
     RayCastVariant m_variant;
     gl::Program m_program;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes

@@ -9,6 +9,7 @@
 #include "sss/option_table.h"
 #include "sss/log.h"
 #include "sss/timing.h"
+#include "frame/pass_timer.h"
 #include "volume/empty_space.h"
 #include "volume/gradient_volume_pass.h"
 #include "volume/gpu_volume.h"
@@ -23,7 +24,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdint>
 #include <tuple>
 #include <cmath>
@@ -116,7 +116,7 @@ struct VolumeScatteringRenderer::Impl {
         const StepTableKey key = stepTableKey();
         if (preintegrationKey == key) return;
         preintegrationKey = key;
-        const auto start = std::chrono::steady_clock::now();
+        const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         const int size = detail::preintegrationSize(options.transferFunctionEntries);
         preintegrationTable = {};  // free the old table before allocating its successor
         try {
@@ -128,8 +128,7 @@ struct VolumeScatteringRenderer::Impl {
             log(LogLevel::Warning, std::string(e.what()) + "; each sample is classified alone instead (no pre-integration)");
             return;
         }
-        stats.record("preintegration",
-                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        passTimer.end("preintegration", mark, passTiming());
     }
     // Whether the ray caster integrates segments: asked for and the table fitted.
     bool preintegrated() const {
@@ -155,11 +154,7 @@ struct VolumeScatteringRenderer::Impl {
         if (gradientVolumeFailed) return false;
         try {
             if (!gradientPass) gradientPass.emplace();
-            const auto start = std::chrono::steady_clock::now();
-            gradientVolume = gradientPass->run(*volume);
-            if (options.finishEachPass) finishGpuWork();
-            stats.record("gradient-volume",
-                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            passTimer.time("gradient-volume", passTiming(), [&] { gradientVolume = gradientPass->run(*volume); });
             return true;
         } catch (const Error& e) {
             if (e.kind() != ErrorKind::GpuLimit) throw;
@@ -179,7 +174,7 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<std::tuple<std::uint64_t, std::uint64_t, int>> majorantKey;
 
     void renderPathTraced(const Camera& camera, RenderTarget& target) {
-        const auto start = std::chrono::steady_clock::now();
+        const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         const auto tableKey = std::make_tuple(volumeGeneration, transferFunction.revision(), options.transferFunctionEntries);
         if (majorantKey != tableKey) {
             majorants = detail::brickMajorants(*occupancy, volume->voxelLength);
@@ -212,9 +207,7 @@ struct VolumeScatteringRenderer::Impl {
         pathSamples += options.samplesPerFrame;
         target.bindForDrawing();
         pathTrace->composite(pathSums, pathSamples);
-        if (options.finishEachPass) finishGpuWork();
-        stats.record("path-trace",
-                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        passTimer.end("path-trace", mark, passTiming());
     }
     gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
 
@@ -240,7 +233,7 @@ struct VolumeScatteringRenderer::Impl {
                                        lights, model, asked};
         if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
         if (!lightVolumePass) lightVolumePass.emplace();
-        const auto start = std::chrono::steady_clock::now();
+        const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         detail::LightVolumeSettings settings = asked;
         float& scale = settings.resolutionScale;
         for (;;) {
@@ -270,9 +263,7 @@ struct VolumeScatteringRenderer::Impl {
             }
         }
         lightVolumeScaleInUse = scale;
-        if (options.finishEachPass) finishGpuWork();
-        stats.record("light-volume",
-                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        passTimer.end("light-volume", mark, passTiming());
         lightVolumeInputs = inputs;
     }
 
@@ -280,16 +271,17 @@ struct VolumeScatteringRenderer::Impl {
         const auto inputs = std::make_tuple(*lightVolumeInputs, camera.forward(), options.ambient + options.emission,
                                             options.diffuse);
         if (eyeInputs == inputs) return;
-        const auto start = std::chrono::steady_clock::now();
+        const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         if (!eyePass) eyePass.emplace();
         eyePass->run({*volume, transferFunctionTable, lightVolumes, lights, model, camera.forward(),
                       options.ambient + options.emission, options.diffuse, {lightVolumeScaleInUse, options.anisotropy},
                       options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr});
-        if (options.finishEachPass) finishGpuWork();
-        stats.record("eye-pass", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        passTimer.end("eye-pass", mark, passTiming());
         eyeInputs = inputs;
     }
     RenderStats stats;
+    detail::PassTimer passTimer{stats};
+    detail::PassTiming passTiming() const { return {options.finishEachPass, options.gpuPassTimes}; }
 
     void uploadTransferFunction() {
         const std::vector<glm::vec4> table = transferFunction.table(options.transferFunctionEntries);
@@ -376,11 +368,12 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (!m_impl->rayCast || m_impl->rayCast->variant() != variant) m_impl->rayCast.emplace(variant);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
-    const auto start = std::chrono::steady_clock::now();
+    const detail::PassTimer::Mark mark = m_impl->passTimer.begin(m_impl->passTiming());
     m_impl->copyDepth(target);
     target.bindForDrawing();
     const Impl& r = *m_impl;
-    r.rayCast->run({.volume = *r.volume,
+    r.rayCast->run({.target = target,
+                    .volume = *r.volume,
                     .transferFunction = r.transferFunctionTable,
                     .sceneDepth = r.sceneDepth,
                     .occupancy = r.occupancy->texture(),
@@ -395,9 +388,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .options = r.options,
                     .camera = camera,
                     .aspect = target.aspect()});
-    if (m_impl->options.finishEachPass) finishGpuWork();
-    m_impl->stats.record("ray-cast",
-                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    m_impl->passTimer.end("ray-cast", mark, m_impl->passTiming());
 }
 
 namespace detail {

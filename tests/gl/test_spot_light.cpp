@@ -205,8 +205,9 @@ TEST_CASE("Spot-light falloff: an analytic check on a plane", "[gl][spot][mesh][
     CHECK(inside > 500);
     CHECK(band > 2000);
     CHECK(outside > 2000);
-    // Measured: 1.6e-6 of the peak (float rounding of the interpolated position and the cosine).
-    CHECK(worst <= 1e-5);
+    // Measured: 1.6e-6 of the peak on llvmpipe, 5.1e-5 on an NVIDIA H200 (float rounding of the
+    // interpolated position and the cosine; NVIDIA's faster transcendentals).
+    CHECK(worst <= 1e-4);
     gl.requireNoErrors();
 }
 

@@ -1,0 +1,78 @@
+// Fragment against compute ray casting, side by side in one run: per volume, each mode with the
+// thesis's ray casting (step 1, post-classification) and emission-absorption and fixed
+// scattering with the library's defaults (step 0.5, pre-integration). The two casters give the
+// same image (tests/gl/test_ray_caster.cpp); this says which is faster on this device, the
+// measurement RayCaster::Auto's choice rests on.
+
+#include "bench.h"
+
+#include <sss/option_names.h>
+
+namespace {
+
+constexpr const char* kTable = "casters";
+
+struct ModeCase {
+    sss::VolumeShading shading;
+    bool thesis;  // the thesis's ray casting, else the library's defaults
+};
+
+sss::VolumeRenderOptions optionsFor(const Options& run, const ModeCase& m, sss::RayCaster caster) {
+    sss::VolumeRenderOptions o = m.thesis ? thesisVolumeOptions(run, m.shading) : sss::VolumeRenderOptions{};
+    o.shading = m.shading;
+    o.rayCaster = caster;
+    return o;
+}
+
+}  // namespace
+
+void runCastersTable(BenchmarkContext& bench) {
+    const bool quick = bench.options().quick;
+    const std::vector<std::string> models =
+        quick ? std::vector<std::string>{"blobs"} : std::vector<std::string>{"bucky", "bonsai", "engine"};
+    const std::vector<ModeCase> modes = {{sss::VolumeShading::EmissionAbsorption, true},
+                                         {sss::VolumeShading::Gradient, true},
+                                         {sss::VolumeShading::Scattering, true},
+                                         {sss::VolumeShading::EmissionAbsorption, false},
+                                         {sss::VolumeShading::Scattering, false}};
+    for (const std::string& model : models) {
+        if (!bench.wanted(model)) continue;
+        auto loaded = loadThesisVolume(bench, kTable, model);
+        if (!loaded) continue;
+        const sss::Volume& volume = loaded->first;
+        const sss::Camera camera = framedCamera(volume.worldBounds());
+        sss::VolumeScatteringRenderer renderer;
+        renderer.setVolume(volume);
+        renderer.setTransferFunction(sss::TransferFunction::preset(loaded->second));
+        renderer.setLights({keyLight(camera)});
+        const glm::ivec3 d = volume.dims();
+        for (const ModeCase& m : modes) {
+            const std::string settings = m.thesis ? "thesis" : "defaults";
+            double fragmentMs = 0.0;
+            for (sss::RayCaster caster : {sss::RayCaster::Fragment, sss::RayCaster::Compute}) {
+                const sss::VolumeRenderOptions options = optionsFor(bench.options(), m, caster);
+                renderer.setOptions(options);
+                Record r;
+                r.table = kTable;
+                r.model = model;
+                r.mode = std::string(sss::enumName(m.shading));
+                r.dataSize = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+                r.params = std::string(sss::enumName(caster)) + ", " + settings + " (step " +
+                           std::to_string(options.stepSize).substr(0, 4) + ")";
+                r.width = bench.options().width;
+                r.height = bench.options().height;
+                r.measurement = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); },
+                                              std::string(kTable) + "-" + model + "-" + r.mode + "-" + settings + "-" +
+                                                  std::string(sss::enumName(caster)));
+                r.details = {{"ray_caster", sss::enumName(caster)},
+                             {"settings", settings},
+                             {"step_voxels", options.stepSize},
+                             {"preintegration", options.preintegration},
+                             {"transfer_function", loaded->second}};
+                if (caster == sss::RayCaster::Fragment) fragmentMs = r.measurement.stats.medianMs;
+                else r.details["compute_over_fragment"] = r.measurement.stats.medianMs / fragmentMs;
+                bench.addRecord(std::move(r));
+            }
+        }
+    }
+}

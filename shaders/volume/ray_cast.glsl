@@ -1,0 +1,476 @@
+// Single-pass GPU ray casting, front to back, with the transfer function: castRay() gives one
+// pixel's premultiplied colour. Two entry points share it: ray_cast.frag (a fullscreen triangle,
+// blended over the target) and ray_cast.comp (the volume's screen rectangle, composited through
+// image load/store); src/volume/ray_cast_pass.cpp picks one (VolumeRenderOptions::rayCaster).
+// Variants (defines set by src/volume/ray_cast_pass.cpp):
+//   SHADING_GRADIENT 0|1   : Blinn-Phong from the gradient (central differences)
+//   SHADING_SCATTERING 0|1 : light from the light volumes (chromaticity c, intensity l)
+//   EMPTY_SPACE_SKIPPING 0|1 : jump over bricks the transfer function makes fully transparent
+//   EYE_PASS 0|1           : add the eye pass's blurred light from behind (scattering only)
+//   PREINTEGRATED 0|1      : classify the segment between samples from the pre-integrated table
+//   GRADIENT_VOLUME 0|1    : gradients from the precomputed gradient volume (else six fetches)
+//   VALUES_IN_GRADIENTS 0|1: its fourth channel holds the data value: a gradient-shaded sample
+//                            reads one texel for its value and its gradient
+//   LIGHT_COUNT n          : the number of lights, fixed at compile time so the loop over the
+//                            light volumes indexes its sampler array with constants (dynamic
+//                            indices make software rasterisers fetch from every array element)
+//   DIRECTIONAL_LIGHTS_ONLY 0|1: every light is directional: gradient shading takes each light's
+//                            half vector once per ray, and no sample needs its world position
+//   INTEGER_SHININESS n    : 1..256: the specular exponent, raised to by squaring; 0: pow()
+// Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
+#include "common/camera.glsl"
+#include "common/lights.glsl"
+#include "common/blinn_phong.glsl"
+#include "volume/ray_setup.glsl"
+#include "volume/transfer_function.glsl"
+
+// One fetch per sample for value and gradient (see VALUES_IN_GRADIENTS above).
+#if SHADING_GRADIENT && GRADIENT_VOLUME && VALUES_IN_GRADIENTS
+#define COMBINED_FETCH 1
+#else
+#define COMBINED_FETCH 0
+#endif
+
+uniform vec3 boxMin;
+uniform vec3 boxMax;
+uniform ivec3 volumeDims;
+uniform float stepLength;             // model units
+uniform float opacityExponent;        // stepLength / reference length (one voxel)
+uniform float earlyTermination;       // stop when accumulated opacity reaches this
+uniform int jitterEnabled;
+uniform float jitterShift;            // added to every pixel's jitter: differs per anti-aliasing frame
+uniform int maxSteps;
+uniform sampler2D sceneDepth;         // depth of what the target already holds (opaque meshes)
+#if EMPTY_SPACE_SKIPPING
+uniform sampler3D occupancy;          // per brick: > 0 where the TF gives any opacity
+uniform int brickVoxels;
+// Texture coordinates to brick coordinates (dims / brickVoxels): a sample's brick is a float
+// product, not an integer division per sample (software rasterisers have no vector integer
+// division and split it into scalar ones: a fifth of an emission-absorption frame on llvmpipe).
+// brickVoxels is a power of two, so the product is exact and the brick the same.
+uniform vec3 textureToBrick;
+ivec3 lastBrick;  // set once per ray (main)
+#endif
+
+#if SHADING_GRADIENT || SHADING_SCATTERING
+uniform mat4 modelToWorld;
+uniform float ambientStrength;
+uniform float diffuseStrength;
+uniform int physicalModel;          // 1: physical single scattering (sss::VolumeModel::Physical)
+uniform float phaseG;               // its Henyey-Greenstein mean cosine
+#endif
+#if SHADING_GRADIENT
+uniform mat3 gradientToOutward;    // model-space gradient -> outward world normal (unnormalised)
+uniform vec3 specularColor;
+uniform float shininess;
+uniform float gradientThreshold;   // |gradient| (per voxel) below which shading fades out
+#endif
+#if SHADING_SCATTERING
+uniform sampler3D lightVolumes[MAX_LIGHTS];   // one per light: (c, l) arriving at each point
+uniform mat3 worldToModelDirection;           // inverse of modelToWorld's linear part
+uniform float lightVolumeReach;               // light-volume texels towards the light (see shade)
+// Hybrid scenes: meshes between a light and the volume cast hard shadows into it (shadow maps
+// of the meshes from each light; see src/hybrid/shared_lighting.h).
+uniform int meshShadows;
+uniform sampler2DArray meshShadowDepth;
+uniform mat4 worldToShadowClip[MAX_LIGHTS];
+uniform float meshShadowBias;
+
+#if EYE_PASS
+uniform sampler3D eyeVolume;    // rgb: scattered light arriving from behind, towards the viewer
+uniform float eyePassStrength;
+#endif
+
+// At model-space point p.
+float meshVisibility(int light, vec3 p) {
+    if (meshShadows == 0) return 1.0;
+    vec4 clip = worldToShadowClip[light] * (modelToWorld * vec4(p, 1.0));
+    vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
+    if (any(lessThan(window, vec3(0.0))) || any(greaterThan(window, vec3(1.0)))) return 1.0;
+    return window.z - meshShadowBias > texture(meshShadowDepth, vec3(window.xy, float(light))).r ? 0.0 : 1.0;
+}
+#endif
+
+vec3 toTexture(vec3 p) { return (p - boxMin) / (boxMax - boxMin); }
+
+
+#if SHADING_GRADIENT
+struct SurfaceNormal {
+    vec3 n;          // world space, facing the viewer (two-sided)
+    float strength;  // 0..1: fades shading out where the gradient is too weak to define n
+};
+
+#if GRADIENT_VOLUME
+uniform sampler3D gradientVolume;  // per-voxel central differences d / 2 + 1/2 (volume/gradient.comp)
+#endif
+#if COMBINED_FETCH
+// The gradient (central differences) at the point being shaded: the caller reads it with the
+// value (sampleVolume) and sets it before compositing.
+vec3 shadedDifferences;
+#endif
+
+SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
+    // Central differences, one voxel apart on each axis; gradient in value units per voxel.
+#if COMBINED_FETCH
+    vec3 g = shadedDifferences * (0.5 * valueScaleOffset.x);
+#elif GRADIENT_VOLUME
+    // Precomputed: the trilinear interpolation of per-voxel differences is the same gradient.
+    vec3 g = (texture(gradientVolume, tc).xyz * 2.0 - 1.0) * (0.5 * valueScaleOffset.x);
+#else
+    vec3 h = 1.0 / vec3(volumeDims);
+    vec3 g = vec3(texture(volumeTexture, tc + vec3(h.x, 0, 0)).r - texture(volumeTexture, tc - vec3(h.x, 0, 0)).r,
+                  texture(volumeTexture, tc + vec3(0, h.y, 0)).r - texture(volumeTexture, tc - vec3(0, h.y, 0)).r,
+                  texture(volumeTexture, tc + vec3(0, 0, h.z)).r - texture(volumeTexture, tc - vec3(0, 0, h.z)).r) *
+             0.5 * valueScaleOffset.x;
+#endif
+    // Surfaces face from high to low values; the matrix also scales the gradient by the box so
+    // anisotropic boxes get correct normals (RayCastPass::run).
+    vec3 outward = gradientToOutward * g;
+    // Normalised and turned to the viewer by one factor (a multiplication, not a division per
+    // component). A zero gradient has no direction (normalize would give NaN): the view vector.
+    float outwardSquared = dot(outward, outward);
+    float toViewer = (dot(outward, v) < 0.0 ? -1.0 : 1.0) * inversesqrt(max(outwardSquared, 1e-24));
+    vec3 n = outwardSquared > 1e-24 ? outward * toViewer : v;
+    return SurfaceNormal(n, smoothstep(0.0, gradientThreshold, length(g)));
+}
+#endif
+
+// The data value at texture coordinate tc (xyz: its central differences with COMBINED_FETCH).
+#if COMBINED_FETCH
+vec4 sampleVolume(vec3 tc) {
+    vec4 s = texture(gradientVolume, tc);
+    return vec4(s.xyz * 2.0 - 1.0, s.w);
+}
+#else
+vec4 sampleVolume(vec3 tc) { return vec4(0.0, 0.0, 0.0, texture(volumeTexture, tc).r); }
+#endif
+
+#if SHADING_GRADIENT || SHADING_SCATTERING
+// Towards the viewer from any point of this pixel's ray: the same all along it (set in main).
+vec3 viewerDirection;
+#if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
+// Each light's half vector normalize(l + v): also the same all along the ray (set in main).
+vec3 rayHalfVectors[MAX_LIGHTS];
+#endif
+
+#if SHADING_SCATTERING
+// The light-volume reach towards light i, whose direction is l (see shade): in texture
+// coordinates, and its per-axis inverse.
+struct LightReach {
+    vec3 reach;
+    vec3 inverseReach;
+    float voxels;  // its length in data voxels
+};
+
+LightReach lightReachTowards(int i, vec3 l) {
+    vec3 lightTexels = vec3(textureSize(lightVolumes[i], 0));
+    vec3 towardsLight = worldToModelDirection * l * lightTexels / (boxMax - boxMin);
+    float towardsLength = length(towardsLight);
+    vec3 reach = towardsLength > 0.0 ? towardsLight / towardsLength * lightVolumeReach / lightTexels : vec3(0.0);
+    return LightReach(reach, safeInverse(reach), length(reach * vec3(volumeDims)));
+}
+#if DIRECTIONAL_LIGHTS_ONLY
+// A directional light's reach is the same at every sample (set in main).
+LightReach rayLightReaches[MAX_LIGHTS];
+#endif
+#endif
+
+vec3 shade(vec3 p, vec3 tc, vec3 color) {
+#if !DIRECTIONAL_LIGHTS_ONLY
+    vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
+#else
+    const vec3 worldPosition = vec3(0.0);  // directional lights do not depend on it
+#endif
+#if SHADING_GRADIENT
+    vec3 v = viewerDirection;
+    SurfaceNormal surface = gradientNormal(tc, v);
+#endif
+    vec3 lit = ambientStrength * color;
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        vec3 radiance;
+        vec3 l = lightDirectionAt(i, worldPosition, radiance);
+#if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
+        vec3 h = rayHalfVectors[i];
+#elif SHADING_GRADIENT
+        vec3 h = normalize(l + v);
+#endif
+#if SHADING_SCATTERING
+        // Diffuse light is what the light volume says arrives here: tinted by c, dimmed by l.
+        // The light volume stores light at voxel centres, and next to a dense or thin structure
+        // its trilinear interpolation mixes in the dark voxels inside it (rings as the surface
+        // crosses the grid, and too little light on every lit surface). So read it
+        // lightVolumeReach texels towards the light, at q, clear of the structure the sample sits
+        // in, and carry that light back to the sample through the data itself, c and l changing
+        // on the way as in the light volume: L(p) = L(q) T(q -> p), with T at one-voxel steps.
+        // Where the reach leaves the box or passes a point light, the light arrives there whole.
+#if DIRECTIONAL_LIGHTS_ONLY
+        LightReach full = rayLightReaches[i];
+#else
+        LightReach full = lightReachTowards(i, l);
+#endif
+        vec3 reach = full.reach;
+        vec3 exits = max(-tc * full.inverseReach, (1.0 - tc) * full.inverseReach);
+        float reachShare = min(min(exits.x, exits.y), exits.z);
+#if !DIRECTIONAL_LIGHTS_ONLY
+        if (lightVector[i].w != 0.0) {
+            float reachWorld = length(mat3(modelToWorld) * (reach * (boxMax - boxMin)));
+            if (reachWorld > 0.0) reachShare = min(reachShare, length(lightVector[i].xyz - worldPosition) / reachWorld);
+        }
+#endif
+        reachShare = clamp(reachShare, 0.0, 1.0);
+        reach *= reachShare;
+        vec4 arriving = reachShare < 1.0 ? vec4(1.0) : texture(lightVolumes[i], tc + reach);
+        float reachVoxels = full.voxels * reachShare;
+        int subSteps = clamp(int(ceil(reachVoxels)), 1, 16);
+        float subVoxels = reachVoxels / float(subSteps);
+        for (int k = subSteps - 1; k >= 0; --k) {
+            vec4 medium = classify(texture(volumeTexture, tc + reach * ((float(k) + 0.5) / float(subSteps))).r);
+            float a = correctOpacity(medium.a, subVoxels, 1.0);
+            arriving = vec4((1.0 - a) * arriving.rgb + a * medium.rgb, (1.0 - a) * arriving.a);
+        }
+        arriving.a *= meshVisibility(i, p);
+        if (physicalModel != 0) {
+            // Single scattering: albedo (TF colour) x phase function between the light's travel
+            // direction -l and the way to the viewer x the light that arrives (grey extinction:
+            // no chromaticity).
+            float cosTheta = dot(-l, viewerDirection);
+            float d = 1.0 + phaseG * phaseG - 2.0 * phaseG * cosTheta;
+            float phase = (1.0 - phaseG * phaseG) / (12.5663706 * d * sqrt(d));
+            lit += color * radiance * (arriving.a * phase);
+        } else {
+            lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
+        }
+#if SHADING_GRADIENT
+        float nDotL = dot(surface.n, l);
+        if (nDotL > 0.0)
+            lit += surface.strength * arriving.a * radiance * specularColor *
+                   specularPower(max(dot(surface.n, h), 0.0), shininess);
+#endif
+#else
+        lit += blinnPhongHalf(surface.n, l, h, radiance, diffuseStrength * color, specularColor, shininess);
+#endif
+    }
+#if SHADING_SCATTERING
+#if EYE_PASS
+    if (physicalModel == 0) lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;
+#endif
+    return lit;
+#else
+    // Homogeneous regions have no meaningful normal: fade to the unshaded colour there.
+    return mix(color, lit, surface.strength);
+#endif
+}
+#endif
+
+#if PREINTEGRATED
+// Texel (front value, back value) of one step-long segment over which the data goes linearly
+// from front to back (src/volume/preintegration.h): layer 0 its premultiplied colour and
+// opacity, layer 1 where it adds its light (fraction from its front) x opacity.
+uniform sampler2DArray preintegrationTable;
+uniform float preintegrationSize;
+
+struct Segment {
+    vec4 premultiplied;
+    float depth;  // where the segment adds its light on average, as a fraction from its front
+};
+
+Segment classifySegment(float front, float back) {
+    vec2 x = clamp(vec2(front, back) * valueScaleOffset.x + valueScaleOffset.y, 0.0, 1.0);
+    vec2 uv = (x * (preintegrationSize - 1.0) + 0.5) / preintegrationSize;
+    vec4 c = texture(preintegrationTable, vec3(uv, 0.0));
+    float depth = texture(preintegrationTable, vec3(uv, 1.0)).r;
+    return Segment(c, c.a > 0.0 ? clamp(depth / c.a, 0.0, 1.0) : 0.5);
+}
+
+// The same for a homogeneous stretch of optical depth tau (meanContributionDepth in C++).
+float meanContributionDepth(float tau) {
+    return tau < 0.1 ? 0.5 - tau / 12.0 : 1.0 / tau - 1.0 / (exp(min(tau, 80.0)) - 1.0);
+}
+
+// A stretch shorter than a step (where the ray enters or leaves the medium) classified by one
+// value over its `voxels`.
+Segment pointSegment(float value, float voxels) {
+    vec4 tf = classify(value);
+    float a = correctOpacity(tf.a, voxels, 1.0);
+    float tau = -log(max(1.0 - min(tf.a, 1.0), 1e-7)) * voxels;
+    return Segment(vec4(tf.rgb * a, a), meanContributionDepth(tau));
+}
+#endif
+
+#if !PREINTEGRATED
+// The transfer function with each entry's opacity corrected for one ray step (the TF's is per
+// voxel), on a grid finer than the TF's (src/volume/step_classification.h): a table lookup per
+// sample instead of a pow().
+uniform sampler2D stepTransferFunction;
+uniform float stepTransferFunctionEntries;
+
+vec4 classifyStep(float value) {
+    return texture(stepTransferFunction, vec2(transferFunctionCoordinate(value, stepTransferFunctionEntries), 0.5));
+}
+#endif
+
+// Adds one sample (point classification) or segment (pre-integrated) front to back: colour
+// `albedo`, opacity `a`, shaded at p (texture coordinate tc).
+void composite(vec3 p, vec3 tc, vec3 albedo, float a, inout vec3 color, inout float alpha) {
+#if SHADING_GRADIENT || SHADING_SCATTERING
+    vec3 c = shade(p, tc, albedo);
+#else
+    vec3 c = albedo;
+#endif
+    color += (1.0 - alpha) * a * c;
+    alpha += (1.0 - alpha) * a;
+}
+
+#if PREINTEGRATED
+// A segment that ends at `end` and is `length` long (model units) along the ray. Shading goes
+// where the segment adds its light, not at its end: in dense material the end lies in the
+// shadow of the very surface the segment holds.
+void compositeSegment(Segment segment, vec3 end, float length, vec3 direction, inout vec3 color, inout float alpha) {
+    float a = segment.premultiplied.a;
+    if (a <= 0.0) return;
+    // The segment's mean colour, weighted by what each part of it adds.
+    vec3 p = end - (1.0 - segment.depth) * length * direction;
+    composite(p, toTexture(p), segment.premultiplied.rgb / a, a, color, alpha);
+}
+#endif
+
+// fragCoord: the pixel's centre in window coordinates; ndc: the same point in [-1, 1]^2.
+// Returns premultiplied colour, alpha = opacity.
+vec4 castRay(vec2 fragCoord, vec2 ndc) {
+    Ray ray = pixelRay(ndc);
+#if EMPTY_SPACE_SKIPPING
+    lastBrick = textureSize(occupancy, 0) - 1;
+#endif
+#if SHADING_GRADIENT || SHADING_SCATTERING
+    viewerDirection = -normalize(mat3(modelToWorld) * ray.direction);
+#endif
+#if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
+    for (int i = 0; i < LIGHT_COUNT; ++i) rayHalfVectors[i] = normalize(lightVector[i].xyz + viewerDirection);
+#endif
+#if SHADING_SCATTERING && DIRECTIONAL_LIGHTS_ONLY
+    for (int i = 0; i < LIGHT_COUNT; ++i) rayLightReaches[i] = lightReachTowards(i, lightVector[i].xyz);
+#endif
+    vec2 span = intersectBox(ray, boxMin, boxMax);
+    // The ray in texture coordinates: a sample's is a multiply-add, not three divisions.
+    vec3 tcOrigin = toTexture(ray.origin);
+    vec3 tcDirection = ray.direction / (boxMax - boxMin);
+    // Rays end at opaque geometry already in the target: a mesh in front hides the volume, a
+    // mesh inside it cuts the rays at its surface.
+    float depth = texelFetch(sceneDepth, ivec2(fragCoord), 0).r;
+    if (depth < 1.0) {
+        vec4 hitWorld = inverseViewProjection * vec4(ndc, depth * 2.0 - 1.0, 1.0);
+        vec3 hitModel = (worldToModel * vec4(hitWorld.xyz / hitWorld.w, 1.0)).xyz;
+        span.y = min(span.y, dot(hitModel - ray.origin, ray.direction));
+    }
+    vec3 color = vec3(0.0);
+    float alpha = 0.0;
+    if (span.x < span.y) {
+        float tFirst = span.x + (jitterEnabled != 0 ? fract(pixelJitter(fragCoord) + jitterShift) : 0.5) * stepLength;
+#if PREINTEGRATED
+        // Each sample stands for the segment from the previous sample to it; the stretches before
+        // the first sample and after the last are classified by one value each (outside the
+        // loop: inside it, llvmpipe ran the whole ray twice as slowly). segmentOpen: the
+        // previous sample was taken, and `previous` is its value.
+        float firstEnd = min(tFirst, span.y);
+        vec3 firstPoint = ray.origin + firstEnd * ray.direction;
+        vec4 firstSample = sampleVolume(toTexture(firstPoint));
+        float previous = firstSample.w;
+#if COMBINED_FETCH
+        vec3 previousDifferences = firstSample.xyz;  // the gradient at `previous`
+        shadedDifferences = firstSample.xyz;
+#endif
+        compositeSegment(pointSegment(previous, (firstEnd - span.x) / stepLength * opacityExponent), firstPoint,
+                         firstEnd - span.x, ray.direction, color, alpha);
+        bool segmentOpen = true;
+        const int firstStep = 1;
+        bool reachedEnd = false;  // the loop left the ray at its end (not by early termination)
+        float tEnd = 0.0;         // where: the first sample position at or past span.y
+#else
+        const int firstStep = 0;
+#endif
+        // Sample i sits at tFirst + i * step: computed from i, not accumulated, so a skip lands
+        // on exactly the positions the unskipped loop would reach.
+        for (int i = firstStep; i < maxSteps; ++i) {
+            float t = tFirst + float(i) * stepLength;
+            if (t >= span.y) {
+#if PREINTEGRATED
+                reachedEnd = true;
+                tEnd = t;
+#endif
+                break;
+            }
+            vec3 p = ray.origin + t * ray.direction;
+            vec3 tc = tcOrigin + t * tcDirection;
+#if EMPTY_SPACE_SKIPPING
+            ivec3 brick = clamp(ivec3(tc * textureToBrick), ivec3(0), lastBrick);
+            bool emptyBrick = texelFetch(occupancy, brick, 0).r == 0.0;
+#if PREINTEGRATED
+            // The segment from the last sample taken into an empty brick may still hold medium at
+            // its start: take this one sample to close it, and skip from the next.
+            if (emptyBrick && !segmentOpen) {
+#else
+            if (emptyBrick) {
+#endif
+                // Leave the brick in whole steps, so the samples taken are exactly those a caster
+                // without skipping would take (and the skipped ones would all be transparent).
+                vec3 brickSize = vec3(brickVoxels) / vec3(volumeDims) * (boxMax - boxMin);
+                vec3 lo = boxMin + vec3(brick) * brickSize, hi = lo + brickSize;
+                vec3 inv = safeInverse(ray.direction);
+                vec3 tFar = max((lo - ray.origin) * inv, (hi - ray.origin) * inv);
+                float exitT = min(min(tFar.x, tFar.y), tFar.z);
+                i = max(i, int(ceil((exitT - tFirst) / stepLength)) - 1);  // the loop adds one
+                continue;
+            }
+#endif
+            vec4 sampled = sampleVolume(tc);
+            float value = sampled.w;
+#if PREINTEGRATED
+            // Just out of skipped bricks, the previous position was not sampled.
+            if (!segmentOpen) {
+                vec4 before = sampleVolume(toTexture(p - stepLength * ray.direction));
+                previous = before.w;
+#if COMBINED_FETCH
+                previousDifferences = before.xyz;
+#endif
+            }
+            Segment segment = classifySegment(previous, value);
+#if COMBINED_FETCH
+            // The segment is shaded where it adds its light, a fraction `depth` along it: the
+            // gradient there, linear between its two samples.
+            shadedDifferences = mix(previousDifferences, sampled.xyz, segment.depth);
+            previousDifferences = sampled.xyz;
+#endif
+            compositeSegment(segment, p, stepLength, ray.direction, color, alpha);
+            previous = value;
+#if EMPTY_SPACE_SKIPPING
+            segmentOpen = !emptyBrick;
+#else
+            segmentOpen = true;
+#endif
+#else
+            vec4 tf = classifyStep(value);
+            if (tf.a <= 0.0) continue;
+#if COMBINED_FETCH
+            shadedDifferences = sampled.xyz;
+#endif
+            composite(p, tc, tf.rgb, tf.a, color, alpha);
+#endif
+            if (alpha >= earlyTermination) break;
+        }
+#if PREINTEGRATED
+        // The rest of the ray after its last sample, if the loop reached the ray's end.
+        float tailStart = max(tEnd - stepLength, span.x);
+        float tail = span.y - tailStart;
+        if (reachedEnd && tail > 0.0 && alpha < earlyTermination) {
+            vec3 tailEnd = ray.origin + span.y * ray.direction;
+            vec4 tailSample = sampleVolume(toTexture(tailEnd - 0.5 * tail * ray.direction));
+#if COMBINED_FETCH
+            shadedDifferences = tailSample.xyz;
+#endif
+            compositeSegment(pointSegment(tailSample.w, tail / stepLength * opacityExponent),
+                             tailEnd, tail, ray.direction, color, alpha);
+        }
+#endif
+    }
+    return vec4(color, alpha);
+}
