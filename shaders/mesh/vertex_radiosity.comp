@@ -1,6 +1,6 @@
 // Vertex radiosity: each mesh vertex looked up in the scattering maps as the combine pass looks
-// up pixels (shaders/mesh/map_lookup.glsl). Vertices no layer sees get weight 0; the CPU fills
-// them from their neighbours (src/mesh/vertex_radiosity_pass.cpp).
+// up pixels (shaders/mesh/map_lookup.glsl). Vertices a layer sees are stamped known (a = 1), the
+// others 0; vertex_fill.comp then fills those from their neighbours.
 layout(local_size_x = 64) in;
 
 #include "mesh/map_lookup.glsl"
@@ -17,5 +17,5 @@ void main() {
     float length2 = dot(n, n);
     n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
     MapLookup maps = lookUpScatteringMaps(p, n);
-    radiosityOut[i] = vec4(maps.radiosity, maps.weight);
+    radiosityOut[i] = maps.weight > 0.0 ? vec4(maps.radiosity, 1.0) : vec4(0.0);
 }

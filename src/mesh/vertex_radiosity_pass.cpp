@@ -50,63 +50,57 @@ VertexAdjacency buildVertexAdjacency(const Mesh& mesh) {
 }
 
 VertexRadiosityPass::VertexRadiosityPass(const VertexAdjacency& adjacency)
-    : m_program(gl::Program::link({{GL_COMPUTE_SHADER, "mesh/vertex_radiosity.comp"}},
+    : m_resolve(gl::Program::link({{GL_COMPUTE_SHADER, "mesh/vertex_radiosity.comp"}},
                                   {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)}})),
-      m_adjacency(adjacency),
+      m_fill(gl::Program::link({{GL_COMPUTE_SHADER, "mesh/vertex_fill.comp"}})),
       m_vertexCount(adjacency.vertexCount()) {
     const std::size_t bytes = std::max<std::size_t>(1, m_vertexCount) * sizeof(glm::vec4);
-    m_resolved = gl::Buffer::create(bytes, nullptr, 0, "vertex radiosity (resolved)");
-    m_radiosity = gl::Buffer::create(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT, "vertex radiosity");
+    m_radiosity = gl::Buffer::create(bytes, nullptr, 0, "vertex radiosity");
+    const auto upload = [](const std::vector<std::uint32_t>& values, const char* label) {
+        const std::uint32_t none = 0;
+        return values.empty() ? gl::Buffer::create(sizeof none, &none, 0, label)
+                              : gl::Buffer::create(values.size() * sizeof(std::uint32_t), values.data(), 0, label);
+    };
+    m_neighbourStart = upload(adjacency.start, "vertex adjacency (starts)");
+    m_neighbours = upload(adjacency.neighbours, "vertex adjacency (neighbours)");
+    m_filled = gl::Buffer::create(kFillRounds * sizeof(std::uint32_t), nullptr, 0, "vertex fill (filled per round)");
 }
 
 void VertexRadiosityPass::run(const GpuMesh& mesh, const ScatteringCameras& cameras, const ScatteringMapPass& maps,
                               const MapLookupSettings& settings) {
     if (m_vertexCount == 0) return;
-    setMapLookupUniforms(m_program, cameras, maps, settings);
-    m_program.set("vertexCount", static_cast<int>(m_vertexCount));
+    const auto groups = static_cast<GLuint>((m_vertexCount + 63) / 64);
+    setMapLookupUniforms(m_resolve, cameras, maps, settings);
+    m_resolve.set("vertexCount", static_cast<int>(m_vertexCount));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mesh.vertices.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_resolved.id());
-    m_program.use();
-    glDispatchCompute(static_cast<GLuint>((m_vertexCount + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_radiosity.id());
+    m_resolve.use();
+    glDispatchCompute(groups, 1, 1);
     glUseProgram(0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    fill();
+}
 
-    std::vector<glm::vec4> values(m_vertexCount);
-    glGetNamedBufferSubData(m_resolved.id(), 0, static_cast<GLsizeiptr>(values.size() * sizeof(glm::vec4)), values.data());
-    // Breadth-first fill: each round, every unknown vertex with a known neighbour takes the mean
-    // of its known neighbours; values set in a round count from the next one, so the fill does
-    // not depend on vertex order.
-    std::vector<char> known(m_vertexCount);
-    std::vector<std::uint32_t> pending;
-    for (std::size_t v = 0; v < m_vertexCount; ++v) {
-        known[v] = values[v].w > 0.0f;
-        if (!known[v]) pending.push_back(static_cast<std::uint32_t>(v));
+void VertexRadiosityPass::fill() {
+    if (m_vertexCount == 0) return;
+    const auto groups = static_cast<GLuint>((m_vertexCount + 63) / 64);
+    const std::uint32_t zero = 0;
+    glClearNamedBufferData(m_filled.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_radiosity.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_neighbourStart.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_neighbours.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_filled.id());
+    m_fill.set("vertexCount", static_cast<int>(m_vertexCount));
+    m_fill.use();
+    for (int round = 1; round <= kFillRounds; ++round) {
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the previous round's values and counts
+        m_fill.set("fillRound", round);
+        glDispatchCompute(groups, 1, 1);
     }
-    m_unseen = pending.size();
-    std::vector<std::pair<std::uint32_t, glm::vec4>> filled;
-    while (!pending.empty()) {
-        filled.clear();
-        std::vector<std::uint32_t> still;
-        for (std::uint32_t v : pending) {
-            glm::vec4 sum(0.0f);
-            for (std::uint32_t e = m_adjacency.start[v]; e < m_adjacency.start[v + 1]; ++e) {
-                const std::uint32_t n = m_adjacency.neighbours[e];
-                if (known[n]) sum += glm::vec4(glm::vec3(values[n]), 1.0f);
-            }
-            if (sum.w > 0.0f) filled.emplace_back(v, glm::vec4(glm::vec3(sum) / sum.w, 1.0f));
-            else still.push_back(v);
-        }
-        if (filled.empty()) break;  // islands no map sees at all: left black
-        for (const auto& [v, value] : filled) {
-            values[v] = value;
-            known[v] = 1;
-        }
-        pending.swap(still);
-    }
-    for (std::size_t v = 0; v < m_vertexCount; ++v) values[v].w = known[v] ? 1.0f : 0.0f;
-    m_radiosity.upload(0, values.size() * sizeof(glm::vec4), values.data());
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the combine pass reads the values
+    glUseProgram(0);
+    for (GLuint binding = 0; binding < 4; ++binding) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
 }
 
 }  // namespace sss::detail

@@ -4,8 +4,9 @@
 // hidden from all K cameras, and the combine pass has nothing to read there. Radiosity varies
 // smoothly over the diffusion length, so such points take it from the surface around them: the
 // vertices that some map sees keep their own value, and the others are filled breadth-first
-// with the mean of their already-known neighbours. The combine pass interpolates these values
-// over each triangle and uses them where no layer sees the pixel's point.
+// with the mean of their already-known neighbours, in rounds on the GPU (no read-back). The
+// combine pass interpolates these values over each triangle and uses them where no layer sees
+// the pixel's point.
 #include "gl/buffer.h"
 #include "gl/program.h"
 #include "mesh/gpu_mesh.h"
@@ -39,23 +40,28 @@ VertexAdjacency buildVertexAdjacency(const Mesh& mesh);
 
 class VertexRadiosityPass {
 public:
-    /// `adjacency` is the mesh's (the same vertices GpuMesh::upload() uploads); it must outlive
-    /// the pass.
+    /// `adjacency` is the mesh's (the same vertices GpuMesh::upload() uploads); it is uploaded.
     explicit VertexRadiosityPass(const VertexAdjacency& adjacency);
-    /// Resolves the maps at every vertex and fills the vertices no layer sees (reads back to the
-    /// CPU: a few hundred kilobytes, once per map update).
+    /// Resolves the maps at every vertex and fills the vertices no layer sees, all on the GPU.
     void run(const GpuMesh& mesh, const ScatteringCameras& cameras, const ScatteringMapPass& maps,
              const MapLookupSettings& settings);
-    /// rgb radiosity per vertex (a = 1), for shaders/mesh/combine.vert's VertexRadiosity block.
+    /// The fill alone (run() ends with it): every vertex whose radiosity() is unknown (a = 0)
+    /// takes the mean of its known neighbours, ring by ring, for kFillRounds rounds.
+    void fill();
+    /// rgb radiosity per vertex, for shaders/mesh/combine.vert's VertexRadiosity block; a: 1 seen
+    /// by a map, r + 1 filled in round r, 0 left unknown (no map sees its part of the mesh).
     const gl::Buffer& radiosity() const { return m_radiosity; }
-    /// Vertices no layer saw in the last run (filled from neighbours).
-    std::size_t unseenVertices() const { return m_unseen; }
+
+    /// Rounds of the fill each run dispatches. Each round reaches one ring of neighbours
+    /// further; the thesis meshes needed at most 14 (Happy Buddha, K = 4), and rounds after the
+    /// last one that filled anything return at once. Vertices further than this from every
+    /// vertex a map sees stay unknown (black).
+    static constexpr int kFillRounds = 64;
 
 private:
-    gl::Program m_program;
-    gl::Buffer m_resolved, m_radiosity;
-    const VertexAdjacency& m_adjacency;
-    std::size_t m_vertexCount = 0, m_unseen = 0;
+    gl::Program m_resolve, m_fill;
+    gl::Buffer m_radiosity, m_neighbourStart, m_neighbours, m_filled;
+    std::size_t m_vertexCount = 0;
 };
 
 }  // namespace sss::detail
