@@ -128,6 +128,10 @@ public:
                         std::optional<glm::ivec2> size = std::nullopt,
                         const std::function<void(bool starting)>& timedRuns = {});
 
+    /// The frame's floor: the target's clear alone, timed as measure() times a frame (no image
+    /// check: nothing is drawn).
+    Measurement measureClearOnly();
+
     void addRecord(Record record);
     void addSkipped(Skipped skipped);
     const std::vector<Record>& records() const { return m_records; }

@@ -116,6 +116,19 @@ Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget
     return m;
 }
 
+Measurement BenchmarkContext::measureClearOnly() {
+    for (int i = 0; i < m_options.warmup; ++i) m_target->clear(kBackground);
+    sss::finishGpuWork();
+    Measurement m;
+    for (int i = 0; i < m_options.runs; ++i) {
+        m_timer->begin();
+        m_target->clear(kBackground);
+        m.samplesMs.push_back(m_timer->endMilliseconds());
+    }
+    m.stats = summarize(m.samplesMs);
+    return m;
+}
+
 void BenchmarkContext::addRecord(Record record) {
     const Stats& s = record.measurement.stats;
     std::cerr << "sss-bench: " << record.table << " " << record.model << " " << record.mode << ": median "

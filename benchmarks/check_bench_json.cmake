@@ -1,5 +1,6 @@
-# Checks an sss-bench JSON report: cmake -DJSON=quick.json [-DEXTRA=a;b;c] -P check_bench_json.cmake
-# EXTRA names further fields every record must have (e.g. a table's change_ms, fixed_ms).
+# Checks an sss-bench JSON report: cmake -DJSON=quick.json [-DEXTRA=a;b;c] [-DSOME=d;e] -P check_bench_json.cmake
+# EXTRA names further fields every record must have (e.g. a table's change_ms, fixed_ms); SOME
+# fields that some record must have all of (--passes: pass, gpu_ms, cpu_ms), with numeric times.
 # Fails unless "records" is a non-empty array whose every record has the fields the acceptance
 # checks read, with numeric timings that make sense (0 < min <= median <= max, runs >= 1).
 cmake_minimum_required(VERSION 3.25)
@@ -54,10 +55,42 @@ foreach(i RANGE ${last})
   string(JSON median GET "${text}" records ${i} median_ms)
   string(JSON max GET "${text}" records ${i} max_ms)
   string(JSON runs GET "${text}" records ${i} runs)
-  # CMake's if() compares floating-point numbers with LESS/GREATER.
-  if(NOT min GREATER 0 OR min GREATER median OR median GREATER max OR runs LESS 1)
+  # CMake's if() compares floating-point numbers with LESS/GREATER. A pass's GPU time may be 0:
+  # a software rasteriser can write both of its timestamps at the same moment.
+  string(JSON mode GET "${text}" records ${i} mode)
+  set(lowest 0)
+  if(mode STREQUAL "pass")
+    set(lowest -1)
+  endif()
+  if(NOT min GREATER ${lowest} OR min GREATER median OR median GREATER max OR runs LESS 1)
     message(FATAL_ERROR "${JSON}: record ${i} has inconsistent timings: "
                         "min ${min}, median ${median}, max ${max}, runs ${runs}")
   endif()
 endforeach()
-message(STATUS "${JSON}: ${count} records OK")
+set(with_some 0)
+if(DEFINED SOME)
+  foreach(i RANGE ${last})
+    set(all 1)
+    foreach(key IN LISTS SOME)
+      string(JSON value ERROR_VARIABLE err GET "${text}" records ${i} ${key})
+      if(err)
+        set(all 0)
+      endif()
+    endforeach()
+    if(all)
+      math(EXPR with_some "${with_some} + 1")
+      foreach(key gpu_ms cpu_ms)
+        if(key IN_LIST SOME)
+          string(JSON type TYPE "${text}" records ${i} ${key})
+          if(NOT type STREQUAL "NUMBER")
+            message(FATAL_ERROR "${JSON}: record ${i} \"${key}\" is ${type}, not a number")
+          endif()
+        endif()
+      endforeach()
+    endif()
+  endforeach()
+  if(with_some EQUAL 0)
+    message(FATAL_ERROR "${JSON}: no record has all of ${SOME}")
+  endif()
+endif()
+message(STATUS "${JSON}: ${count} records OK (${with_some} with ${SOME})")

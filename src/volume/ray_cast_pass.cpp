@@ -219,7 +219,8 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
 
     volume.texture.bind(0);
     in.transferFunction.bind(1);
-    in.sceneDepth.bind(2);
+    if (in.sceneDepth) in.sceneDepth->bind(2);
+    else glBindTextureUnit(2, in.target.depthTextureId());
     if (m_variant.emptySpaceSkipping) in.occupancy.bind(3);
     if (m_variant.preintegration && in.preintegration) {
         p.set("preintegrationTable", units::kPreintegration);

@@ -44,7 +44,9 @@ struct RayCastInputs {
     RenderTarget& target;  ///< drawn over (the fragment caster draws into whatever is bound)
     const GpuVolume& volume;
     const gl::Texture& transferFunction;
-    const gl::Texture& sceneDepth;  ///< a copy of the target's depth: rays stop there
+    /// A copy of the target's depth, where rays stop; null: the target's own depth texture (the
+    /// compute caster, which draws into no framebuffer, reads it directly).
+    const gl::Texture* sceneDepth = nullptr;
     const gl::Texture& occupancy;
     const std::vector<gl::Texture>& lightVolumes;  ///< one per light in the scattering modes
     const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights

@@ -369,13 +369,14 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
     const detail::PassTimer::Mark mark = m_impl->passTimer.begin(m_impl->passTiming());
-    m_impl->copyDepth(target);
+    // The fragment caster cannot sample the depth of the framebuffer it draws into: it reads a copy.
+    if (!variant.compute) m_impl->copyDepth(target);
     target.bindForDrawing();
     const Impl& r = *m_impl;
     r.rayCast->run({.target = target,
                     .volume = *r.volume,
                     .transferFunction = r.transferFunctionTable,
-                    .sceneDepth = r.sceneDepth,
+                    .sceneDepth = variant.compute ? nullptr : &r.sceneDepth,
                     .occupancy = r.occupancy->texture(),
                     .lightVolumes = r.lightVolumes,
                     .meshShadows = r.meshShadows,
