@@ -1,6 +1,7 @@
 #include "volume/path_trace_pass.h"
 
 #include "volume/composite_over.h"
+#include "gl/device.h"
 #include "core/light_geometry.h"
 #include "lighting/light_uniforms.h"
 #include "sss/error.h"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <variant>
 
@@ -58,6 +60,35 @@ PathTracePass::PathTracePass(PathTraceBounds bounds)
                     "PathTracePass: maxPathStates must be >= 1, got " + std::to_string(bounds.maxPathStates));
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "path-tracer status");
+    m_resumable = bounds.resumable.value_or(gl::currentDeviceIsSoftware());
+    if (!m_resumable) {
+        const GLbitfield mapping = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        m_statusCopy = gl::Buffer::create(sizeof(zero), zero, mapping, "path-tracer status (read a frame later)");
+        m_statusMapped =
+            static_cast<const std::uint32_t*>(glMapNamedBufferRange(m_statusCopy.id(), 0, sizeof(zero), mapping));
+    }
+}
+
+PathTracePass::~PathTracePass() {
+    if (m_statusFence) glDeleteSync(m_statusFence);
+    if (m_statusMapped) glUnmapNamedBuffer(m_statusCopy.id());
+}
+
+void PathTracePass::reportAbandoned(std::uint32_t abandoned) {
+    if (abandoned == 0) return;
+    m_abandoned += abandoned;
+    log(LogLevel::Warning, "PathTracePass: " + std::to_string(abandoned) +
+                               " paths were given up after 2^24 steps each (degenerate rays); the image is biased there");
+}
+
+void PathTracePass::collectStatus() {
+    if (!m_statusFence) return;
+    GLint signalled = GL_UNSIGNALED;
+    glGetSynciv(m_statusFence, GL_SYNC_STATUS, 1, nullptr, &signalled);
+    if (signalled != GL_SIGNALED) return;  // still on the GPU: next frame
+    glDeleteSync(m_statusFence);
+    m_statusFence = nullptr;
+    reportAbandoned(m_statusMapped[1]);
 }
 
 void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sums) {
@@ -112,7 +143,8 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
         m_paths = gl::Buffer::create(states * kPathStateBytes, nullptr, 0, "path-tracer path states");
     p.set("firstSample", in.firstSample);
     p.set("pathsPerPixel", static_cast<unsigned>(in.options.samplesPerFrame));
-    p.set("stepsPerDispatch", m_bounds.stepsPerDispatch);
+    // Without resuming, one dispatch takes every path to its end (or to its 2^24-step cap).
+    p.set("stepsPerDispatch", m_resumable ? m_bounds.stepsPerDispatch : std::numeric_limits<int>::max());
 
     volume.texture.bind(0);
     in.transferFunction.bind(1);
@@ -122,17 +154,34 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_paths.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_status.id());
     p.use();
-    // llvmpipe gives each invocation 65535 loop iterations in all, over all its loops (measured:
-    // two loops of 40000 ran 40000 and 25534), then leaves every loop early; many paths in one
-    // invocation were cut short that way (512 paths lost 28 % of the light). So no dispatch runs
-    // a path to its end regardless of length: each spends at most stepsPerDispatch steps per
-    // pixel, and the paths' state carries over to the next dispatch until every pixel has
-    // finished its paths. The shader counts the invocations with work left, read back after
-    // each dispatch.
+    collectStatus();
     const std::uint32_t zero[2] = {0, 0};
     m_status.upload(0, sizeof(zero), zero);
-    m_lastDispatches = 0;
+    dispatchBands(glm::ivec2(size), bandRows);
+    if (!m_resumable && !m_statusFence) {
+        glCopyNamedBufferSubData(m_status.id(), m_statusCopy.id(), 0, 0, sizeof(zero));
+        glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+        m_statusFence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glUseProgram(0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+}
+
+void PathTracePass::dispatchBands(glm::ivec2 size, int bandRows) {
+    // llvmpipe gives each invocation 65535 loop iterations in all, over all its loops (measured:
+    // two loops of 40000 ran 40000 and 25534), then leaves every loop early; many paths in one
+    // invocation were cut short that way (512 paths lost 28 % of the light). So there no
+    // dispatch runs a path to its end regardless of length: each spends at most
+    // stepsPerDispatch steps per pixel, and the paths' state carries over to the next dispatch
+    // until every pixel has finished its paths. The shader counts the invocations with work
+    // left, read back after each dispatch.
+    const gl::Program& p = m_trace;
+    const std::uint32_t zero = 0;
     std::uint32_t status[2] = {0, 0};
+    m_lastDispatches = 0;
     for (int firstRow = 0; firstRow < size.y; firstRow += bandRows) {
         const int rows = std::min(bandRows, size.y - firstRow);
         p.set("bandFirstRow", firstRow);
@@ -143,22 +192,13 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
             ++m_lastDispatches;
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                             GL_BUFFER_UPDATE_BARRIER_BIT);
+            if (!m_resumable) break;
             glGetNamedBufferSubData(m_status.id(), 0, sizeof(status), status);
             if (status[0] == 0) break;
-            m_status.upload(0, sizeof(zero[0]), &zero[0]);  // the unfinished count; the abandoned one runs on
+            m_status.upload(0, sizeof(zero), &zero);  // the unfinished count; the abandoned one runs on
         }
     }
-    if (status[1] > 0) {
-        m_abandoned += status[1];
-        log(LogLevel::Warning, "PathTracePass: " + std::to_string(status[1]) +
-                                   " paths were given up after 2^24 steps each (degenerate rays); "
-                                   "the image is biased there");
-    }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    glUseProgram(0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    if (m_resumable) reportAbandoned(status[1]);
 }
 
 void PathTracePass::composite(const gl::Texture& sums, int samples) const {

@@ -18,6 +18,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace sss::detail {
@@ -59,17 +60,26 @@ struct PathTraceBounds {
     /// Paths in flight at once, >= 1: the image is traced in bands of rows with at most this
     /// many pixels (at least one row each).
     int maxPathStates = kPathTraceMaxPathStates;
+    /// Resume unfinished paths in further dispatches, reading back the count of unfinished
+    /// invocations after each (where the GL caps an invocation's loop iterations: llvmpipe); or
+    /// trace every path to its end in one dispatch per band with nothing read back, the counts
+    /// of paths given up collected a frame later once a fence says they are there (hardware
+    /// GPUs). Unset: resumable on software rasterisers only.
+    std::optional<bool> resumable;
 };
 
 class PathTracePass {
 public:
     /// @throws Error InvalidArgument for bounds out of range.
     explicit PathTracePass(PathTraceBounds bounds = {});
+    ~PathTracePass();  // the status fence and mapping
+    PathTracePass(const PathTracePass&) = delete;
+    PathTracePass& operator=(const PathTracePass&) = delete;
     /// Adds options.samplesPerFrame paths per pixel to `sums` (RGBA32F, the target's size): per
-    /// band of rows, one dispatch starts them, further dispatches resume the unfinished ones
-    /// until none is left (each waits for a read-back of the count). A path is given up only
-    /// after 2^24 steps (a degenerate ray); that is logged as a warning and counted in
-    /// abandonedPaths().
+    /// band of rows, one dispatch starts them; resumable passes resume the unfinished ones in
+    /// further dispatches until none is left (each waits for a read-back of the count). A path
+    /// is given up only after 2^24 steps (a degenerate ray); that is logged as a warning and
+    /// counted in abandonedPaths() (a frame later without resuming).
     void accumulate(const PathTraceInputs& in, const gl::Texture& sums);
     /// Draws sums / samples with premultiplied "over" into the bound target.
     void composite(const gl::Texture& sums, int samples) const;
@@ -78,14 +88,26 @@ public:
     int lastDispatches() const { return m_lastDispatches; }
     /// Paths given up since construction (0 unless a ray is degenerate).
     std::uint64_t abandonedPaths() const { return m_abandoned; }
+    bool resumable() const { return m_resumable; }
 
 private:
+    void dispatchBands(glm::ivec2 size, int bandRows);
+    /// Without resuming: records the status of a finished earlier frame, never waiting.
+    void collectStatus();
+    void reportAbandoned(std::uint32_t abandoned);
+
     gl::Program m_trace;
     gl::Program m_resolve;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
     PathTraceBounds m_bounds;
     gl::Buffer m_paths;   // one PathState (path_trace.comp) per pixel of a band
     gl::Buffer m_status;  // (unfinished invocations, abandoned paths)
+    bool m_resumable = true;
+    // Without resuming: the status copied after each frame into persistently mapped memory, and
+    // the fence after which it is there.
+    gl::Buffer m_statusCopy;
+    const std::uint32_t* m_statusMapped = nullptr;
+    GLsync m_statusFence = nullptr;
     int m_lastDispatches = 0;
     std::uint64_t m_abandoned = 0;
 };
