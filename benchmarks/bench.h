@@ -128,9 +128,9 @@ public:
                         std::optional<glm::ivec2> size = std::nullopt,
                         const std::function<void(bool starting)>& timedRuns = {});
 
-    /// The frame's floor: the target's clear alone, timed as measure() times a frame (no image
-    /// check: nothing is drawn).
-    Measurement measureClearOnly();
+    /// The frame's floor: the target's clear alone (RenderTarget::clear, or `clear` if given),
+    /// timed as measure() times a frame (no image check: nothing is drawn).
+    Measurement measureClearOnly(const std::function<void(sss::RenderTarget&)>& clear = {});
 
     void addRecord(Record record);
     void addSkipped(Skipped skipped);
@@ -213,6 +213,8 @@ void runTable53(BenchmarkContext& bench);
 void runTable54(BenchmarkContext& bench);
 /// Fragment against compute ray casting, side by side, per volume and mode.
 void runCastersTable(BenchmarkContext& bench);
+/// The ways to clear a render target, side by side (the floor under every frame's time).
+void runClearTable(BenchmarkContext& bench);
 /// Time against viewport size and step: EA and fixed scattering on the bonsai, the mesh change
 /// and fixed frames on the bunny, with the intercept and slope of a line through each series.
 void runScalingTable(BenchmarkContext& bench);

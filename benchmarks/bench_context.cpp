@@ -116,13 +116,14 @@ Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget
     return m;
 }
 
-Measurement BenchmarkContext::measureClearOnly() {
-    for (int i = 0; i < m_options.warmup; ++i) m_target->clear(kBackground);
+Measurement BenchmarkContext::measureClearOnly(const std::function<void(sss::RenderTarget&)>& clear) {
+    const auto run = [&] { clear ? clear(*m_target) : m_target->clear(kBackground); };
+    for (int i = 0; i < m_options.warmup; ++i) run();
     sss::finishGpuWork();
     Measurement m;
     for (int i = 0; i < m_options.runs; ++i) {
         m_timer->begin();
-        m_target->clear(kBackground);
+        run();
         m.samplesMs.push_back(m_timer->endMilliseconds());
     }
     m.stats = summarize(m.samplesMs);

