@@ -53,9 +53,7 @@ glm::mat4 lightViewProjection(const Light& light, glm::vec3 centre, float radius
 
 LightBufferPass::LightBufferPass()
     : m_program(gl::Program::link({{GL_VERTEX_SHADER, "mesh/light_buffer.vert"},
-                                   {GL_GEOMETRY_SHADER, "mesh/light_buffer.geom"},
-                                   {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}},
-                                  {{"MAX_LIGHTS", std::to_string(kMaxLights)}})) {}
+                                   {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}})) {}
 
 void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std::vector<Light>& lights,
                           int resolution) {
@@ -66,31 +64,34 @@ void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std
         // them; where the four texels are not all covered (w < 1) the sampler skips the sample.
         m_normals = gl::Texture::create2DArray(GL_RGBA16F, resolution, resolution, layers, "light buffer normals");
         m_depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, resolution, resolution, layers, "light buffer depth");
-        m_framebuffer = gl::Framebuffer::create();
-        m_framebuffer.attach(GL_COLOR_ATTACHMENT0, m_positions);
-        m_framebuffer.attach(GL_COLOR_ATTACHMENT1, m_normals);
-        m_framebuffer.attach(GL_DEPTH_ATTACHMENT, m_depth);
-        m_framebuffer.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
-        m_framebuffer.checkComplete("light buffer");
+        m_layers.clear();
+        for (int layer = 0; layer < layers; ++layer) {
+            gl::Framebuffer& framebuffer = m_layers.emplace_back(gl::Framebuffer::create());
+            framebuffer.attachLayer(GL_COLOR_ATTACHMENT0, m_positions, layer);
+            framebuffer.attachLayer(GL_COLOR_ATTACHMENT1, m_normals, layer);
+            framebuffer.attachLayer(GL_DEPTH_ATTACHMENT, m_depth, layer);
+            framebuffer.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+            framebuffer.checkComplete("light buffer");
+        }
     }
     const auto [centre, radius] = worldSphere(mesh.bounds, model);
-    m_viewProjections.clear();
-    for (size_t i = 0; i < lights.size(); ++i) {
-        m_viewProjections.push_back(lightViewProjection(lights[i], centre, radius));
-        m_program.set("lightViewProjection[" + std::to_string(i) + "]", m_viewProjections.back());
-    }
-    m_program.set("lightCount", static_cast<int>(lights.size()));
     m_program.set("model", model);
     m_program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
-
     const float zero[4] = {0, 0, 0, 0};
     const float one = 1.0f;
-    glClearNamedFramebufferfv(m_framebuffer.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(m_framebuffer.id(), GL_COLOR, 1, zero);
-    glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &one);
-    m_framebuffer.bind();
+    m_viewProjections.clear();
     glViewport(0, 0, resolution, resolution);
-    mesh.drawOpaque(m_program);
+    for (size_t i = 0; i < m_layers.size(); ++i) {
+        const gl::Framebuffer& framebuffer = m_layers[i];
+        glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 1, zero);
+        glClearNamedFramebufferfv(framebuffer.id(), GL_DEPTH, 0, &one);
+        if (i >= lights.size()) continue;  // no light: the layer stays empty
+        m_viewProjections.push_back(lightViewProjection(lights[i], centre, radius));
+        m_program.set("lightViewProjection", m_viewProjections.back());
+        framebuffer.bind();
+        mesh.drawOpaque(m_program);
+    }
 }
 
 }  // namespace sss::detail

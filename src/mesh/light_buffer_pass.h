@@ -1,6 +1,6 @@
 #pragma once
 // Light buffer (Dal Corso et al. 2017, pass 1): for each light, the world position and normal of
-// the surface the light sees, one layer of a 2D array per light, all lights in one draw.
+// the surface the light sees, one layer of a 2D array per light, one draw per light.
 // Directional lights use an orthographic view along the light, point and spot lights a
 // perspective view from the light; both frame the object's bounding sphere.
 #include "gl/framebuffer.h"
@@ -30,7 +30,7 @@ public:
 private:
     gl::Program m_program;
     gl::Texture m_positions, m_normals, m_depth;
-    gl::Framebuffer m_framebuffer;
+    std::vector<gl::Framebuffer> m_layers;  // one per light: its layer of the three textures
     std::vector<glm::mat4> m_viewProjections;
 };
 

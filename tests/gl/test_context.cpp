@@ -125,9 +125,9 @@ TEST_CASE("every embedded shader program compiles and links", "[gl][shaders]") {
     CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/blinn_phong.vert"},
                                      {GL_FRAGMENT_SHADER, "mesh/blinn_phong.frag"}}));
     CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/light_buffer.vert"},
-                                     {GL_GEOMETRY_SHADER, "mesh/light_buffer.geom"},
-                                     {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}},
-                                    {{"MAX_LIGHTS", "8"}}));
+                                     {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}}));
+    CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "mesh/vertex_fill.comp"}}));
+    CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "frame/clear_color.comp"}}));
     for (const char* fragment : {"mesh/scattering_map.frag", "mesh/depth_only.frag"})
         CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "mesh/scattering_map.vert"},
                                          {GL_GEOMETRY_SHADER, "mesh/scattering_map.geom"},
@@ -143,13 +143,19 @@ TEST_CASE("every embedded shader program compiles and links", "[gl][shaders]") {
     for (const char* gradient : {"0", "1"})
         for (const char* scattering : {"0", "1"})
             for (const char* skipping : {"0", "1"})
-                CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
-                                                 {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
-                                                {{"SHADING_GRADIENT", gradient},
-                                                 {"SHADING_SCATTERING", scattering},
-                                                 {"EMPTY_SPACE_SKIPPING", skipping},
-                                                 {"LIGHT_COUNT", "2"},
-                                                 {"EYE_PASS", scattering}}));
+                for (bool compute : {false, true}) {
+                    const detail::ShaderDefines defines{{"SHADING_GRADIENT", gradient},
+                                                        {"SHADING_SCATTERING", scattering},
+                                                        {"EMPTY_SPACE_SKIPPING", skipping},
+                                                        {"LIGHT_COUNT", "2"},
+                                                        {"EYE_PASS", scattering}};
+                    if (compute)
+                        CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/ray_cast.comp"}}, defines));
+                    else
+                        CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                         {GL_FRAGMENT_SHADER, "volume/ray_cast.frag"}},
+                                                        defines));
+                }
     gl.requireNoErrors();
 }
 
