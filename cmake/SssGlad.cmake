@@ -14,5 +14,6 @@ add_custom_command(
 add_library(sss_glad_headers INTERFACE)
 target_include_directories(sss_glad_headers INTERFACE "$<BUILD_INTERFACE:${SSS_GLAD_DIR}/include>")
 add_library(sss_glad OBJECT "${SSS_GLAD_DIR}/src/gl.c")
-set_target_properties(sss_glad PROPERTIES POSITION_INDEPENDENT_CODE ON)
+# Hidden: a shared libsss keeps its GL loader to itself (the host application may have its own).
+set_target_properties(sss_glad PROPERTIES POSITION_INDEPENDENT_CODE ON C_VISIBILITY_PRESET hidden)
 target_link_libraries(sss_glad PRIVATE sss_glad_headers)

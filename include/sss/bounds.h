@@ -2,10 +2,13 @@
 /// @file
 /// Axis-aligned bounding box.
 
+#include "sss/api.h"
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <limits>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -42,3 +45,5 @@ struct Bounds {
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -12,6 +12,7 @@
 ///    millimetresPerUnit): millimetres by default, scene units when a scale is given.
 ///  - Results are per RGB channel.
 
+#include "sss/api.h"
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -19,6 +20,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -253,3 +256,5 @@ glm::dvec3 evaluateBssrdf(const DipoleConstants& constants, const glm::dvec3& xi
                           const glm::dvec3& wo);
 
 }  // namespace sss
+
+SSS_END_API

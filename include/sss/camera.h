@@ -3,6 +3,7 @@
 /// Orbit camera: view and projection matrices (OpenGL conventions: right-handed, clip z in
 /// [-1, 1]).
 
+#include "sss/api.h"
 #include "sss/bounds.h"
 
 #include <glm/mat4x4.hpp>
@@ -10,6 +11,8 @@
 #include <glm/vec3.hpp>
 
 #include <span>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -124,3 +127,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -6,10 +6,13 @@
 /// Contract for backends: creating a context loads the GL entry points and leaves the new
 /// context current; backends never change GL state other than what context creation implies.
 
+#include "sss/api.h"
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -139,3 +142,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

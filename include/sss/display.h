@@ -10,6 +10,7 @@
 /// Alpha is passed through, clamped to [0,1]. The transform lives in one text shared by C++ and
 /// GLSL (shaders/common/display_transform.glsl), so CPU and GPU output agree.
 
+#include "sss/api.h"
 #include "sss/image.h"
 
 #include <glm/vec3.hpp>
@@ -17,6 +18,8 @@
 #include <cstdint>
 #include <memory>
 #include <string_view>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -69,3 +72,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

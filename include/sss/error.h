@@ -20,8 +20,11 @@
 /// Nothing in libsss terminates the process or returns a silently wrong result on bad input.
 /// Internal invariants (bugs in libsss itself) are assert()s.
 
+#include "sss/api.h"
 #include <stdexcept>
 #include <string>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -49,3 +52,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -16,11 +16,14 @@
 ///     camera.setSubpixelOffset({0, 0});
 ///     sss::Image picture = aa.result().readColor();
 
+#include "sss/api.h"
 #include "sss/render_target.h"
 
 #include <glm/vec2.hpp>
 
 #include <memory>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -51,3 +54,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -3,12 +3,15 @@
 /// Windowed OpenGL 4.5 core context through GLFW (optional: built with SSS_WITH_GLFW=ON).
 /// Needs a display (X11, or Xvfb on headless machines); use EglContext for headless rendering.
 
+#include "sss/api.h"
 #include "sss/context.h"
 
 #include <glm/vec2.hpp>
 
 #include <memory>
 #include <string>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -43,3 +46,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -7,7 +7,10 @@
 /// volume renderer's light volumes fall back to a lower resolution instead (see
 /// VolumeRenderOptions::lightVolumeFallback).
 
+#include "sss/api.h"
 #include <cstdint>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -37,3 +40,5 @@ std::uint64_t gpuMemoryBudget();
 std::uint64_t gpuMemoryInUse();
 
 }  // namespace sss
+
+SSS_END_API

@@ -21,11 +21,14 @@
 /// GL STATE CONTRACT. Between begin() and the end of the Frame, libsss owns the GL state; when the
 /// Frame ends, everything listed in GlStateGuard is as the host left it. libsss objects keep
 /// their own GL objects alive: the host must not delete names it did not create.
+#include "sss/api.h"
 #include "sss/display.h"
 #include "sss/render_target.h"
 
 #include <cstdint>
 #include <memory>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -109,3 +112,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

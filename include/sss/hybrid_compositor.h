@@ -28,6 +28,7 @@
 /// light volumes; moving a mesh redraws the meshes' shadow maps and the mesh's own scattering
 /// passes; changing a light or the volume reruns both renderers' passes.
 
+#include "sss/api.h"
 #include "sss/camera.h"
 #include "sss/light.h"
 #include "sss/mesh.h"
@@ -41,6 +42,8 @@
 
 #include <memory>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -106,3 +109,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -2,6 +2,7 @@
 /// @file
 /// CPU images: RGBA float (Image) and RGBA 8-bit (Image8), row 0 at the top, PNG I/O.
 
+#include "sss/api.h"
 #include <glm/ext/vector_uint4_sized.hpp>
 #include <glm/vec4.hpp>
 
@@ -9,6 +10,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -91,3 +94,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -2,7 +2,10 @@
 /// @file
 /// Image comparison for golden tests (8-bit) and accuracy measurements (float).
 
+#include "sss/api.h"
 #include "sss/image.h"
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -41,3 +44,5 @@ struct ErrorMetrics {
 ErrorMetrics computeErrorMetrics(const Image& test, const Image& reference);
 
 }  // namespace sss
+
+SSS_END_API

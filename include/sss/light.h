@@ -2,10 +2,13 @@
 /// @file
 /// Light sources shared by the mesh and volume renderers.
 
+#include "sss/api.h"
 #include <glm/vec3.hpp>
 
 #include <string_view>
 #include <variant>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -54,3 +57,5 @@ float spotConeFactor(const SpotLight& light, float cosAngle);
 void validateLight(const Light& light, std::string_view what);
 
 }  // namespace sss
+
+SSS_END_API

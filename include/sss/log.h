@@ -4,8 +4,11 @@
 /// shader warnings) go to a handler the application may replace. The default handler prints
 /// warnings and errors to stderr.
 
+#include "sss/api.h"
 #include <functional>
 #include <string_view>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -20,3 +23,5 @@ void setLogHandler(LogHandler handler);
 void log(LogLevel level, std::string_view message);
 
 }  // namespace sss
+
+SSS_END_API

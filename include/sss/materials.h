@@ -2,11 +2,14 @@
 /// @file
 /// Measured scattering materials and the scale that relates them to scene units.
 
+#include "sss/api.h"
 #include "sss/bssrdf.h"
 
 #include <string>
 #include <string_view>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -42,3 +45,5 @@ ScatteringMaterial materialPreset(std::string_view name);
 std::vector<std::string> materialPresetNames();
 
 }  // namespace sss
+
+SSS_END_API

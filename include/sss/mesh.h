@@ -2,6 +2,7 @@
 /// @file
 /// Indexed triangle mesh on the CPU (positions, per-vertex normals, 32-bit indices).
 
+#include "sss/api.h"
 #include "sss/bounds.h"
 
 #include <glm/mat4x4.hpp>
@@ -13,6 +14,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -99,3 +102,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

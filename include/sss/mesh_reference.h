@@ -63,6 +63,7 @@
 /// on), or at maxSamples. Each pixel has its own random stream (seed, pixel index), so the
 /// image does not depend on the number of threads.
 
+#include "sss/api.h"
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/image.h"
@@ -74,6 +75,8 @@
 
 #include <cstdint>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -135,3 +138,5 @@ MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model
                                         const MeshReferenceOptions& options = {});
 
 }  // namespace sss
+
+SSS_END_API

@@ -13,6 +13,7 @@
 ///    material, options); while the scene is static, further map frames are accumulated until
 ///    `accumulationFrames`. A camera change reruns only the combine pass.
 
+#include "sss/api.h"
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/light.h"
@@ -24,6 +25,8 @@
 
 #include <memory>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -161,3 +164,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

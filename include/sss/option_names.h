@@ -4,6 +4,7 @@
 /// "scattering-gradient", ...): one table per enum, so every front end and the scene files
 /// agree on them.
 
+#include "sss/api.h"
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/display.h"
@@ -16,6 +17,8 @@
 #include <string>
 #include <string_view>
 #include <utility>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -72,3 +75,5 @@ template <> std::span<const EnumName<Projection>> enumNames<Projection>();
 template <> std::span<const EnumName<VoxelType>> enumNames<VoxelType>();
 
 }  // namespace sss
+
+SSS_END_API

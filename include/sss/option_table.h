@@ -5,6 +5,7 @@
 /// flag. validate(), scene files, the command lines of sss-render, sss-viewer and sss-bench with
 /// their --help, and the Python module all read these tables; each default is the struct's own.
 /// Adding an option is one field in its struct and one line here.
+#include "sss/api.h"
 #include "sss/hybrid_compositor.h"
 #include "sss/mesh_scattering_renderer.h"
 #include "sss/volume_scattering_renderer.h"
@@ -14,6 +15,8 @@
 #include <string_view>
 #include <tuple>
 #include <type_traits>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -214,3 +217,5 @@ void validateOptionRanges(const Owner& options) {
 }
 
 }  // namespace sss
+
+SSS_END_API

@@ -2,11 +2,14 @@
 /// @file
 /// Procedural test meshes and volumes, deterministic on every platform we build for.
 
+#include "sss/api.h"
 #include "sss/bounds.h"
 #include "sss/mesh.h"
 #include "sss/volume.h"
 
 #include <glm/vec3.hpp>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -68,3 +71,5 @@ Volume makeShellVolume(int n = 64, float outerRadius = 0.42f, float thickness = 
 Volume makeBuckyLikeVolume(int n = 32);
 
 }  // namespace sss
+
+SSS_END_API

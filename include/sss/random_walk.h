@@ -67,6 +67,7 @@
 /// The exact references (chandrasekharH(), isotropicHalfSpaceReflectance()) hold for isotropic
 /// scattering (g = 0) in a half-space; see each function.
 
+#include "sss/api.h"
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/image.h"
@@ -80,6 +81,8 @@
 #include <cstdint>
 #include <limits>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -370,3 +373,5 @@ MeshRandomWalkResult renderMeshRandomWalk(const Mesh& mesh, const glm::mat4& mod
                                           const MeshRandomWalkOptions& options = {});
 
 }  // namespace sss
+
+SSS_END_API

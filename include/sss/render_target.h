@@ -2,6 +2,7 @@
 /// @file
 /// An offscreen image the renderers draw into: RGBA32F colour + 32-bit float depth.
 
+#include "sss/api.h"
 #include "sss/image.h"
 
 #include <glm/vec4.hpp>
@@ -9,6 +10,8 @@
 #include <cstdint>
 #include <memory>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -49,3 +52,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

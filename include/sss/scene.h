@@ -5,6 +5,7 @@
 /// and the assets they name loaded and placed in a HybridCompositor. sss-render, sss-viewer and
 /// sss-bench all take `--scene FILE.json`; the viewer saves its current scene as one.
 
+#include "sss/api.h"
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/display.h"
@@ -27,6 +28,8 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -150,3 +153,5 @@ void populateCompositor(HybridCompositor& compositor, const SceneDescription& sc
 Camera sceneCamera(const SceneDescription& scene, const SceneAssets& assets, const Bounds& content, float aspect);
 
 }  // namespace sss
+
+SSS_END_API

@@ -3,10 +3,13 @@
 /// Per-pass statistics every renderer keeps, so applications, tests and the benchmark can see
 /// which passes ran (and which were skipped because nothing they depend on changed).
 
+#include "sss/api.h"
 #include <cstdint>
 #include <map>
 #include <string>
 #include <string_view>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -38,3 +41,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -5,10 +5,13 @@
 ///  - software rasterisers (llvmpipe): a CPU steady clock around glFinish(), because llvmpipe
 ///    rasterises at flush time and its timer queries only see the front end.
 
+#include "sss/api.h"
 #include "sss/context.h"
 
 #include <chrono>
 #include <memory>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -40,3 +43,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -2,6 +2,7 @@
 /// @file
 /// 1D transfer function: maps a normalized scalar in [0,1] to colour and opacity.
 
+#include "sss/api.h"
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -13,6 +14,8 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -125,3 +128,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

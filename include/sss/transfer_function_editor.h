@@ -7,6 +7,7 @@
 /// calls pointerDown/pointerDrag/pointerUp (or the explicit operations), and draws
 /// transferFunction() and histogramBars(). sss-viewer does this with Dear ImGui.
 
+#include "sss/api.h"
 #include "sss/transfer_function.h"
 
 #include <glm/vec2.hpp>
@@ -17,6 +18,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -160,3 +163,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

@@ -3,6 +3,7 @@
 /// Scalar volumes (8/16-bit integer or 32-bit float voxels) on the CPU, the headerless .raw
 /// loader and Volume::load for NRRD, MetaImage, NIfTI, VTK XML image data and DICOM series.
 
+#include "sss/api.h"
 #include "sss/bounds.h"
 
 #include <glm/vec3.hpp>
@@ -14,6 +15,8 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -173,3 +176,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

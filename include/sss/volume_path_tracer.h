@@ -91,6 +91,7 @@
 /// so the images are bit-identical for a given seed whatever the number of threads, and a
 /// path's first collision does not depend on the mode.
 
+#include "sss/api.h"
 #include "sss/camera.h"
 #include "sss/image.h"
 #include "sss/light.h"
@@ -102,6 +103,8 @@
 
 #include <cstdint>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -179,3 +182,5 @@ VolumePathTracerResult renderVolumePathTraced(const Volume& volume, const Transf
                                               const VolumePathTracerOptions& options = {});
 
 }  // namespace sss
+
+SSS_END_API

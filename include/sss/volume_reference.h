@@ -71,6 +71,7 @@
 /// scattering modes, reads c and l from a light volume (slice propagation, c blurred over a cone
 /// unless chromaticityConeScale models that).
 
+#include "sss/api.h"
 #include "sss/camera.h"
 #include "sss/image.h"
 #include "sss/light.h"
@@ -85,6 +86,8 @@
 #include <cstdint>
 #include <memory>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -211,3 +214,5 @@ ConvergedReference renderVolumeReferenceConverged(const Volume& volume, const Tr
                                                   double startStepVoxels = 0.5, double minStepVoxels = 1.0 / 32.0);
 
 }  // namespace sss
+
+SSS_END_API

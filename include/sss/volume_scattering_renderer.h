@@ -16,6 +16,7 @@
 /// smallest voxel edge), i.e. extinction sigma_t = -ln(1 - alpha) per voxel; the ray step and the
 /// light propagation both correct opacity for their own path lengths.
 
+#include "sss/api.h"
 #include "sss/camera.h"
 #include "sss/light.h"
 #include "sss/render_target.h"
@@ -30,6 +31,8 @@
 #include <optional>
 #include <string_view>
 #include <vector>
+
+SSS_BEGIN_API
 
 namespace sss {
 
@@ -230,3 +233,5 @@ private:
 };
 
 }  // namespace sss
+
+SSS_END_API

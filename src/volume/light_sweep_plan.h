@@ -2,6 +2,7 @@
 // How the light volume (light_volume_pass.h) sweeps the light through a volume and gathers its
 // chromaticity over a cone: plain CPU geometry, shared by the GPU pass and by the CPU reference
 // that evaluates the same model (sss/volume_reference.h, chromaticityConeScale).
+#include "sss/api.h"  // SSS_API: sss::io, sss::reference and sss::scene call these in a shared build
 #include "sss/bounds.h"
 #include "sss/light.h"
 
@@ -22,13 +23,13 @@ struct LightSweep {
 
 /// The sweeps for `light` (already in the volume's model space) over a volume of `box` whose
 /// light volume has `dims` voxels.
-std::vector<LightSweep> planLightSweeps(const Light& modelSpaceLight, const Bounds& box, glm::ivec3 dims);
+SSS_API std::vector<LightSweep> planLightSweeps(const Light& modelSpaceLight, const Bounds& box, glm::ivec3 dims);
 
 /// The light volume's size for a volume of `volumeDims` at `scale` (each side at least 1).
-glm::ivec3 lightVolumeDims(glm::ivec3 volumeDims, float scale);
+SSS_API glm::ivec3 lightVolumeDims(glm::ivec3 volumeDims, float scale);
 
 /// Cone half-angle (radians) holding half the scattered energy of HG(g), clamped to 60 degrees.
-float chromaticityConeAngle(float g);
+SSS_API float chromaticityConeAngle(float g);
 
 /// The cone gather at every slice: the previous slice's chromaticity is read at the light ray's
 /// crossing (centre) and at 8 points on a ring of radius tangent x (the path between slices),
@@ -38,6 +39,6 @@ struct ChromaticityCone {
     float centreWeight = 1.0f;
     float ringWeight = 0.0f;  ///< each of the 8 ring points
 };
-ChromaticityCone chromaticityCone(float g);
+SSS_API ChromaticityCone chromaticityCone(float g);
 
 }  // namespace sss::detail
