@@ -8,10 +8,13 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define SSS_API __attribute__((visibility("default")))
+/// For internal types a public header must name (the renderers' friends): kept hidden.
+#define SSS_INTERNAL __attribute__((visibility("hidden")))
 #define SSS_BEGIN_API _Pragma("GCC visibility push(default)")
 #define SSS_END_API _Pragma("GCC visibility pop")
 #else
 #define SSS_API
+#define SSS_INTERNAL
 #define SSS_BEGIN_API
 #define SSS_END_API
 #endif

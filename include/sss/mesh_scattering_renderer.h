@@ -31,7 +31,7 @@ SSS_BEGIN_API
 namespace sss {
 
 namespace detail {
-struct MeshRendererAccess;  // hybrid-scene hooks (src/hybrid/shared_lighting.h)
+struct SSS_INTERNAL MeshRendererAccess;  // hybrid-scene hooks (src/hybrid/shared_lighting.h)
 }
 
 enum class MeshShading { BlinnPhong, Scattering };

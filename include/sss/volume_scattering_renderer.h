@@ -37,7 +37,7 @@ SSS_BEGIN_API
 namespace sss {
 
 namespace detail {
-struct VolumeRendererAccess;  // hybrid-scene hooks (src/hybrid/shared_lighting.h)
+struct SSS_INTERNAL VolumeRendererAccess;  // hybrid-scene hooks (src/hybrid/shared_lighting.h)
 }
 
 enum class VolumeShading { EmissionAbsorption, Gradient, Scattering, ScatteringGradient };

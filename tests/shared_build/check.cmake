@@ -31,7 +31,7 @@ list(LENGTH lines exported)
 set(problems "")
 foreach(line IN LISTS lines)
   # The GL loader, the GL wrappers and the passes stay inside (std:: instantiations may show).
-  if(line MATCHES " glad_| gladLoad|sss::gl::|sss::detail::[A-Za-z]*Pass")
+  if(line MATCHES " glad_| gladLoad|sss::gl::|sss::detail::[A-Za-z]*(Pass|RendererAccess)")
     list(APPEND problems "${line}")
   endif()
 endforeach()
