@@ -120,8 +120,14 @@ void meshSeries(BenchmarkContext& bench, const std::string& model) {
     const sss::DirectionalLight key = keyLight(camera);
     // One map frame per change, as Table 5.3 (the default accumulates 8, so a "fixed" frame would
     // still be adding map frames).
-    sss::MeshScatteringRenderer renderer(
-        {.shading = sss::MeshShading::Scattering, .millimetresPerUnit = 1000.0, .accumulationFrames = 1});
+    sss::MeshRenderOptions options{.shading = sss::MeshShading::Scattering, .millimetresPerUnit = 1000.0,
+                                   .accumulationFrames = 1};
+    if (bench.options().quick) {  // ctest: the same code path, small maps and few samples
+        options.cameras = 4;
+        options.samples = 8;
+        options.mapResolution = options.lightMapResolution = 128;
+    }
+    sss::MeshScatteringRenderer renderer(options);
     renderer.setMesh(*mesh);
     renderer.setScatteringMaterial(sss::materialPreset("cream"));
     renderer.setLights({key});
