@@ -148,7 +148,7 @@ void runVolume(BenchmarkContext& bench, const VolumeCase& c) {
         r.table = kTable;
         r.model = c.model;
         r.mode = m.name;
-        r.dataSize = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+        r.dataSize = dimsText(d);
         r.params = "tf=" + c.preset;
         r.width = bench.options().width;
         r.height = bench.options().height;

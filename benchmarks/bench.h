@@ -237,6 +237,21 @@ std::optional<sss::Mesh> loadThesisMesh(BenchmarkContext& bench, const std::stri
 std::optional<std::pair<sss::Volume, std::string>> loadThesisVolume(BenchmarkContext& bench, const std::string& table,
                                                                     const std::string& model);
 
+/// "256x256x256": a volume's size in the reports.
+std::string dimsText(glm::ivec3 dims);
+/// A thesis volume set up as every volume table shows it: framed by framedCamera(), lit by
+/// keyLight(), with its transfer-function preset.
+struct FramedVolume {
+    sss::Volume volume;
+    std::string preset;
+    sss::Camera camera;
+    sss::DirectionalLight key;
+};
+/// loadThesisVolume(), framed; nullopt (and a skip) if the data is missing.
+std::optional<FramedVolume> loadFramedVolume(BenchmarkContext& bench, const std::string& table, const std::string& model);
+/// Gives `renderer` the volume, its transfer function and the key light.
+void showVolume(sss::VolumeScatteringRenderer& renderer, const FramedVolume& scene);
+
 /// A CPU reference image: read from --reference-cache DIR/name if it is there, else rendered
 /// (timed on stderr) and kept there.
 sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render);

@@ -39,15 +39,11 @@ void runCastersTable(BenchmarkContext& bench) {
     const double clearMs = bench.measureClearOnly().stats.medianMs;
     for (const std::string& model : models) {
         if (!bench.wanted(model)) continue;
-        auto loaded = loadThesisVolume(bench, kTable, model);
-        if (!loaded) continue;
-        const sss::Volume& volume = loaded->first;
-        const sss::Camera camera = framedCamera(volume.worldBounds());
+        const std::optional<FramedVolume> scene = loadFramedVolume(bench, kTable, model);
+        if (!scene) continue;
         sss::VolumeScatteringRenderer renderer;
-        renderer.setVolume(volume);
-        renderer.setTransferFunction(sss::TransferFunction::preset(loaded->second));
-        renderer.setLights({keyLight(camera)});
-        const glm::ivec3 d = volume.dims();
+        showVolume(renderer, *scene);
+        const glm::ivec3 d = scene->volume.dims();
         for (const ModeCase& m : modes) {
             const std::string settings = m.thesis ? "thesis" : "defaults";
             double fragmentMs = 0.0;
@@ -58,19 +54,19 @@ void runCastersTable(BenchmarkContext& bench) {
                 r.table = kTable;
                 r.model = model;
                 r.mode = std::string(sss::enumName(m.shading));
-                r.dataSize = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+                r.dataSize = dimsText(d);
                 r.params = std::string(sss::enumName(caster)) + ", " + settings + " (step " +
                            std::to_string(options.stepSize).substr(0, 4) + ")";
                 r.width = bench.options().width;
                 r.height = bench.options().height;
-                r.measurement = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); },
+                r.measurement = bench.measure([&](sss::RenderTarget& t) { renderer.render(scene->camera, t); },
                                               std::string(kTable) + "-" + model + "-" + r.mode + "-" + settings + "-" +
                                                   std::string(sss::enumName(caster)));
                 r.details = {{"ray_caster", sss::enumName(caster)},
                              {"settings", settings},
                              {"step_voxels", options.stepSize},
                              {"preintegration", options.preintegration},
-                             {"transfer_function", loaded->second},
+                             {"transfer_function", scene->preset},
                              {"clear_ms", clearMs}};
                 if (caster == sss::RayCaster::Fragment) fragmentMs = r.measurement.stats.medianMs;
                 else r.details["compute_over_fragment"] = r.measurement.stats.medianMs / fragmentMs;

@@ -51,6 +51,23 @@ std::optional<std::pair<sss::Volume, std::string>> loadThesisVolume(BenchmarkCon
     return std::pair{sss::Volume::loadRaw(*path, e.options), e.preset};
 }
 
+std::string dimsText(glm::ivec3 dims) {
+    return std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z);
+}
+
+std::optional<FramedVolume> loadFramedVolume(BenchmarkContext& bench, const std::string& table, const std::string& model) {
+    auto loaded = loadThesisVolume(bench, table, model);
+    if (!loaded) return std::nullopt;
+    const sss::Camera camera = framedCamera(loaded->first.worldBounds());
+    return FramedVolume{std::move(loaded->first), loaded->second, camera, keyLight(camera)};
+}
+
+void showVolume(sss::VolumeScatteringRenderer& renderer, const FramedVolume& scene) {
+    renderer.setVolume(scene.volume);
+    renderer.setTransferFunction(sss::TransferFunction::preset(scene.preset));
+    renderer.setLights({scene.key});
+}
+
 sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render) {
     const std::filesystem::path cached = o.referenceCache / name;
     std::error_code ec;

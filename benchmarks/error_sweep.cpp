@@ -319,7 +319,7 @@ void lightVolumeArtefactRows(BenchmarkContext& bench) {
         r.model = c.name;
         r.mode = "scattering";
         const glm::ivec3 d = volume.dims();
-        r.dataSize = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+        r.dataSize = dimsText(d);
         r.params = "LV=" + std::to_string(c.lightVolumeScale) + " step=0.5 relRMSE=" + std::to_string(error.relRmse);
         r.width = kWidth;
         r.height = kHeight;
@@ -399,7 +399,7 @@ PlotSpec volumeSweep(BenchmarkContext& bench) {
                 r.model = "blobs";
                 r.mode = "scattering";
                 const glm::ivec3 d = volume.dims();
-                r.dataSize = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+                r.dataSize = dimsText(d);
                 char params[128];
                 std::snprintf(params, sizeof params, "LV=%.2f step=%.2f ET=%.2f %s relRMSE=%.4f", scale, step,
                               termination, preintegration ? "pre-integrated" : "post-classified", error.relRmse);

@@ -83,15 +83,11 @@ Record row(const std::string& model, const std::string& mode, glm::ivec2 size, c
 double megapixels(glm::ivec2 size) { return static_cast<double>(size.x) * static_cast<double>(size.y) * 1e-6; }
 
 void volumeSeries(BenchmarkContext& bench, const std::string& model) {
-    auto loaded = loadThesisVolume(bench, kTable, model);
-    if (!loaded) return;
-    const sss::Volume& volume = loaded->first;
-    const sss::Camera camera = framedCamera(volume.worldBounds());
+    const std::optional<FramedVolume> scene = loadFramedVolume(bench, kTable, model);
+    if (!scene) return;
     sss::VolumeScatteringRenderer renderer;
-    renderer.setVolume(volume);
-    renderer.setTransferFunction(sss::TransferFunction::preset(loaded->second));
-    renderer.setLights({keyLight(camera)});
-    const glm::ivec3 d = volume.dims();
+    showVolume(renderer, *scene);
+    const glm::ivec3 d = scene->volume.dims();
     for (sss::VolumeShading shading : {sss::VolumeShading::EmissionAbsorption, sss::VolumeShading::Scattering}) {
         const std::string mode(sss::enumName(shading));
         Series series(model + " " + mode, "megasamples");
@@ -103,8 +99,8 @@ void volumeSeries(BenchmarkContext& bench, const std::string& model) {
                 o.rayCaster = bench.options().rayCaster;
                 renderer.setOptions(o);
                 Record r = row(model, mode, size, "step " + std::to_string(step).substr(0, 4) + " (median = fixed)");
-                r.dataSize = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
-                r.measurement = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); },
+                r.dataSize = dimsText(d);
+                r.measurement = bench.measure([&](sss::RenderTarget& t) { renderer.render(scene->camera, t); },
                                               std::string(kTable) + "-" + model + "-" + mode, size);
                 r.details = {{"step_voxels", step}, {"megapixels", megapixels(size)}};
                 series.add(std::move(r), megapixels(size) / step);

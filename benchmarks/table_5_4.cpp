@@ -36,15 +36,12 @@ void runTable54(BenchmarkContext& bench) {
     const bool thesisViewport = bench.options().width == kThesisWidth && bench.options().height == kThesisHeight;
     for (const std::string& model : models) {
         if (!bench.wanted(model)) continue;
-        auto loaded = loadThesisVolume(bench, kTable, model);
-        if (!loaded) continue;
-        const sss::Volume& volume = loaded->first;
-        const sss::Camera camera = framedCamera(volume.worldBounds());
-        const sss::DirectionalLight key = keyLight(camera);
+        const std::optional<FramedVolume> scene = loadFramedVolume(bench, kTable, model);
+        if (!scene) continue;
+        const sss::Camera& camera = scene->camera;
+        const sss::DirectionalLight& key = scene->key;
         sss::VolumeScatteringRenderer renderer;
-        renderer.setVolume(volume);
-        renderer.setTransferFunction(sss::TransferFunction::preset(loaded->second));
-        renderer.setLights({key});
+        showVolume(renderer, *scene);
         const std::string id = std::string(kTable) + "-" + model;
         auto withShading = [&](sss::VolumeShading shading) {
             // The thesis's configuration (full-resolution light volume, step 1, post-classification).
@@ -70,13 +67,13 @@ void runTable54(BenchmarkContext& bench) {
         const Measurement eaGradient =
             bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-ea-gradient");
 
-        const glm::ivec3 d = volume.dims();
+        const glm::ivec3 d = scene->volume.dims();
         Record r;
         r.table = kTable;
         r.model = model;
         r.mode = "scattering";
-        r.dataSize = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
-        r.params = "tf=" + loaded->second + " (median = fixed)";
+        r.dataSize = dimsText(d);
+        r.params = "tf=" + scene->preset + " (median = fixed)";
         r.width = bench.options().width;
         r.height = bench.options().height;
         r.measurement = fixed;
@@ -91,7 +88,7 @@ void runTable54(BenchmarkContext& bench) {
                      {"change_spread_ms", {change.stats.minMs, change.stats.maxMs}},
                      {"fixed_spread_ms", {fixed.stats.minMs, fixed.stats.maxMs}},
                      {"dims", {d.x, d.y, d.z}},
-                     {"transfer_function", loaded->second}};
+                     {"transfer_function", scene->preset}};
         if (const auto it = thesisRows().find(model); it != thesisRows().end() && thesisViewport && !quick) {
             r.thesisMs = it->second.fixed;
             r.details["thesis_gtx660"] = {{"change_ms", it->second.change},

@@ -1,7 +1,6 @@
 #include "volume/ray_cast_pass.h"
 
 #include "volume/composite_over.h"
-#include "gl/device.h"
 #include "lighting/texture_units.h"
 #include "sss/error.h"
 
@@ -25,11 +24,11 @@ bool usesLightVolume(VolumeShading s) {
     return s == VolumeShading::Scattering || s == VolumeShading::ScatteringGradient;
 }
 
-bool usesComputeRayCaster(RayCaster caster) {
+bool usesComputeRayCaster(RayCaster caster, bool softwareDevice) {
     if (caster != RayCaster::Auto) return caster == RayCaster::Compute;
-    // Measured (benchmarks/README.md, "Fragment or compute"): on an H100 compute is several times
-    // faster; on llvmpipe the fragment path is.
-    return !gl::currentDeviceIsSoftware();
+    // Measured (benchmarks/README.md, "Fragment or compute"): on an H200 compute is 7-17 times
+    // faster; on llvmpipe the fragment path is as fast or faster.
+    return !softwareDevice;
 }
 
 PixelRect screenRectangle(const glm::mat4& modelViewProjection, const Bounds& box, glm::ivec2 viewport) {
@@ -39,7 +38,7 @@ PixelRect screenRectangle(const glm::mat4& modelViewProjection, const Bounds& bo
         const glm::vec4 corner((i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y,
                                (i & 4) ? box.max.z : box.min.z, 1.0f);
         const glm::vec4 clip = modelViewProjection * corner;
-        if (clip.w <= 1e-6f * std::abs(clip.z) || clip.w <= 0.0f) return whole;  // behind the eye
+        if (clip.w <= 1e-6f * std::abs(clip.z)) return whole;  // behind (or level with) the eye
         const glm::vec2 window = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(viewport);
         lo = glm::min(lo, window);
         hi = glm::max(hi, window);
@@ -54,7 +53,7 @@ bool usesEyePass(const VolumeRenderOptions& o) {
 }
 
 RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
-                                  GradientSource gradients, bool preintegration) {
+                                  GradientSource gradients, bool preintegration, bool softwareDevice) {
     RayCastVariant v;
     v.shading = options.shading;
     v.emptySpaceSkipping = options.emptySpaceSkipping;
@@ -68,7 +67,7 @@ RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std:
     const float shininess = options.shininess;
     if (usesGradient(options.shading) && shininess >= 1.0f && shininess <= 256.0f && shininess == std::floor(shininess))
         v.integerShininess = static_cast<int>(shininess);
-    v.compute = usesComputeRayCaster(options.rayCaster);
+    v.compute = usesComputeRayCaster(options.rayCaster, softwareDevice);
     return v;
 }
 

@@ -24,8 +24,9 @@ bool usesGradient(VolumeShading shading);
 /// Whether the eye pass runs for these options (the paper's model in a light-volume mode).
 bool usesEyePass(const VolumeRenderOptions& options);
 
-/// Whether `caster` resolves to the compute ray caster on the current context's device.
-bool usesComputeRayCaster(RayCaster caster);
+/// Whether `caster` resolves to the compute ray caster on a software rasteriser or a hardware
+/// GPU (gl::currentDeviceIsSoftware()).
+bool usesComputeRayCaster(RayCaster caster, bool softwareDevice);
 
 /// Pixels [origin, origin + size) of a viewport.
 struct PixelRect {
@@ -86,7 +87,7 @@ struct RayCastVariant {
     bool compute = false;
 
     static RayCastVariant of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
-                             GradientSource gradients, bool preintegration);
+                             GradientSource gradients, bool preintegration, bool softwareDevice);
     bool operator==(const RayCastVariant&) const = default;
 };
 

@@ -10,6 +10,7 @@
 #include "sss/log.h"
 #include "sss/timing.h"
 #include "frame/pass_timer.h"
+#include "gl/device.h"
 #include "volume/empty_space.h"
 #include "volume/gradient_volume_pass.h"
 #include "volume/gpu_volume.h"
@@ -281,6 +282,12 @@ struct VolumeScatteringRenderer::Impl {
     }
     RenderStats stats;
     detail::PassTimer passTimer{stats};
+    // Asked of the context once: the ray caster's automatic choice depends on it.
+    std::optional<bool> isSoftwareDevice;
+    bool softwareDevice() {
+        if (!isSoftwareDevice) isSoftwareDevice = gl::currentDeviceIsSoftware();
+        return *isSoftwareDevice;
+    }
     detail::PassTiming passTiming() const { return {options.finishEachPass, options.gpuPassTimes}; }
 
     void uploadTransferFunction() {
@@ -364,7 +371,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
         : detail::gradientVolumeHoldsValues(*m_impl->volume) ? detail::GradientSource::VolumeWithValues
                                                                : detail::GradientSource::Volume;
     const detail::RayCastVariant variant =
-        detail::RayCastVariant::of(m_impl->options, m_impl->lights, gradientSource, preintegrated);
+        detail::RayCastVariant::of(m_impl->options, m_impl->lights, gradientSource, preintegrated, m_impl->softwareDevice());
     if (!m_impl->rayCast || m_impl->rayCast->variant() != variant) m_impl->rayCast.emplace(variant);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);

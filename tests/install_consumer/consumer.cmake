@@ -9,15 +9,10 @@ if(SANITIZE)
   set(run_env "ASAN_OPTIONS=detect_leaks=0")
   set(link_flags "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined")
 endif()
-string(REPLACE "|" ";" ARGS "${ARGS}")
+include("${CMAKE_CURRENT_LIST_DIR}/run_steps.cmake")
 file(REMOVE_RECURSE "${WORK}")
-foreach(step
-    "${CMAKE_COMMAND};-S;${SOURCE};-B;${WORK};-DCMAKE_PREFIX_PATH=${PREFIX};-DCMAKE_BUILD_TYPE=Release;${link_flags};${ARGS}"
-    "${CMAKE_COMMAND};--build;${WORK}"
-    "${CMAKE_COMMAND};-E;env;${run_env};${WORK}/consumer")
-  execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "step failed (${rc}): ${step}\n${out}\n${err}")
-  endif()
-endforeach()
-message("the consumer project configured, built and ran: ${out}")
+sss_run_steps(
+  "${CMAKE_COMMAND}|-S|${SOURCE}|-B|${WORK}|-DCMAKE_PREFIX_PATH=${PREFIX}|-DCMAKE_BUILD_TYPE=Release|${link_flags}|${ARGS}"
+  "${CMAKE_COMMAND}|--build|${WORK}"
+  "${CMAKE_COMMAND}|-E|env|${run_env}|${WORK}/consumer")
+message("the consumer project configured, built and ran: ${sss_last_output}")

@@ -8,15 +8,11 @@ endif()
 set(build "${WORK}/build")
 set(prefix "${WORK}/prefix")
 file(REMOVE_RECURSE "${WORK}")
-foreach(step
-    "${CMAKE_COMMAND};-S;${SOURCE_DIR};-B;${build};-DCMAKE_BUILD_TYPE=Release;-DBUILD_SHARED_LIBS=ON;-DSSS_BUILD_IO=OFF;-DSSS_BUILD_REFERENCE=OFF;-DSSS_BUILD_SCENE=OFF;-DSSS_BUILD_EXAMPLES=OFF;-DSSS_BUILD_PYTHON=OFF;-DSSS_WITH_GLFW=OFF"
-    "${CMAKE_COMMAND};--build;${build};-j;${JOBS}"
-    "${CMAKE_COMMAND};--install;${build};--prefix;${prefix}")
-  execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "step failed (${rc}): ${step}\n${out}\n${err}")
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/../install_consumer/run_steps.cmake")
+sss_run_steps(
+  "${CMAKE_COMMAND}|-S|${SOURCE_DIR}|-B|${build}|-DCMAKE_BUILD_TYPE=Release|-DBUILD_SHARED_LIBS=ON|-DSSS_BUILD_IO=OFF|-DSSS_BUILD_REFERENCE=OFF|-DSSS_BUILD_SCENE=OFF|-DSSS_BUILD_EXAMPLES=OFF|-DSSS_BUILD_PYTHON=OFF|-DSSS_WITH_GLFW=OFF"
+  "${CMAKE_COMMAND}|--build|${build}|-j|${JOBS}"
+  "${CMAKE_COMMAND}|--install|${build}|--prefix|${prefix}")
 
 file(GLOB library "${prefix}/lib*/libsss.so.*.*.*")
 if(NOT library)
