@@ -226,6 +226,9 @@ void runSceneTable(BenchmarkContext& bench, const sss::SceneDescription& scene, 
 /// Time against error: sweeps against the CPU references; returns the plot to draw.
 struct PlotSpec;
 PlotSpec runErrorSweep(BenchmarkContext& bench, const std::string& which);
+/// Records of the real meshes at 2 cm, 20 cm and 2 m in marble and skin1, every method at its
+/// defaults against the CPU reference (benchmarks/mesh_scale_sweep.cpp).
+void meshScaleSweep(BenchmarkContext& bench);
 
 // ---- data sets shared by the tables -------------------------------------------------------------
 

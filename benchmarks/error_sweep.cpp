@@ -153,6 +153,7 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
             plot = {"real meshes: regeneration time against error (CPU reference)",
                     "time to regenerate: light buffer + 8 frames (ms)", "relative RMSE", {}};
             realMeshRows(bench, &plot);
+            meshScaleSweep(bench);
         }
         return plot;
     }
@@ -248,7 +249,10 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
         }
         plot.series.push_back(std::move(series));
     }
-    if (!quick) realMeshRows(bench, nullptr);  // other axes than the sphere's: records only
+    if (!quick) {  // other axes than the sphere's: records only
+        realMeshRows(bench, nullptr);
+        meshScaleSweep(bench);
+    }
     return plot;
 }
 

@@ -95,6 +95,13 @@ struct MeshRenderOptions {
     float sampleRadius = 0.0f;
     /// Spreads the samples: sigma* = min(sigma_tr) / spread, >= 0.1 (default: 1).
     float spread = 1.0f;
+    /// Radius of the vertex estimate's near field, in the mesh's edge lengths (the edge of
+    /// MeshScatteringRenderer::edgeToDiffusionLength), >= 0: the light entering that close to a
+    /// point, for a locally flat surface lit like the point, is evaluated per pixel; the vertices
+    /// interpolate only the rest, which varies little across a triangle. Keeps the radiosity
+    /// right on meshes whose triangles are many diffusion lengths wide (life-size objects); 0
+    /// interpolates all of it (default: 1).
+    float nearField = 1.0f;
     /// Map frames accumulated while the scene is static, >= 1 (default: 8).
     int accumulationFrames = 8;
     /// Visibility depth bias of the map lookup, in texels' worth of depth, >= 0 (default: 1.5).

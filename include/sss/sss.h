@@ -19,6 +19,7 @@
 #include "sss/hybrid_compositor.h"
 #include "sss/image.h"
 #include "sss/image_compare.h"
+#include "sss/isosurface.h"
 #include "sss/light.h"
 #include "sss/log.h"
 #include "sss/materials.h"

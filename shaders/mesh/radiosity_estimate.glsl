@@ -15,15 +15,14 @@
 #ifndef VERTEX_SEQUENCE
 #define VERTEX_SEQUENCE 0
 #endif
-#include "common/lights.glsl"
+#include "mesh/light_buffer_lookup.glsl"
 #include "common/dirpole.glsl"
 #include "common/surface_shadows.glsl"
 
-uniform sampler2DArray lightPositions;
 uniform sampler2DArray lightNormals;
-uniform mat4 lightViewProjection[MAX_LIGHTS];  // world -> light-buffer clip space
 uniform DirpoleParams dipole;
 uniform float diskRadius;                 // R, scene units
+uniform float nearRadius;                 // estimateRadiositySplit's split, scene units
 uniform float sigmaStar;                  // far-field sampling rate, scene units^-1
 uniform float sigmaNear;                  // near-field sampling rate (>= sigmaStar)
 uniform int samplesPerLight;              // N proposals per light
@@ -37,9 +36,12 @@ uint pcg(inout uint state) {
 }
 float random01(inout uint state) { return float(pcg(state) >> 8) * (1.0 / 16777216.0); }
 
-// xo, no: world-space point and unit normal; state: the caller's random stream.
-vec3 estimateRadiosity(vec3 xo, vec3 no, inout uint state) {
-    vec3 sum = vec3(0.0);
+// xo, no: world-space point and unit normal; state: the caller's random stream. The estimate
+// comes in two parts: the light entering within nearRadius of x_o on the disk (inner) and the
+// rest (outer).
+void estimateRadiositySplit(vec3 xo, vec3 no, inout uint state, out vec3 inner, out vec3 outer) {
+    inner = vec3(0.0);
+    outer = vec3(0.0);
     const float twoPi = 6.28318531;
     for (int l = 0; l < lightCount; ++l) {
         bool point = lightVector[l].w != 0.0;
@@ -126,8 +128,17 @@ vec3 estimateRadiosity(vec3 xo, vec3 no, inout uint state) {
             // over the disk filter the shadow's edge).
             irradiance *= volumeTransmittance(l, xi, wi) * meshShadow(l, xi, dot(ni, wi) < 0.0 ? -ni : ni, wi, 0);
             float entry = dirpoleFresnelT(dipole.eta, dot(wi, ni));
-            sum += dirpoleSd(dipole, xi, ni, wi, xo, no) * (entry / pdf) * irradiance;
+            vec3 value = dirpoleSd(dipole, xi, ni, wi, xo, no) * (entry / pdf) * irradiance;
+            if (r < nearRadius) inner += value;
+            else outer += value;
         }
     }
-    return sum / float(samplesPerLight);
+    inner /= float(samplesPerLight);
+    outer /= float(samplesPerLight);
+}
+
+vec3 estimateRadiosity(vec3 xo, vec3 no, inout uint state) {
+    vec3 inner, outer;
+    estimateRadiositySplit(xo, no, state, inner, outer);
+    return inner + outer;
 }

@@ -4,17 +4,26 @@
 // low-discrepancy sequence per vertex (VERTEX_SEQUENCE: on the bunny at N = 24 it measured 3.8 %
 // against 5.7 % with independent random samples); the combine pass reads the mean, interpolated
 // over each triangle (shaders/mesh/combine.vert).
+// With a near field (shaders/mesh/near_field.glsl), which the combine pass adds per pixel, a
+// vertex keeps the light from beyond its radius (outer) plus, weighted per channel by
+// nearFieldCorrection, how much the light from within it (inner) differs from the near field's
+// flat-surface value at the vertex: creases, shadow edges and thin parts there. Such a
+// difference lives within a few diffusion lengths of the vertex; on triangles much wider than
+// that, interpolation spreads it over the whole triangle, so the weight falls with the
+// triangles' width in diffusion lengths (src/mesh/near_field.h).
 layout(local_size_x = 64) in;
 
 #define VERTEX_SEQUENCE 1
 #include "mesh/radiosity_estimate.glsl"
+#include "mesh/near_field.glsl"
 
 layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };  // model space: position, normal
-layout(std430, binding = 1) buffer Sums { vec4 sums[]; };                      // rgb summed over frames, a: frames
+layout(std430, binding = 1) buffer Sums { vec4 sums[]; };  // per vertex: inner, outer; rgb summed over frames, a: frames
 layout(std430, binding = 2) writeonly buffer Radiosity { vec4 radiosityOut[]; };
 uniform int vertexCount;
 uniform mat4 model;
 uniform mat3 normalMatrix;
+uniform vec3 nearFieldCorrection;  // per channel, in [0, 1]
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);
@@ -25,7 +34,13 @@ void main() {
     n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
     uint state = uint(i) * 9277u + 0x9e3779b9u;  // the same per frame: the sequence continues
     pcg(state);
-    vec4 sum = (frameSeed == 0u ? vec4(0.0) : sums[i]) + vec4(estimateRadiosity((model * vec4(p, 1.0)).xyz, n, state), 1.0);
-    sums[i] = sum;
-    radiosityOut[i] = vec4(sum.rgb / sum.a, 1.0);
+    vec3 x = (model * vec4(p, 1.0)).xyz;
+    vec3 inner, outer;
+    estimateRadiositySplit(x, n, state, inner, outer);
+    vec4 innerSum = (frameSeed == 0u ? vec4(0.0) : sums[2 * i]) + vec4(inner, 1.0);
+    vec4 outerSum = (frameSeed == 0u ? vec4(0.0) : sums[2 * i + 1]) + vec4(outer, 1.0);
+    sums[2 * i] = innerSum;
+    sums[2 * i + 1] = outerSum;
+    vec3 difference = innerSum.rgb / innerSum.a - nearFieldRadiosity(x, n);
+    radiosityOut[i] = vec4(outerSum.rgb / outerSum.a + nearFieldCorrection * difference, 1.0);
 }

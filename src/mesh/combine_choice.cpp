@@ -66,8 +66,9 @@ double edgeToDiffusionLength(float edgeLength, const ScatteringMaterial& materia
     return static_cast<double>(edgeLength) * sigmaTr;
 }
 
-MeshCombine resolveCombine(MeshCombine requested, double edgeRatio) {
+MeshCombine resolveCombine(MeshCombine requested, double edgeRatio, float nearField) {
     if (requested != MeshCombine::Automatic) return requested;
+    if (nearField > 0.0f) return MeshCombine::VertexEstimate;
     return edgeRatio <= kVertexEstimateMaxEdgeRatio ? MeshCombine::VertexEstimate : MeshCombine::PerPixel;
 }
 

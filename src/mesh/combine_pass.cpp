@@ -16,6 +16,8 @@ const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows) con
     if (!slot)
         slot = gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
                                  {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)},
+                                  {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
+                                  {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)},
                                   {"PER_VERTEX", perVertex ? "1" : "0"},
                                   {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"}});
     return *slot;
@@ -36,9 +38,8 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     p.set("shininess", s.shininess);
     p.set("environment", s.environment);
     setDipoleUniforms(p, "dipole", s.dipole);
-    // The light buffer frames the object's bounding sphere: 2 radii over its resolution.
-    const auto [centre, radius] = worldSphere(in.mesh.bounds, in.model);
-    p.set("lightTexelWorld", 2.0f * radius / static_cast<float>(in.lightBuffer.positions().size().x));
+    setNearFieldUniforms(p, s.nearField);
+    p.set("lightTexelWorld", in.lightBuffer.texelWorld(in.mesh, in.model));
     p.set("lightPositions", units::kPassInputs + 2);
     for (size_t i = 0; i < in.lightBuffer.viewProjections().size(); ++i)
         p.set("lightViewProjection[" + std::to_string(i) + "]", in.lightBuffer.viewProjections()[i]);

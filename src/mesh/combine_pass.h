@@ -7,6 +7,7 @@
 #include "lighting/shadows.h"
 #include "mesh/gpu_mesh.h"
 #include "mesh/light_buffer_pass.h"
+#include "mesh/near_field.h"
 #include "sss/bssrdf.h"
 #include "mesh/scattering_map_pass.h"
 #include "mesh/vertex_radiosity_pass.h"
@@ -26,6 +27,7 @@ struct CombineSettings {
     float shininess = 40.0f;
     glm::vec3 environment{0.0f};  ///< the environment's radiance times R_d: added as is
     DipoleConstants dipole;       ///< the profile; its single-scattering term is added per pixel
+    NearFieldTable nearField;     ///< added per pixel: what the vertex estimate left out (radius 0: none)
     bool perVertex = false;       ///< no map lookups, the vertices' radiosity (MeshCombine::PerVertex, VertexEstimate)
 };
 

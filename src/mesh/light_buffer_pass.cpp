@@ -94,4 +94,10 @@ void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std
     }
 }
 
+float LightBufferPass::texelWorld(const GpuMesh& mesh, const glm::mat4& model) const {
+    // 2 radii over the resolution.
+    const auto [centre, radius] = worldSphere(mesh.bounds, model);
+    return 2.0f * radius / static_cast<float>(m_positions.size().x);
+}
+
 }  // namespace sss::detail

@@ -26,6 +26,8 @@ public:
     const gl::Texture& positions() const { return m_positions; }  ///< xyz world, w = 1 where covered
     const gl::Texture& normals() const { return m_normals; }
     const std::vector<glm::mat4>& viewProjections() const { return m_viewProjections; }
+    /// A texel's size at `mesh` placed by `model`, world units (the views frame its bounding sphere).
+    float texelWorld(const GpuMesh& mesh, const glm::mat4& model) const;
 
 private:
     gl::Program m_program;

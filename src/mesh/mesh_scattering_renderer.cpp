@@ -9,6 +9,7 @@
 #include "mesh/combine_pass.h"
 #include "mesh/gpu_mesh.h"
 #include "mesh/light_buffer_pass.h"
+#include "mesh/near_field.h"
 #include "mesh/scattering_map_pass.h"
 #include "mesh/renderer_access.h"
 #include "mesh/vertex_estimate_pass.h"
@@ -42,7 +43,7 @@ struct ProfileInputs {
     std::uint64_t meshGeneration = 0, materialGeneration = 0;
     glm::mat4 model{1.0f};
     double millimetresPerUnit = 0.0;
-    float sampleRadius = 0.0f, spread = 0.0f;
+    float sampleRadius = 0.0f, spread = 0.0f, nearField = 0.0f;
     int lightMapResolution = 0;
     ScatteringProfile profile = ScatteringProfile::Calibrated;
     bool operator==(const ProfileInputs&) const = default;
@@ -54,7 +55,7 @@ struct ScatteringMapInputs {
     std::uint64_t materialGeneration = 0;
     int cameras = 0, samples = 0, resolution = 0;
     double millimetresPerUnit = 0.0;
-    float sampleRadius = 0.0f, spread = 0.0f;
+    float sampleRadius = 0.0f, spread = 0.0f, nearField = 0.0f;
     ScatteringProfile profile = ScatteringProfile::Calibrated;
     bool vertexEstimate = false;  // MeshCombine::VertexEstimate: per vertex, no maps
     std::uint64_t shadowRevision = 0;  // hybrid scenes: meshes and volumes between lights and mesh
@@ -110,6 +111,7 @@ struct MeshScatteringRenderer::Impl {
     // Derived when ProfileInputs change (the profile's plane integrals are too slow for every frame).
     DipoleConstants dipole;
     detail::ScatteringSampling sampling;
+    detail::NearFieldTable nearField;
     std::optional<ProfileInputs> profileInputs;  // what dipole and sampling were derived for
     glm::dvec3 environmentReflectance{0.0};
 
@@ -151,6 +153,10 @@ struct MeshScatteringRenderer::Impl {
             for (int c = 0; c < 3; ++c)
                 if (kept[c] > 0.0) dipole.profileScale[c] *= whole[c] / kept[c];
         }
+        // The near field ends inside the disk: beyond it the profile is what the disk keeps.
+        const double edge = surfaceEdgeLength * detail::largestScale(model);
+        sampling.nearRadius = std::min(sampling.diskRadius, static_cast<float>(options.nearField * edge));
+        nearField = detail::tabulateNearField(dipole, sampling.nearRadius, edge);
         environmentReflectance = options.profile == ScatteringProfile::Calibrated
                                      ? profileDiffuseReflectanceUniform(dipole)
                                      : dipoleDiffuseReflectance(dipole);
@@ -159,7 +165,7 @@ struct MeshScatteringRenderer::Impl {
     void updateProfile() {
         const ProfileInputs inputs{meshGeneration,       materialGeneration, model,
                                    options.millimetresPerUnit, options.sampleRadius, options.spread,
-                                   options.lightMapResolution, options.profile};
+                                   options.nearField,          options.lightMapResolution, options.profile};
         if (profileInputs == inputs) return;
         timed("profile", [&] { deriveProfile(); });  // CPU: the profile's plane integrals
         profileInputs = inputs;
@@ -179,7 +185,7 @@ struct MeshScatteringRenderer::Impl {
     MeshCombine activeCombine() const {
         if (!mesh) return MeshCombine::PerPixel;
         if (options.combine != MeshCombine::Automatic) return options.combine;
-        return detail::resolveCombine(options.combine, edgeToDiffusionLength());
+        return detail::resolveCombine(options.combine, edgeToDiffusionLength(), options.nearField);
     }
 
     ScatteringMapInputs currentMapInputs() const {
@@ -191,6 +197,7 @@ struct MeshScatteringRenderer::Impl {
                 options.millimetresPerUnit,
                 options.sampleRadius,
                 options.spread,
+                options.nearField,
                 options.profile,
                 activeCombine() == MeshCombine::VertexEstimate,
                 shadows ? shadows->revision() : 0};
@@ -232,7 +239,9 @@ struct MeshScatteringRenderer::Impl {
                                                        lightBuffer->normals(), dipole, sampling,
                                                        shadows ? &*shadows : nullptr};
         if (inputs.vertexEstimate)
-            timed("vertex-estimate", [&] { vertexEstimate->accumulate(*mesh, model, estimate); });
+            timed("vertex-estimate", [&] {
+                vertexEstimate->accumulate(*mesh, model, estimate, nearField, lightBuffer->texelWorld(*mesh, model));
+            });
         else
             timed("scattering-maps", [&] { scatteringMaps->accumulate({*mesh, model, cameras, estimate}); });
     }
@@ -319,6 +328,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.shininess = r.options.shininess;
     settings.environment = r.options.environment * glm::vec3(r.environmentReflectance);
     settings.dipole = r.dipole;
+    if (vertexEstimate) settings.nearField = r.nearField;
     settings.perVertex = combine != MeshCombine::PerPixel;
     // The vertices' radiosity follows the maps: once per accumulated frame.
     if (!vertexEstimate && !r.vertexRadiosity) r.vertexRadiosity.emplace(r.adjacency);

@@ -19,6 +19,7 @@ void setRadiosityEstimateUniforms(const gl::Program& p, const RadiosityEstimateI
     p.set("sigmaStar", in.sampling.sigmaStar);
     p.set("sigmaNear", in.sampling.sigmaNear);
     p.set("samplesPerLight", in.sampling.samplesPerLight);
+    p.set("nearRadius", in.sampling.nearRadius);
     p.set("frameSeed", frameSeed);
     in.lightPositions.bind(0);
     in.lightNormals.bind(1);

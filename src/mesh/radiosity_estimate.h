@@ -19,6 +19,7 @@ struct ScatteringSampling {
     float sigmaStar = 0.0f;    ///< far-field sampling rate, scene units^-1
     float sigmaNear = 0.0f;    ///< near-field sampling rate, >= sigmaStar
     int samplesPerLight = 1;   ///< proposals per light per frame
+    float nearRadius = 0.0f;   ///< where estimateRadiositySplit splits the disk, scene units
 };
 
 struct RadiosityEstimateInputs {

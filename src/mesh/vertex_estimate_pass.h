@@ -6,6 +6,7 @@
 #include "gl/buffer.h"
 #include "gl/program.h"
 #include "mesh/gpu_mesh.h"
+#include "mesh/near_field.h"
 #include "mesh/radiosity_estimate.h"
 
 #include <glm/mat4x4.hpp>
@@ -19,8 +20,12 @@ public:
     explicit VertexEstimatePass(std::size_t vertexCount);
     /// The next accumulate() starts from frame 0.
     void reset() { m_frames = 0; }
-    /// Adds one frame of samples at every vertex of `mesh` placed by `model`.
-    void accumulate(const GpuMesh& mesh, const glm::mat4& model, const RadiosityEstimateInputs& in);
+    /// Adds one frame of samples at every vertex of `mesh` placed by `model`: radiosity() holds
+    /// the light from beyond `nearField`'s radius plus its correction of the rest
+    /// (shaders/mesh/vertex_estimate.comp).
+    /// `lightTexelWorld`: LightBufferPass::texelWorld.
+    void accumulate(const GpuMesh& mesh, const glm::mat4& model, const RadiosityEstimateInputs& in,
+                    const NearFieldTable& nearField, float lightTexelWorld);
     int frames() const { return m_frames; }
     /// rgb: the mean radiosity per vertex so far (a = 1), for combine.vert's VertexRadiosity block.
     const gl::Buffer& radiosity() const { return m_radiosity; }

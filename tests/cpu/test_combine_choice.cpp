@@ -47,11 +47,16 @@ TEST_CASE("the edge is measured against the narrowest profile among the channels
     CHECK(detail::edgeToDiffusionLength(0.5f, marble, 20.0) == Approx(2.0 * detail::edgeToDiffusionLength(0.5f, marble, 10.0)));
 }
 
-TEST_CASE("Automatic resolves by the threshold; explicit choices stay", "[mesh][combine]") {
-    CHECK(detail::resolveCombine(MeshCombine::Automatic, 0.5) == MeshCombine::VertexEstimate);
-    CHECK(detail::resolveCombine(MeshCombine::Automatic, detail::kVertexEstimateMaxEdgeRatio) == MeshCombine::VertexEstimate);
-    CHECK(detail::resolveCombine(MeshCombine::Automatic, detail::kVertexEstimateMaxEdgeRatio * 1.01) == MeshCombine::PerPixel);
-    CHECK(detail::resolveCombine(MeshCombine::PerVertex, 100.0) == MeshCombine::PerVertex);
-    CHECK(detail::resolveCombine(MeshCombine::VertexEstimate, 100.0) == MeshCombine::VertexEstimate);
-    CHECK(detail::resolveCombine(MeshCombine::PerPixel, 0.0) == MeshCombine::PerPixel);
+TEST_CASE("Automatic takes the vertex estimate with a near field, else resolves by the threshold; explicit choices stay",
+          "[mesh][combine]") {
+    // With the near field (the default): the estimate at every edge length.
+    for (const double ratio : {0.0, 0.5, 2.0, 8.0, 100.0})
+        CHECK(detail::resolveCombine(MeshCombine::Automatic, ratio, 1.0f) == MeshCombine::VertexEstimate);
+    // Without it: the estimate up to the threshold, the maps above.
+    CHECK(detail::resolveCombine(MeshCombine::Automatic, 0.5, 0.0f) == MeshCombine::VertexEstimate);
+    CHECK(detail::resolveCombine(MeshCombine::Automatic, detail::kVertexEstimateMaxEdgeRatio, 0.0f) == MeshCombine::VertexEstimate);
+    CHECK(detail::resolveCombine(MeshCombine::Automatic, detail::kVertexEstimateMaxEdgeRatio * 1.01, 0.0f) == MeshCombine::PerPixel);
+    CHECK(detail::resolveCombine(MeshCombine::PerVertex, 100.0, 1.0f) == MeshCombine::PerVertex);
+    CHECK(detail::resolveCombine(MeshCombine::VertexEstimate, 100.0, 0.0f) == MeshCombine::VertexEstimate);
+    CHECK(detail::resolveCombine(MeshCombine::PerPixel, 0.0, 1.0f) == MeshCombine::PerPixel);
 }

@@ -2,6 +2,7 @@
 // naming the format and the build option; OBJ and PNG still work. Exit code 0 when all hold.
 #include <sss/error.h>
 #include <sss/image.h>
+#include <sss/isosurface.h>
 #include <sss/mesh.h>
 #include <sss/volume.h>
 
@@ -44,6 +45,12 @@ int main() {
                       [&] { (void)sss::Volume::load(dir / "v.nrrd"); });
     expectUnsupported("VTI", "(.vti) files need libsss built with SSS_WITH_VTK=ON",
                       [&] { (void)sss::Volume::load(dir / "v.vti"); });
+    expectUnsupported("isosurface", "extractIsosurface needs libsss built with SSS_WITH_VTK=ON", [&] {
+        const sss::Volume volume = sss::Volume::fromData({2, 1, 1}, sss::VoxelType::UInt8, {0, 255});
+        sss::IsosurfaceOptions o;
+        o.value = 100.0;
+        (void)sss::extractIsosurface(volume, o);
+    });
     expectUnsupported("EXR", "OpenEXR files need libsss built with SSS_WITH_OPENEXR=ON",
                       [&] { sss::Image(2, 2).saveExr(dir / "x.exr"); });
     try {

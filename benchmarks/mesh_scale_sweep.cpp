@@ -1,0 +1,243 @@
+// Translucency at every scale (sss-bench --error-sweep mesh): the real meshes at 2 cm, 20 cm and
+// 2 m largest extent, in marble and in skin1, each method at its defaults against the CPU
+// reference. The same mesh file at a hundred times the size has triangles a hundred times as
+// many diffusion lengths wide: the regime of life-size statues and skin.
+
+#include "bench.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <iostream>
+
+namespace {
+
+constexpr int kWidth = 400, kHeight = 226;
+
+// The mesh centred with its largest extent 1 unit, so millimetres per unit is its size in mm.
+std::optional<sss::Mesh> unitMesh(BenchmarkContext& bench, const std::string& model) {
+    std::optional<sss::Mesh> mesh = loadThesisMesh(bench, "error-sweep", model);
+    if (!mesh) return std::nullopt;
+    const sss::Bounds b = mesh->bounds();
+    const glm::vec3 extent = b.max - b.min;
+    const float scale = 1.0f / std::max({extent.x, extent.y, extent.z, 1e-9f});
+    return mesh->transformed(glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
+                             glm::translate(glm::mat4(1.0f), -b.center()));
+}
+
+struct Reference {
+    sss::Image image{1, 1};
+    double ownRelRmse = 0.0;  // the reference's own expected relRMSE (MeshReferenceResult)
+};
+
+// The reference, kept in --reference-cache with its own error estimate beside it.
+Reference cachedMeshReference(const Options& o, const std::string& name,
+                              const std::function<sss::MeshReferenceResult()>& render) {
+    const std::filesystem::path image = o.referenceCache / (name + ".exr"), estimate = o.referenceCache / (name + ".txt");
+    std::error_code ec;
+    if (!o.referenceCache.empty() && std::filesystem::is_regular_file(image, ec) &&
+        std::filesystem::is_regular_file(estimate, ec)) {
+        Reference cached{sss::Image::loadExr(image)};
+        std::ifstream(estimate) >> cached.ownRelRmse;
+        return cached;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const sss::MeshReferenceResult result = render();
+    std::cerr << "sss-bench: reference " << name << " in "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+              << " s, its own relRMSE ~" << result.relativeRmseEstimate << "\n";
+    if (!o.referenceCache.empty()) {
+        std::filesystem::create_directories(o.referenceCache);
+        result.image.saveExr(image);
+        std::ofstream(estimate) << result.relativeRmseEstimate << "\n";
+    }
+    return {result.image, result.relativeRmseEstimate};
+}
+
+struct Method {
+    std::string name;
+    std::function<void(sss::MeshRenderOptions&)> set;
+};
+
+const std::vector<Method>& methods() {
+    static const std::vector<Method> all = {
+        {"defaults", [](sss::MeshRenderOptions&) {}},
+        // The vertex estimate without the per-pixel near field: the previous defaults below 2
+        // diffusion lengths per edge.
+        {"vertex-estimate-no-near-field",
+         [](sss::MeshRenderOptions& o) {
+             o.combine = sss::MeshCombine::VertexEstimate;
+             o.nearField = 0.0f;
+         }},
+        // The paper's maps (K 8, N 24): the previous defaults above 2 diffusion lengths.
+        {"maps", [](sss::MeshRenderOptions& o) { o.combine = sss::MeshCombine::PerPixel; }},
+    };
+    return all;
+}
+
+std::string combineName(sss::MeshCombine c) {
+    switch (c) {
+        case sss::MeshCombine::PerPixel: return "maps";
+        case sss::MeshCombine::PerVertex: return "per-vertex";
+        case sss::MeshCombine::VertexEstimate: return "vertex-estimate";
+        default: return "automatic";
+    }
+}
+
+// Mean brightness of `image` over the reference's covered pixels, relative to the reference's.
+double meanRatio(const sss::Image& image, const sss::Image& reference) {
+    double sum = 0.0, referenceSum = 0.0;
+    for (int y = 0; y < reference.height(); ++y)
+        for (int x = 0; x < reference.width(); ++x) {
+            if (!(reference.at(x, y).a > 0.0f)) continue;
+            const glm::vec4 t = image.at(x, y), r = reference.at(x, y);
+            sum += t.r + t.g + t.b;
+            referenceSum += r.r + r.g + r.b;
+        }
+    return referenceSum > 0.0 ? sum / referenceSum : 0.0;
+}
+
+// Specks a viewer can see: the share of the pixels whose reference luminance is at least 1 % of
+// the image's 99th percentile where the image is below half the reference. The plain speck share
+// also counts pixels deep in shadow, where both are nearly black and the reference's own noise
+// (its absolute error, 1e-4) decides.
+double visibleSpecks(const sss::Image& image, const sss::Image& reference) {
+    auto luminance = [](glm::vec4 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+    std::vector<double> covered;
+    for (int y = 0; y < reference.height(); ++y)
+        for (int x = 0; x < reference.width(); ++x)
+            if (reference.at(x, y).a > 0.0f) covered.push_back(luminance(reference.at(x, y)));
+    if (covered.empty()) return 0.0;
+    std::sort(covered.begin(), covered.end());
+    const double floor = 0.01 * covered[static_cast<std::size_t>(0.99 * static_cast<double>(covered.size() - 1))];
+    long counted = 0, specks = 0;
+    for (int y = 0; y < reference.height(); ++y)
+        for (int x = 0; x < reference.width(); ++x) {
+            const double r = luminance(reference.at(x, y));
+            if (!(reference.at(x, y).a > 0.0f) || r < floor) continue;
+            ++counted;
+            specks += luminance(image.at(x, y)) < 0.5 * r ? 1 : 0;
+        }
+    return counted > 0 ? static_cast<double>(specks) / static_cast<double>(counted) : 0.0;
+}
+
+void saveImages(const Options& o, const std::string& id, const sss::Image& image, const sss::Image& reference,
+                const std::string& referenceId) {
+    if (o.imageDir.empty()) return;
+    std::filesystem::create_directories(o.imageDir);
+    sss::toDisplay(image).savePng(o.imageDir / (id + ".png"));
+    image.saveExr(o.imageDir / (id + ".exr"));
+    sss::toDisplay(reference).savePng(o.imageDir / (referenceId + ".png"));
+}
+
+// The CT head's skin at its real size: the isosurface at -500 HU (between air and soft tissue)
+// of the InVesalius head, decimated to 100 000 triangles, in millimetres.
+std::optional<sss::Mesh> headSkin(BenchmarkContext& bench) {
+    const auto path = bench.findData("error-sweep", "head", "volumes/invesalius_cthead_256x256x108_uint16.raw");
+    if (!path) return std::nullopt;
+    sss::RawLoadOptions raw;
+    raw.spacing = glm::vec3(0.957f, 0.957f, 1.5f);  // mm, from the data manifest
+    const sss::Volume volume = sss::Volume::loadRaw(*path, raw);
+    sss::IsosurfaceOptions iso;
+    iso.value = 1024.0 - 500.0;  // stored as HU + 1024
+    iso.maxTriangles = 100000;
+    return sss::extractIsosurface(volume, iso);
+}
+
+struct SweepScene {
+    std::string model, material;
+    const sss::Mesh* mesh;
+    double sizeMm;            // the mesh's largest extent in millimetres
+    double millimetresPerUnit;
+};
+
+}  // namespace
+
+void meshScaleSweep(BenchmarkContext& bench) {
+    const Options& o = bench.options();
+    std::vector<std::pair<std::string, sss::Mesh>> meshes;
+    for (const std::string model : {"bunny", "buddha", "dragon"})
+        if (bench.wanted(model))
+            if (std::optional<sss::Mesh> mesh = unitMesh(bench, model)) meshes.emplace_back(model, std::move(*mesh));
+    std::optional<sss::Mesh> head;
+    if (bench.wanted("head")) head = headSkin(bench);
+    std::vector<SweepScene> scenes;
+    for (const auto& [model, mesh] : meshes)
+        for (const std::string material : {"marble", "skin1"})
+            for (const double sizeMm : {20.0, 200.0, 2000.0}) scenes.push_back({model, material, &mesh, sizeMm, sizeMm});
+    if (head) {
+        const glm::vec3 extent = head->bounds().max - head->bounds().min;
+        scenes.push_back({"head", "skin1", &*head, std::max({extent.x, extent.y, extent.z}), 1.0});
+    }
+    for (const SweepScene& s : scenes) {
+        const sss::Mesh& mesh = *s.mesh;
+        const sss::Camera camera = framedCamera(mesh.bounds());
+        const sss::DirectionalLight key = keyLight(camera);
+        const sss::ScatteringMaterial material = sss::materialPreset(s.material);
+        const std::string scene = s.model + "-" + s.material + "-" + std::to_string(static_cast<int>(s.sizeMm)) + "mm";
+        const Reference reference = cachedMeshReference(o, "mesh-scale-reference-" + scene, [&] {
+            sss::MeshReferenceOptions ro;
+            ro.millimetresPerUnit = s.millimetresPerUnit;
+            ro.targetRelativeError = 0.03;
+            ro.absoluteError = 1e-4;
+            return sss::renderMeshReference(mesh, glm::mat4(1.0f), material, {key}, camera, kWidth, kHeight, ro);
+        });
+        for (const Method& method : methods()) {
+            sss::MeshRenderOptions mo;
+            mo.shading = sss::MeshShading::Scattering;
+            mo.millimetresPerUnit = s.millimetresPerUnit;
+            mo.specular = 0.0f;
+            method.set(mo);
+            sss::MeshScatteringRenderer renderer(mo);
+            renderer.setMesh(mesh);
+            renderer.setScatteringMaterial(material);
+            renderer.setLights({key});
+            sss::RenderTarget target(kWidth, kHeight);
+            const auto start = std::chrono::steady_clock::now();
+            do {
+                target.clear({0, 0, 0, 0});
+                renderer.render(camera, target);
+            } while (!renderer.converged());
+            sss::finishGpuWork();
+            const double regenerateMs =
+                1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const sss::Image image = target.readColor();
+            const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference.image);
+            const std::string id = "scale-" + scene + "-" + method.name;
+            saveImages(o, id, image, reference.image, "scale-" + scene + "-reference");
+            const Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed");
+            Record r;
+            r.table = "error-sweep";
+            r.model = s.model;
+            r.mode = "sss";
+            r.dataSize = std::to_string(mesh.triangleCount()) + " tri";
+            r.params = method.name + " " + s.material + " " + std::to_string(static_cast<int>(s.sizeMm)) +
+                       " mm relRMSE=" + std::to_string(error.relRmse);
+            r.width = kWidth;
+            r.height = kHeight;
+            r.measurement = fixed;
+            r.details = {{"sweep", "mesh-scale"},
+                         {"model", s.model},
+                         {"size_mm", s.sizeMm},
+                         {"millimetres_per_unit", s.millimetresPerUnit},
+                         {"material", s.material},
+                         {"method", method.name},
+                         {"combine", combineName(renderer.activeCombine())},
+                         {"near_field", mo.nearField},
+                         {"edge_diffusion_lengths", renderer.edgeToDiffusionLength()},
+                         {"rel_rmse", error.relRmse},
+                         {"specks", error.speckShare},
+                         {"specks_visible", visibleSpecks(image, reference.image)},
+                         {"mean_ratio", meanRatio(image, reference.image)},
+                         {"ms", regenerateMs},
+                         {"fixed_ms", fixed.stats.medianMs},
+                         {"reference_rel_rmse", reference.ownRelRmse}};
+            std::cerr << "sss-bench: " << scene << " " << method.name << " (" << combineName(renderer.activeCombine())
+                      << ", edges " << renderer.edgeToDiffusionLength() << " diffusion lengths) relRMSE "
+                      << error.relRmse << " specks " << error.speckShare << " regenerated in " << regenerateMs << " ms\n";
+            bench.addRecord(std::move(r));
+        }
+    }
+}

@@ -1,0 +1,112 @@
+#include "mesh/near_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+namespace sss::detail {
+
+namespace {
+
+// The disk integral out to each of `radial` log-spaced radii ending at `radius`: (outer edge of
+// bin i, integral up to it). The quadrature of dipoleDiskIntegral().
+std::vector<std::pair<double, glm::dvec3>> cumulativeDiskIntegral(const DipoleConstants& c, double cosIncidence,
+                                                                  double radius, int radial) {
+    std::vector<std::pair<double, glm::dvec3>> cumulative;
+    // Log-spaced midpoints in r from far below the shortest mean free path (the profile's peak
+    // is about a mean free path wide) to the radius; the azimuth over [0, pi], twice (the kernel
+    // is mirror-symmetric about the plane of incidence).
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) shortest = std::min(shortest, 1.0 / c.sigmaTPrime[i]);
+    const double r0 = 1e-6 * shortest;
+    if (!(radius > r0)) return cumulative;
+    const double sinI = std::sqrt(std::max(0.0, 1.0 - cosIncidence * cosIncidence));
+    const glm::dvec3 wi{sinI, 0.0, cosIncidence}, n{0.0, 0.0, 1.0};
+    const bool symmetric = sinI < 1e-12;
+    const int azimuthal = symmetric ? 1 : 32;
+    const double l0 = std::log(r0), dl = (std::log(radius) - l0) / radial;
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < radial; ++i) {
+        const double r = std::exp(l0 + (i + 0.5) * dl);
+        for (int j = 0; j < azimuthal; ++j) {
+            const double phi = std::numbers::pi * (j + 0.5) / azimuthal;
+            // Entry at the origin, exit at the disk point's surface point: S_d depends on their
+            // offset only, so this is the integral over entry points around a fixed exit.
+            const glm::dvec3 xo{r * std::cos(phi) / cosIncidence, r * std::sin(phi), 0.0};
+            sum += evaluateSd(c, glm::dvec3(0.0), n, wi, xo, n) * (r * r * dl * 2.0 * std::numbers::pi / azimuthal);
+        }
+        cumulative.emplace_back(std::exp(l0 + (i + 1) * dl), sum);
+    }
+    return cumulative;
+}
+
+constexpr int kRadialBins = 320;
+
+// Visibility taps for the near field lit head-on: tap k stands for the ring between the
+// quantiles k / N and (k + 1) / N of the channels' mean share of the disk integral, at the ring's
+// median radius; each channel weighs it by its own share of the disk integral in that ring.
+void placeVisibilityTaps(const DipoleConstants& c, double radius, NearFieldTable& table) {
+    const auto cumulative = cumulativeDiskIntegral(c, 1.0, radius, kRadialBins);
+    if (cumulative.empty()) return;
+    const glm::dvec3 total = cumulative.back().second;
+    auto share = [&](const glm::dvec3& v) {
+        glm::dvec3 s(0.0);
+        for (int ch = 0; ch < 3; ++ch) s[ch] = total[ch] > 0.0 ? v[ch] / total[ch] : 0.0;
+        return s;
+    };
+    auto meanShare = [&](const glm::dvec3& v) { const glm::dvec3 s = share(v); return (s.x + s.y + s.z) / 3.0; };
+    // The first radius at which the mean share reaches q, and the integral there.
+    auto at = [&](double q) {
+        for (const auto& [r, integral] : cumulative)
+            if (meanShare(integral) >= q) return std::pair{r, integral};
+        return cumulative.back();
+    };
+    glm::dvec3 previous(0.0);
+    for (int k = 0; k < kNearFieldTaps; ++k) {
+        const double upper = static_cast<double>(k + 1) / kNearFieldTaps;
+        const glm::dvec3 ringEnd = k + 1 == kNearFieldTaps ? total : at(upper).second;
+        table.tapRadius[k] = static_cast<float>(at((k + 0.5) / kNearFieldTaps).first);
+        table.tapWeight[k] = glm::vec3(share(ringEnd - previous));
+        previous = ringEnd;
+    }
+}
+
+}  // namespace
+
+glm::dvec3 dipoleDiskIntegral(const DipoleConstants& c, double cosIncidence, double radius) {
+    if (!(radius > 0.0) || !(cosIncidence > 0.0)) return glm::dvec3(0.0);
+    const auto cumulative = cumulativeDiskIntegral(c, std::min(cosIncidence, 1.0), radius, kRadialBins);
+    return cumulative.empty() ? glm::dvec3(0.0) : cumulative.back().second;
+}
+
+float nearFieldCorrection(double edgeRatio) {
+    const double k = kNearFieldCorrectionEdges;
+    return edgeRatio > k ? static_cast<float>(k / edgeRatio) : 1.0f;
+}
+
+NearFieldTable tabulateNearField(const DipoleConstants& c, double radius, double edgeLength) {
+    NearFieldTable table;
+    table.radius = static_cast<float>(std::max(radius, 0.0));
+    for (int ch = 0; ch < 3; ++ch) table.correction[ch] = nearFieldCorrection(edgeLength * c.sigmaTr[ch]);
+    if (!(radius > 0.0)) return table;
+    placeVisibilityTaps(c, radius, table);
+    for (int i = 0; i < kNearFieldNodes; ++i) {
+        // Grazing light (node 0) enters nothing: T(eta, 0) = 0.
+        const double mu = std::max(static_cast<double>(i) / (kNearFieldNodes - 1), 1e-3);
+        const glm::dvec3 perIrradiance = fresnelTransmittance(c.eta, mu) * dipoleDiskIntegral(c, mu, radius) / mu;
+        table.reflectance[i] = glm::vec3(perIrradiance);
+    }
+    return table;
+}
+
+void setNearFieldUniforms(const gl::Program& p, const NearFieldTable& table) {
+    p.set("nearFieldOn", table.radius > 0.0f ? 1 : 0);
+    glProgramUniform3fv(p.id(), p.uniformLocation("nearField[0]"), kNearFieldNodes, &table.reflectance[0].x);
+    glProgramUniform1fv(p.id(), p.uniformLocation("nearFieldTapRadius[0]"), kNearFieldTaps, table.tapRadius.data());
+    glProgramUniform3fv(p.id(), p.uniformLocation("nearFieldTapWeight[0]"), kNearFieldTaps, &table.tapWeight[0].x);
+}
+
+}  // namespace sss::detail

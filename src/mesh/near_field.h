@@ -1,0 +1,60 @@
+#pragma once
+// The profile's near field: the light entering within a radius rho of x_o (measured across the
+// light, on the sampling disk of shaders/mesh/radiosity_estimate.glsl), as if the surface there
+// were flat and lit like x_o itself; a table over the incidence angle gives it exactly. The
+// vertex estimate interpolates its radiosity less this near field, and the combine pass adds the
+// near field back per pixel (shaders/mesh/near_field.glsl): with rho about a triangle wide, the
+// interpolated part varies little across a triangle while the per-pixel part keeps the detail a
+// triangle cannot hold. On triangles many diffusion lengths wide (life-size objects) the near
+// field is nearly all of the light. Derivation and measurements: docs/near-field.md.
+#include "gl/program.h"
+#include "sss/bssrdf.h"
+
+#include <glm/vec3.hpp>
+
+#include <array>
+
+namespace sss::detail {
+
+inline constexpr int kNearFieldNodes = 33;  // cos theta = 0, 1/32, ..., 1 (NEAR_FIELD_NODES in GLSL)
+inline constexpr int kNearFieldTaps = 8;    // NEAR_FIELD_TAPS in GLSL
+
+struct NearFieldTable {
+    float radius = 0.0f;  ///< rho, scene units (0: no near field)
+    /// Per channel, how much of the difference between the light sampled within rho and the
+    /// near field the vertex estimate interpolates (shaders/mesh/vertex_estimate.comp):
+    /// nearFieldCorrection() of the channel's edge length in diffusion lengths.
+    glm::vec3 correction{1.0f};
+    /// Per node i (cos theta_i = i / 32): T(eta, cos theta) times the integral of S_d over the
+    /// flat surface points whose light-facing disk offset is within rho, per unit irradiance on
+    /// the surface (rgb, 1/sr). The light x_o re-emits is this times E cos theta.
+    std::array<glm::vec3, kNearFieldNodes> reflectance{};
+    /// Where the near field looks up the light's visibility, so a shadow's edge is blurred as the
+    /// profile blurs it: radii on the light's disk (scene units) and per-channel weights summing
+    /// to 1, each tap the ring of the profile around its radius (lit head-on).
+    std::array<float, kNearFieldTaps> tapRadius{};
+    std::array<glm::vec3, kNearFieldTaps> tapWeight{};
+};
+
+/// The integral of S_d(x_i -> x_o) over the disk of radius `radius` around x_o facing a light at
+/// cos theta = `cosIncidence` in (0, 1] to a flat surface, per unit disk area (each disk point
+/// stands for the surface point behind it along the light): in the plane's coordinates, x_i =
+/// (r cos phi / cos theta, r sin phi). Per channel, without Fresnel factors. At cos theta = 1 it
+/// is dipolePlaneIntegral(c, 1, radius); for an unbounded radius, cos theta times
+/// dipolePlaneIntegral(c, cos theta).
+glm::dvec3 dipoleDiskIntegral(const DipoleConstants& constants, double cosIncidence, double radius);
+
+/// The weight of the vertices' near-field difference for edges `edgeRatio` diffusion lengths
+/// long: 1 up to kNearFieldCorrectionEdges, then kNearFieldCorrectionEdges / edgeRatio
+/// (measured: docs/near-field.md).
+inline constexpr double kNearFieldCorrectionEdges = 0.7;
+float nearFieldCorrection(double edgeRatio);
+
+/// The table for `radius` (scene units, the constants' length unit); radius 0 gives zeros.
+/// `edgeLength`: the mesh's edge (scene units), against each channel's diffusion length.
+NearFieldTable tabulateNearField(const DipoleConstants& constants, double radius, double edgeLength);
+
+/// Sets the uniforms of shaders/mesh/near_field.glsl (radius 0 turns the near field off).
+void setNearFieldUniforms(const gl::Program& program, const NearFieldTable& table);
+
+}  // namespace sss::detail

@@ -1,0 +1,64 @@
+// The profile's near field (src/mesh/near_field.h): the disk integral against the plane integral
+// it must reduce to, and the table's limits.
+#include "mesh/near_field.h"
+
+#include <catch2/catch.hpp>
+#include <sss/bssrdf.h>
+#include <sss/materials.h>
+
+#include <cmath>
+
+using namespace sss;
+
+namespace {
+
+DipoleConstants constants(const char* preset, ScatteringProfile profile) {
+    return deriveDipoleConstants(materialPreset(preset), 1.0, profile);  // lengths in mm
+}
+
+void requireClose(const glm::dvec3& a, const glm::dvec3& b, double relative) {
+    for (int c = 0; c < 3; ++c) {
+        INFO("channel " << c << ": " << a[c] << " against " << b[c]);
+        REQUIRE(a[c] == Approx(b[c]).epsilon(relative));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("near field: lit head-on, the disk is the plane integral's circle", "[cpu][near-field]") {
+    for (const ScatteringProfile profile : {ScatteringProfile::Dipole, ScatteringProfile::Calibrated})
+        for (const char* preset : {"marble", "skin1", "ketchup"})
+            for (const double radius : {0.2, 1.0, 5.0}) {
+                INFO(preset << ", radius " << radius << " mm");
+                const DipoleConstants c = constants(preset, profile);
+                requireClose(detail::dipoleDiskIntegral(c, 1.0, radius), dipolePlaneIntegral(c, 1.0, radius), 2e-3);
+            }
+}
+
+TEST_CASE("near field: a disk wider than the profile holds cos theta times the plane integral", "[cpu][near-field]") {
+    // The light's disk covers the plane once, foreshortened by cos theta.
+    const DipoleConstants c = constants("skin1", ScatteringProfile::Calibrated);
+    for (const double mu : {0.9, 0.5, 0.2}) {
+        INFO("cos theta " << mu);
+        requireClose(detail::dipoleDiskIntegral(c, mu, 400.0), mu * dipolePlaneIntegral(c, mu), 5e-3);
+    }
+}
+
+TEST_CASE("near field: the table grows with its radius and vanishes at grazing light", "[cpu][near-field]") {
+    const DipoleConstants c = constants("marble", ScatteringProfile::Calibrated);
+    const detail::NearFieldTable none = detail::tabulateNearField(c, 0.0, 1.0);
+    const detail::NearFieldTable small = detail::tabulateNearField(c, 0.5, 1.0), large = detail::tabulateNearField(c, 20.0, 1.0);
+    CHECK(none.radius == 0.0f);
+    CHECK(none.reflectance.back().x == 0.0f);
+    CHECK(small.reflectance[0].x == Approx(0.0f).margin(1e-3));  // T(eta, 0) = 0
+    for (int i = 1; i < detail::kNearFieldNodes; ++i)
+        for (int ch = 0; ch < 3; ++ch) {
+            INFO("node " << i << ", channel " << ch);
+            REQUIRE(small.reflectance[i][ch] > 0.0f);
+            REQUIRE(large.reflectance[i][ch] > small.reflectance[i][ch]);
+        }
+    // Head-on, a disk of many diffusion lengths holds the whole light: T(eta, 1) times the
+    // plane integral, per unit irradiance.
+    const glm::dvec3 whole = fresnelTransmittance(c.eta, 1.0) * dipolePlaneIntegral(c, 1.0);
+    for (int ch = 0; ch < 3; ++ch) CHECK(large.reflectance.back()[ch] == Approx(whole[ch]).epsilon(0.01));
+}
