@@ -64,6 +64,12 @@ struct Method {
 const std::vector<Method>& methods() {
     static const std::vector<Method> all = {
         {"defaults", [](sss::MeshRenderOptions&) {}},
+        // The vertex estimate with its near field (docs/near-field.md).
+        {"near-field",
+         [](sss::MeshRenderOptions& o) {
+             o.combine = sss::MeshCombine::VertexEstimate;
+             o.nearField = 1.0f;
+         }},
         // The vertex estimate without the per-pixel near field: the previous defaults below 2
         // diffusion lengths per edge.
         {"vertex-estimate-no-near-field",
@@ -155,14 +161,28 @@ struct SweepScene {
 
 }  // namespace
 
+// Besides model names, --only takes scene names (buddha-marble-2000mm) and method names (maps):
+// a scene runs if its model or its name is listed, a method if it is listed or no method is.
+bool namesScene(const Options& o, const std::string& model) {
+    return std::any_of(o.only.begin(), o.only.end(), [&](const std::string& n) { return n.rfind(model + "-", 0) == 0; });
+}
+
+bool methodWanted(BenchmarkContext& bench, const std::string& method) {
+    const auto& only = bench.options().only;
+    const bool anyListed = std::any_of(methods().begin(), methods().end(), [&](const Method& m) {
+        return std::find(only.begin(), only.end(), m.name) != only.end();
+    });
+    return !anyListed || std::find(only.begin(), only.end(), method) != only.end();
+}
+
 void meshScaleSweep(BenchmarkContext& bench) {
     const Options& o = bench.options();
     std::vector<std::pair<std::string, sss::Mesh>> meshes;
     for (const std::string model : {"bunny", "buddha", "dragon"})
-        if (bench.wanted(model))
+        if (bench.wanted(model) || namesScene(o, model))
             if (std::optional<sss::Mesh> mesh = unitMesh(bench, model)) meshes.emplace_back(model, std::move(*mesh));
     std::optional<sss::Mesh> head;
-    if (bench.wanted("head")) head = headSkin(bench);
+    if (bench.wanted("head") || namesScene(o, "head")) head = headSkin(bench);
     std::vector<SweepScene> scenes;
     for (const auto& [model, mesh] : meshes)
         for (const std::string material : {"marble", "skin1"})
@@ -177,6 +197,7 @@ void meshScaleSweep(BenchmarkContext& bench) {
         const sss::DirectionalLight key = keyLight(camera);
         const sss::ScatteringMaterial material = sss::materialPreset(s.material);
         const std::string scene = s.model + "-" + s.material + "-" + std::to_string(static_cast<int>(s.sizeMm)) + "mm";
+        if (!bench.wanted(s.model) && !bench.wanted(scene)) continue;
         const Reference reference = cachedMeshReference(o, "mesh-scale-reference-" + scene, [&] {
             sss::MeshReferenceOptions ro;
             ro.millimetresPerUnit = s.millimetresPerUnit;
@@ -185,6 +206,7 @@ void meshScaleSweep(BenchmarkContext& bench) {
             return sss::renderMeshReference(mesh, glm::mat4(1.0f), material, {key}, camera, kWidth, kHeight, ro);
         });
         for (const Method& method : methods()) {
+            if (!methodWanted(bench, method.name)) continue;
             sss::MeshRenderOptions mo;
             mo.shading = sss::MeshShading::Scattering;
             mo.millimetresPerUnit = s.millimetresPerUnit;

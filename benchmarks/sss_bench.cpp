@@ -86,7 +86,8 @@ Options parseArgs(int argc, char** argv) {
                   if (models.empty()) throw UsageError(name + " needs at least one model name");
                   return models;
               },
-              "only these models (e.g. bunny,bonsai)", "A,B,...");
+              "only these models (e.g. bunny,bonsai); --error-sweep mesh also takes its scenes and methods "
+              "(buddha-marble-2000mm, head-skin1-241mm, defaults, maps)", "A,B,...");
     app.add_option("--note", o.note, "free text about the machine, copied into the reports")->type_name("TEXT");
     app.add_option("--images", o.imageDir, "save each row's verified image as DIR/<table>-<model>-<mode>.png")
         ->type_name("DIR")

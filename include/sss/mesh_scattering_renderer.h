@@ -100,8 +100,9 @@ struct MeshRenderOptions {
     /// point, for a locally flat surface lit like the point, is evaluated per pixel; the vertices
     /// interpolate only the rest, which varies little across a triangle. Keeps the radiosity
     /// right on meshes whose triangles are many diffusion lengths wide (life-size objects); 0
-    /// interpolates all of it (default: 1).
-    float nearField = 1.0f;
+    /// interpolates all of it. Off by default until it keeps the light that thin parts of coarse
+    /// meshes let through (docs/near-field.md); 1 is the measured setting (default: 0).
+    float nearField = 0.0f;
     /// Map frames accumulated while the scene is static, >= 1 (default: 8).
     int accumulationFrames = 8;
     /// Visibility depth bias of the map lookup, in texels' worth of depth, >= 0 (default: 1.5).

@@ -93,7 +93,7 @@ struct OptionTable<MeshRenderOptions> {
         OptionField<O, float>{&O::spread, "spread", "spreads the samples: sigma* = min(sigma_tr) / spread",
                               atLeast(0.1)},
         OptionField<O, float>{&O::nearField, "nearField",
-            "radius of the vertex estimate's per-pixel near field, in mesh edge lengths; 0: interpolate all the light",
+            "radius of the vertex estimate's per-pixel near field, in mesh edge lengths (1: life-size meshes); 0: off",
             atLeast(0), "--near-field", "EDGES"},
         OptionField<O, int>{&O::accumulationFrames, "accumulationFrames", "frames accumulated into the scattering maps",
                             atLeast(1), "--frames", "F"},

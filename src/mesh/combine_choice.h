@@ -6,7 +6,7 @@
 // and takes the paper's per-pixel maps on coarser meshes. With the near field
 // (MeshRenderOptions::nearField, src/mesh/near_field.h) the pixel keeps the detail the vertices
 // cannot, and the estimate was nearer the reference than the maps at every scale measured
-// (docs/near-field.md): it is taken everywhere.
+// (docs/near-field.md): it is taken everywhere when the near field is on.
 #include "sss/materials.h"
 #include "sss/mesh.h"
 #include "sss/mesh_scattering_renderer.h"
