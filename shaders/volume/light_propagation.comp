@@ -1,7 +1,9 @@
-// One slice of the light-volume propagation (Ropinski, Doering, Rezk-Salama 2010).
-// The volume is swept slice by slice along a "sweep" frame (u, v across a slice, w along the
-// sweep), which is a permutation/flip of the data axes chosen by src/volume/light_volume_pass.cpp
-// so the light always travels towards +w. For each voxel of slice w:
+// One step of the light-volume propagation (Ropinski, Doering, Rezk-Salama 2010).
+// The volume is swept slice by slice along "sweep" frames (u, v across a slice, w along the
+// sweep), each a permutation/flip of the data axes chosen by src/volume/light_volume_pass.cpp
+// so the light always travels towards +w. A light's sweeps (two blended ones, or six from a light
+// inside) advance together, one slice each per dispatch: workgroup z is the sweep. For each voxel
+// of slice w:
 //   - the light arriving there is looked up where the light ray through the voxel crosses slice
 //     w-1: intensity l with one bilinear fetch (hard shadows), chromaticity c gathered over a
 //     cone whose aperture follows the Henyey-Greenstein g;
@@ -27,33 +29,39 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "volume/transfer_function.glsl"
 
-uniform sampler2D previousSlice;                          // (c, l) leaving slice w-1
-layout(rgba16f) uniform writeonly image2D currentSlice;   // (c, l) leaving slice w
-layout(rgba16f) uniform image3D lightVolume;              // (c, l) arriving at each voxel
+#define MAX_SWEEPS 6
+// Layer 2 s + parity holds the light leaving sweep s's previous (parity = step % 2) or current
+// slice. Each sweep uses the layers' first sliceDims texels; the rest stays at the unlit value,
+// like the border, so the lookups see what a texture of the slice's own size would give.
+uniform sampler2DArray previousSlices;
+layout(rgba16f) uniform writeonly image2DArray currentSlices;
+uniform vec2 slicesTextureSize;
+layout(rgba16f) uniform writeonly image3D lightVolume;    // (c, l) arriving at each voxel
+layout(rgba16f) uniform writeonly image3D blendedVolume;  // the same from the blended sweep
 
-// The sweep frame against the data axes (set per sweep on the CPU, so no voxel permutes axes):
+// Each sweep's frame against the data axes (set on the CPU, so no voxel permutes axes):
 // voxel = voxelOrigin + u voxelStepU + v voxelStepV + w voxelStepW, a data-space vector x is
 // dataToSweep x in the sweep frame, and a voxel's edges along u, v, w are sweepVoxelSize.
-uniform ivec3 sliceDims;        // light-volume voxels along u, v, w
-uniform ivec3 voxelOrigin;
-uniform ivec3 voxelStepU;
-uniform ivec3 voxelStepV;
-uniform ivec3 voxelStepW;
-uniform mat3 dataToSweep;
-uniform vec3 sweepVoxelSize;
+uniform ivec3 sliceDims[MAX_SWEEPS];   // light-volume voxels along u, v, w
+uniform int firstSlice[MAX_SWEEPS];    // the slice the sweep starts at
+uniform ivec3 voxelOrigin[MAX_SWEEPS];
+uniform ivec3 voxelStepU[MAX_SWEEPS];
+uniform ivec3 voxelStepV[MAX_SWEEPS];
+uniform ivec3 voxelStepW[MAX_SWEEPS];
+uniform mat3 dataToSweep[MAX_SWEEPS];
+uniform vec3 sweepVoxelSize[MAX_SWEEPS];
+uniform int blended[MAX_SWEEPS];       // 1: writes blendedVolume, mixed into lightVolume afterwards
+uniform int pyramidMask[MAX_SWEEPS];   // 1: writes only voxels whose dominant light axis is +w
+uniform int step;                      // slices every sweep has done
 uniform ivec3 lightVolumeDims;  // per data axis
 uniform vec3 voxelSize;         // light-volume voxel edge per data axis, model units
 uniform vec3 boxMin;            // model-space corner of the volume box
 uniform float referenceLength;  // the TF opacity's reference length (one data voxel)
-uniform int sliceIndex;         // w
 uniform int isPointLight;
 uniform vec3 lightDirection;    // direction the light travels, model space, unit (directional)
 uniform vec3 lightPosition;     // model space (point light)
 uniform float coneTangent;      // tan of the cone half-angle
 uniform vec2 coneWeights;       // (centre tap, each of the 8 ring taps); centre + 8 ring = 1
-uniform float sweepWeight;      // the blended sweep's share of the final light volume
-uniform int accumulate;         // 1: mix into the light volume (second, blended sweep)
-uniform int pyramidMask;        // 1: write only voxels whose dominant light axis is +w
 // Empty space (src/volume/empty_space.h): per brick of brickVoxels^3 data voxels, 0 where the
 // brick and its 26 neighbours sample no opacity under the current transfer function.
 uniform int skipEmpty;
@@ -66,16 +74,19 @@ uniform sampler3D litColour;
 #endif
 
 void main() {
+    int sweep = int(gl_WorkGroupID.z);
+    ivec3 dims = sliceDims[sweep];
     ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
-    if (uv.x >= sliceDims.x || uv.y >= sliceDims.y) return;
+    int w = firstSlice[sweep] + step;
+    if (uv.x >= dims.x || uv.y >= dims.y || w >= dims.z) return;
 
-    ivec3 voxel = voxelOrigin + uv.x * voxelStepU + uv.y * voxelStepV + sliceIndex * voxelStepW;
+    ivec3 voxel = voxelOrigin[sweep] + uv.x * voxelStepU[sweep] + uv.y * voxelStepV[sweep] + w * voxelStepW[sweep];
     vec3 position = boxMin + (vec3(voxel) + 0.5) * voxelSize;
     vec3 direction = isPointLight != 0 ? position - lightPosition : lightDirection;
 
     // Direction and voxel size in the sweep frame.
-    vec3 d = dataToSweep * direction;
-    vec3 s = sweepVoxelSize;
+    vec3 d = dataToSweep[sweep] * direction;
+    vec3 s = sweepVoxelSize[sweep];
     // A voxel centred exactly on a point light gets an arbitrary direction instead of NaN.
     d = dot(d, d) > 1e-20 ? normalize(d) : vec3(0.0, 0.0, 1.0);
     // Light must travel forward along w; a point light beside the sweep gives dz -> 0.
@@ -84,9 +95,9 @@ void main() {
     float pathLength = s.z / dz;  // model units between slices along the light ray
 
     // Where the light ray through this voxel crosses the previous slice, in slice texels.
-    vec2 sliceSize = vec2(sliceDims.xy);
     vec2 previous = vec2(uv) + 0.5 - d.xy / dz * s.z / s.xy;
-    vec4 centre = texture(previousSlice, previous / sliceSize);
+    float previousLayer = float(2 * sweep + step % 2);
+    vec4 centre = texture(previousSlices, vec3(previous / slicesTextureSize, previousLayer));
 #if CHROMATICITY
     vec3 chromaticity = centre.rgb;
     vec2 ringRadius = coneTangent * pathLength / s.xy;  // texels
@@ -94,7 +105,8 @@ void main() {
         vec3 ring = vec3(0.0);
         for (int k = 0; k < 8; ++k) {
             float angle = float(k) * 0.78539816;
-            ring += texture(previousSlice, (previous + ringRadius * vec2(cos(angle), sin(angle))) / sliceSize).rgb;
+            vec2 tap = previous + ringRadius * vec2(cos(angle), sin(angle));
+            ring += texture(previousSlices, vec3(tap / slicesTextureSize, previousLayer)).rgb;
         }
         chromaticity = coneWeights.x * centre.rgb + coneWeights.y * ring;
     }
@@ -140,15 +152,16 @@ void main() {
 #endif
         if (k == n / 2 - 1) arriving = light;
     }
-    imageStore(currentSlice, uv, light);
+    imageStore(currentSlices, ivec3(uv, 2 * sweep + 1 - step % 2), light);
 
-    if (pyramidMask != 0) {
+    if (pyramidMask[sweep] != 0) {
         // Light inside the volume: six sweeps, each owning the voxels whose light arrives
         // mostly along its +w (measured in voxels, so the lookup stays within one texel).
         vec3 inVoxels = abs(d) / s;
         if (d.z <= 0.0 || inVoxels.z < inVoxels.x || inVoxels.z < inVoxels.y) return;
     }
-    // The first sweep stores its result whole; the blended one mixes in its share, so the sum is
-    // rounded to half precision once (unlit stays exactly 1).
-    imageStore(lightVolume, voxel, accumulate != 0 ? mix(imageLoad(lightVolume, voxel), arriving, sweepWeight) : arriving);
+    if (blended[sweep] != 0)
+        imageStore(blendedVolume, voxel, arriving);
+    else
+        imageStore(lightVolume, voxel, arriving);
 }

@@ -9,8 +9,57 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace sss::detail {
+namespace {
+
+constexpr int kMaxSweeps = 6;  // MAX_SWEEPS in light_propagation.comp
+
+// Sets each sweep's frame (light_propagation.comp): u and v across a slice, w along the sweep
+// (towards -axis if reversed).
+LightVolumePass::SweepLayout setSweepFrames(const gl::Program& p, const std::vector<LightSweep>& sweeps, glm::ivec3 dims,
+                           glm::vec3 voxelSize) {
+    if (sweeps.size() > static_cast<size_t>(kMaxSweeps)) throw std::logic_error("light volume: too many sweeps");
+    LightVolumePass::SweepLayout layout;
+    layout.sweeps = static_cast<int>(sweeps.size());
+    for (int s = 0; s < static_cast<int>(sweeps.size()); ++s) {
+        const LightSweep& sweep = sweeps[static_cast<size_t>(s)];
+        const int u = (sweep.axis + 1) % 3, v = (sweep.axis + 2) % 3;
+        glm::ivec3 origin(0), stepU(0), stepV(0), stepW(0);
+        stepU[u] = 1;
+        stepV[v] = 1;
+        stepW[sweep.axis] = sweep.reversed ? -1 : 1;
+        origin[sweep.axis] = sweep.reversed ? dims[sweep.axis] - 1 : 0;
+        glm::mat3 dataToSweep(0.0f);  // column = data axis, row = sweep axis
+        dataToSweep[u][0] = 1.0f;
+        dataToSweep[v][1] = 1.0f;
+        dataToSweep[sweep.axis][2] = sweep.reversed ? -1.0f : 1.0f;
+        const std::string i = "[" + std::to_string(s) + "]";
+        p.set("sliceDims" + i, glm::ivec3(dims[u], dims[v], dims[sweep.axis]));
+        p.set("firstSlice" + i, sweep.firstSlice);
+        p.set("voxelOrigin" + i, origin);
+        p.set("voxelStepU" + i, stepU);
+        p.set("voxelStepV" + i, stepV);
+        p.set("voxelStepW" + i, stepW);
+        p.set("dataToSweep" + i, dataToSweep);
+        p.set("sweepVoxelSize" + i, glm::vec3(voxelSize[u], voxelSize[v], voxelSize[sweep.axis]));
+        // The second of two blended sweeps goes to its own volume, mixed in once both are done.
+        const bool blended = !sweep.pyramid && s > 0;
+        if (blended) {
+            layout.blendedSweep = s;
+            layout.blendedWeight = sweep.weight;
+        }
+        p.set("blended" + i, blended ? 1 : 0);
+        p.set("pyramidMask" + i, sweep.pyramid ? 1 : 0);
+        layout.largestSlice = glm::max(layout.largestSlice, glm::ivec2(dims[u], dims[v]));
+        layout.steps = std::max(layout.steps, dims[sweep.axis] - sweep.firstSlice);
+    }
+    return layout;
+}
+
+}  // namespace
 
 LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass) { program(true); }
 
@@ -61,9 +110,7 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     const gl::Program& p = program(settings.chromaticity || m_eyePass);
     p.set("volumeTexture", 0);
     p.set("transferFunction", 1);
-    p.set("previousSlice", 2);
-    p.set("lightVolume", 0);   // image units
-    p.set("currentSlice", 1);
+    p.set("lightVolume", 0);   // image unit
     p.set("occupiedNeighbourhoods", 3);
     p.set("transferFunctionEntries", static_cast<float>(medium.transferFunction.size().x));
     p.set("valueScaleOffset", volume.valueScaleOffset);
@@ -86,60 +133,68 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     p.set("brickVoxels", kBrickVoxels);
     p.set("textureToBrick", textureToBrick(volume.dims));
 
+    propagate(p, setSweepFrames(p, sweeps, dims, voxelSize), medium, outside, output);
+    glUseProgram(0);
+}
+
+void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout, const LightVolumeMedium& medium,
+                                glm::vec4 outside, gl::Texture& output) {
+    const GpuVolume& volume = medium.volume;
+    const glm::ivec3 dims = output.size();
+    const glm::ivec2 largestSlice = layout.largestSlice;
+    const int count = layout.sweeps;
+    const int blendedSweep = layout.blendedSweep;
+    if (!m_slices || glm::ivec2(m_slices.size()) != largestSlice || m_slices.size().z != 2 * count) {
+        m_slices = gl::Texture::create2DArray(GL_RGBA16F, largestSlice.x, largestSlice.y, 2 * count, "light volume slices");
+        m_slices.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume
+    }
+    m_slices.setBorderColor(outside);
+    // The unlit value everywhere: each sweep's first lookups, and beyond a smaller sweep's slice.
+    const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};
+    glClearTexImage(m_slices.id(), 0, GL_RGBA, GL_FLOAT, unlit);
+    if (blendedSweep >= 0 && (!m_blended || m_blended.size() != dims))
+        m_blended = gl::Texture::create3D(GL_RGBA16F, dims, "blended light sweep");
+    p.set("previousSlices", 2);
+    p.set("currentSlices", 1);
+    p.set("blendedVolume", 2);  // image unit
+    p.set("slicesTextureSize", glm::vec2(largestSlice));
+
     volume.texture.bind(0);
     medium.transferFunction.bind(1);
+    m_slices.bind(2);
     // Unit 3 always holds a 3D texture, so the sampler validates with skipping off as well.
     (medium.occupiedNeighbourhoods ? *medium.occupiedNeighbourhoods : volume.texture).bind(3);
-    output.bindImage(0, GL_READ_WRITE);
+    output.bindImage(0, GL_WRITE_ONLY);
+    m_slices.bindImage(1, GL_WRITE_ONLY);
+    (blendedSweep >= 0 ? m_blended : output).bindImage(2, GL_WRITE_ONLY);
     p.use();
-    const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};
-    for (size_t s = 0; s < sweeps.size(); ++s) {
-        const LightSweep& sweep = sweeps[s];
-        const int u = (sweep.axis + 1) % 3, v = (sweep.axis + 2) % 3;
-        const glm::ivec2 sliceSize(dims[u], dims[v]);
-        for (gl::Texture& slice : m_slices) {
-            if (!slice || glm::ivec2(slice.size()) != sliceSize) {
-                slice = gl::Texture::create2D(GL_RGBA16F, sliceSize.x, sliceSize.y, "light volume slice");
-                slice.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume
-            }
-            slice.setBorderColor(outside);
-        }
-        // The sweep frame: u and v across a slice, w along the sweep (towards -axis if reversed).
-        glm::ivec3 origin(0), stepU(0), stepV(0), stepW(0);
-        stepU[u] = 1;
-        stepV[v] = 1;
-        stepW[sweep.axis] = sweep.reversed ? -1 : 1;
-        origin[sweep.axis] = sweep.reversed ? dims[sweep.axis] - 1 : 0;
-        glm::mat3 dataToSweep(0.0f);  // column = data axis, row = sweep axis
-        dataToSweep[u][0] = 1.0f;
-        dataToSweep[v][1] = 1.0f;
-        dataToSweep[sweep.axis][2] = sweep.reversed ? -1.0f : 1.0f;
-        p.set("sliceDims", glm::ivec3(dims[u], dims[v], dims[sweep.axis]));
-        p.set("voxelOrigin", origin);
-        p.set("voxelStepU", stepU);
-        p.set("voxelStepV", stepV);
-        p.set("voxelStepW", stepW);
-        p.set("dataToSweep", dataToSweep);
-        p.set("sweepVoxelSize", glm::vec3(voxelSize[u], voxelSize[v], voxelSize[sweep.axis]));
-        p.set("sweepWeight", sweep.weight);
-        p.set("accumulate", (!sweep.pyramid && s > 0) ? 1 : 0);
-        p.set("pyramidMask", sweep.pyramid ? 1 : 0);
-        glClearTexImage(m_slices[0].id(), 0, GL_RGBA, GL_FLOAT, unlit);
-        const glm::ivec3 group = p.workGroupSize();
-        const auto groupsX = static_cast<GLuint>((sliceSize.x + group.x - 1) / group.x);
-        const auto groupsY = static_cast<GLuint>((sliceSize.y + group.y - 1) / group.y);
-        for (int w = sweep.firstSlice; w < dims[sweep.axis]; ++w) {
-            const gl::Texture& previous = m_slices[(w - sweep.firstSlice) % 2];
-            const gl::Texture& current = m_slices[(w - sweep.firstSlice + 1) % 2];
-            previous.bind(2);
-            current.bindImage(1, GL_WRITE_ONLY);
-            p.set("sliceIndex", w);
-            glDispatchCompute(groupsX, groupsY, 1);
-            // The next slice samples this one; the ray caster samples the volume afterwards.
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        }
+    const glm::ivec3 group = p.workGroupSize();
+    const auto groupsX = static_cast<GLuint>((largestSlice.x + group.x - 1) / group.x);
+    const auto groupsY = static_cast<GLuint>((largestSlice.y + group.y - 1) / group.y);
+    for (int step = 0; step < layout.steps; ++step) {
+        p.set("step", step);
+        glDispatchCompute(groupsX, groupsY, static_cast<GLuint>(count));
+        // The next step samples this one's slices; the ray caster samples the volume afterwards.
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
-    glUseProgram(0);
+    if (blendedSweep >= 0) blend(output, layout.blendedWeight);
+}
+
+void LightVolumePass::blend(const gl::Texture& output, float weight) {
+    if (!m_blendProgram) m_blendProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_volume_blend.comp"}});
+    const gl::Program& p = *m_blendProgram;
+    const glm::ivec3 dims = output.size();
+    p.set("lightVolume", 0);
+    p.set("blendedVolume", 1);
+    p.set("dims", dims);
+    p.set("weight", weight);
+    output.bindImage(0, GL_READ_WRITE);
+    m_blended.bindImage(1, GL_READ_ONLY);
+    p.use();
+    const glm::ivec3 group = p.workGroupSize();
+    glDispatchCompute(static_cast<GLuint>((dims.x + group.x - 1) / group.x),
+                      static_cast<GLuint>((dims.y + group.y - 1) / group.y), static_cast<GLuint>(dims.z));
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 }  // namespace sss::detail

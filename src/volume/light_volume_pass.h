@@ -4,7 +4,8 @@
 // by slice from the light (shaders/volume/light_propagation.comp). View-independent: it is
 // rebuilt only when the volume, transfer function, light, model transform or options change.
 //
-// Sweeps (all along +w of a permuted frame, one compute dispatch per slice):
+// Sweeps (all along +w of a permuted frame; a light's sweeps advance together, one compute
+// dispatch per slice step, so a light costs as many dispatches as its longest sweep has slices):
 //  - directional light, or point light outside the volume: along the axis the light travels most
 //    along (dir_max) and, blended, the second one (dir_blend), with weights proportional to
 //    (p1 - p3) and (p2 - p3) of the sorted direction components, which are continuous when the
@@ -57,14 +58,30 @@ public:
     void runEyePass(const LightVolumeMedium& medium, const gl::Texture& litColour, glm::vec3 viewDirection,
                     const glm::mat4& model, const LightVolumeSettings& settings, gl::Texture& output);
 
+    /// What the sweeps of one light need together.
+    struct SweepLayout {
+        int sweeps = 0;
+        glm::ivec2 largestSlice{1};
+        int steps = 0;               ///< dispatches: the longest sweep's slices
+        int blendedSweep = -1;       ///< the sweep mixed in afterwards, if any
+        float blendedWeight = 0.0f;
+    };
+
 private:
     void sweep(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
                const LightVolumeSettings& settings, gl::Texture& output, glm::vec4 outside);
+    /// Runs the sweeps laid out in `p` (all uniforms but the step set) into `output`.
+    void propagate(const gl::Program& p, const SweepLayout& layout, const LightVolumeMedium& medium, glm::vec4 outside,
+                   gl::Texture& output);
+    /// Mixes the blended sweep's volume into `output` with `weight`.
+    void blend(const gl::Texture& output, float weight);
     /// The propagation program for this pass and `chromaticity`, linked on first use.
     const gl::Program& program(bool chromaticity);
     std::optional<gl::Program> m_programs[2];  // [chromaticity]
+    std::optional<gl::Program> m_blendProgram;
     bool m_eyePass = false;
-    gl::Texture m_slices[2];  // ping-pong: light leaving the previous / current slice
+    gl::Texture m_slices;   // per sweep, ping-pong: light leaving the previous / current slice
+    gl::Texture m_blended;  // the blended sweep's light volume, before it is mixed in
 };
 
 }  // namespace sss::detail
