@@ -39,6 +39,12 @@ sharing light and shadows). Default: blinn-phong for a mesh, emission-absorption
 With both a mesh and a volume, MODE is the volume's; the mesh is drawn in blinn-phong and cuts
 the volume's rays. In a Cornell box the default light is a point light under its ceiling and the
 default view is straight in (yaw 0, pitch 0).
+
+--isosurface VALUE[:MATERIAL] (repeatable) extracts the surface where the volume's data cross
+VALUE (its units: Hounsfield for CT) as a mesh in the volume's box, at its physical size
+(spacing in millimetres), in MATERIAL (default: --material). With a volume MODE or hybrid the
+volume is drawn around it (--mesh-offset moves the surfaces beside it); with --mode sss or
+blinn-phong only the surfaces are drawn. Write negative values as --isosurface=-500:skin1.
 )";
 
 /// Everything the command line says.
@@ -53,11 +59,27 @@ struct Args {
     sss::SceneOutput output;
     sss::HybridOptions hybrid;
     std::optional<float> meshSize;
+    std::vector<std::string> isosurfaces;  // --isosurface VALUE[:MATERIAL], repeatable
     glm::vec3 meshOffset{0.0f}, volumeOffset{0.0f};
     int repeat = 1, turntable = 0;
     bool listTf = false, listMaterials = false;
     std::string exportTf;
 };
+
+/// "VALUE[:MATERIAL]" of --isosurface; the material defaults to `material`.
+std::pair<double, std::string> parseIsosurfaceSpec(const std::string& spec, const std::string& material) {
+    const std::size_t colon = spec.find(':');
+    const std::string valueText = spec.substr(0, colon);
+    const std::string name = colon == std::string::npos ? material : spec.substr(colon + 1);
+    char* end = nullptr;
+    const double value = std::strtod(valueText.c_str(), &end);
+    if (valueText.empty() || end != valueText.c_str() + valueText.size() || !std::isfinite(value))
+        throw UsageError("--isosurface: expected VALUE[:MATERIAL] with a number VALUE, got \"" + spec + "\"");
+    const std::vector<std::string> names = sss::materialPresetNames();
+    if (std::find(names.begin(), names.end(), name) == names.end())
+        throw UsageError("--isosurface: unknown material \"" + name + "\" (see --list-materials)");
+    return {value, name};
+}
 
 std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
     if (mode == "hybrid") return std::nullopt;
@@ -66,11 +88,18 @@ std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
 
 /// The scene the command-line flags describe (without --scene).
 sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
+    if (!a.isosurfaces.empty() && a.input.volume.empty())
+        throw UsageError("--isosurface needs --volume: the surface is extracted from it");
     if (a.input.mesh.empty() && a.input.volume.empty())
         throw UsageError("nothing to render: give --mesh PATH and/or --volume PATH, or --scene FILE.json");
     for (const auto& [name, offset] : {std::pair{"--mesh-offset", a.meshOffset}, std::pair{"--volume-offset", a.volumeOffset}})
         if (!(glm::all(glm::lessThanEqual(glm::abs(offset), glm::vec3(sss::Mesh::kMaxCoordinate)))))
             throw UsageError(std::string(name) + ": components must be within +-1e18 (scene units)");
+    if (!a.isosurfaces.empty() && a.meshSize)
+        throw UsageError("--mesh-size: an isosurface keeps the volume's size");
+    if (!a.isosurfaces.empty() && !a.input.mesh.empty())
+        throw UsageError("--isosurface makes the meshes: it cannot be combined with --mesh");
+    const bool hasMesh = !a.input.mesh.empty() || !a.isosurfaces.empty();
     if (a.mode.empty()) a.mode = a.input.volume.empty() ? "blinn-phong" : "emission-absorption";
     const bool meshMode = a.mode == "blinn-phong" || a.mode == "sss";
     if (a.volume.multipleScattering) {
@@ -83,15 +112,15 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
         a.volume.model = sss::VolumeModel::Physical;
     }
     if (a.mode == "hybrid") {
-        if (a.input.mesh.empty() || a.input.volume.empty()) throw UsageError("--mode hybrid needs --mesh and --volume");
+        if (!hasMesh || a.input.volume.empty()) throw UsageError("--mode hybrid needs --mesh (or --isosurface) and --volume");
     } else if (!meshMode && !volumeShading(a.mode)) {
         throw UsageError("--mode: unknown mode \"" + a.mode +
                          "\" (blinn-phong, sss, emission-absorption, gradient, scattering, scattering-gradient, hybrid)");
-    } else if (meshMode && a.input.mesh.empty()) {
-        throw UsageError("--mode " + a.mode + " needs --mesh");
+    } else if (meshMode && !hasMesh) {
+        throw UsageError("--mode " + a.mode + " needs --mesh (or --isosurface with --volume)");
     } else if (!meshMode && a.input.volume.empty()) {
         throw UsageError("--mode " + a.mode + " needs --volume");
-    } else if (meshMode && !a.input.volume.empty()) {
+    } else if (meshMode && !a.input.volume.empty() && a.isosurfaces.empty()) {
         throw UsageError("--mode " + a.mode + " is a mesh mode; with --volume give the volume's mode");
     }
 
@@ -99,18 +128,29 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
     scene.options = a.hybrid;
     scene.camera = a.camera;
     scene.output = a.output;
-    if (!a.input.mesh.empty()) {
-        sss::SceneMesh mesh;
-        mesh.source = a.input.mesh;
+    const auto addMesh = [&](sss::SceneMesh mesh, const std::string& material) {
         mesh.size = a.meshSize;
-        mesh.transform.translate = a.meshOffset;
+        mesh.transform.translate += a.meshOffset;
         mesh.options = a.mesh;
         mesh.options.shading = a.mode == "sss" || a.mode == "hybrid" ? sss::MeshShading::Scattering
                                                                      : sss::MeshShading::BlinnPhong;
         if (scene.options.cornellBox && !given(app, "--environment")) mesh.options.environment = glm::vec3(0.05f);
-        mesh.material = sss::materialPreset(a.material);
+        mesh.material = sss::materialPreset(material);
         mesh.baseline = a.baseline;
         scene.meshes.push_back(std::move(mesh));
+    };
+    if (!a.input.mesh.empty()) {
+        sss::SceneMesh mesh;
+        mesh.source = a.input.mesh;
+        addMesh(std::move(mesh), a.material);
+    }
+    for (const std::string& spec : a.isosurfaces) {
+        // VALUE[:MATERIAL]; the surface lies where the volume does.
+        const auto [value, material] = parseIsosurfaceSpec(spec, a.material);
+        sss::SceneMesh mesh;
+        mesh.isosurface.emplace().options.value = value;
+        mesh.transform.translate = a.volumeOffset;
+        addMesh(std::move(mesh), material);
     }
     if (!a.input.volume.empty()) {
         sss::SceneVolume volume;
@@ -123,7 +163,9 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
         else volume.transferFunction.preset = tf;
         volume.transform.translate = a.volumeOffset;
         volume.options = a.volume;
-        volume.options.shading = volumeShading(a.mode).value_or(sss::VolumeShading::Scattering);
+        volume.options.shading = meshMode ? sss::VolumeShading::Scattering
+                                          : volumeShading(a.mode).value_or(sss::VolumeShading::Scattering);
+        volume.visible = !meshMode;  // a mesh mode with --isosurface draws the surfaces alone
         if (volume.options.multipleScattering)
             volume.options.samplesPerFrame = a.mesh.samples;  // --samples: the path tracer's paths per frame
         scene.volumes.push_back(std::move(volume));
@@ -189,7 +231,7 @@ bool listOrExport(const Args& a) {
 /// The flags that describe a scene, which --scene replaces: every flag of the option tables and
 /// of the inputs, light, camera and placement.
 std::vector<std::string> sceneFlags() {
-    std::vector<std::string> flags = {"--mesh", "--volume", "--mode", "--dims", "--type", "--spacing", "--tf",
+    std::vector<std::string> flags = {"--mesh", "--isosurface", "--volume", "--mode", "--dims", "--type", "--spacing", "--tf",
                                       "--tf-range", "--material", "--map-resolution", "--no-specular",
                                       "--preintegration", "--color", "--shininess", "--yaw", "--pitch", "--zoom",
                                       "--fov", "--ortho", "--light-dir", "--light-color", "--light-intensity",
@@ -458,6 +500,12 @@ int main(int argc, char** argv) {
                   "S")
             ->group("placement");
         addVec3(app, "--mesh-offset", a.meshOffset, "move the mesh (scene units)")->group("placement");
+        app.add_option("--isosurface", a.isosurfaces,
+                       "a surface of --volume where its data cross VALUE, as a translucent mesh in MATERIAL (above; "
+                       "repeatable)")
+            ->type_name("VALUE[:MATERIAL]")
+            ->allow_extra_args(false)
+            ->group("input");
         addVec3(app, "--volume-offset", a.volumeOffset, "move the volume (its box is 1 unit on its longest side)")
             ->group("placement");
         app.add_flag("--cornell-box", a.hybrid.cornellBox, "put the scene in a Cornell box")->group("placement");

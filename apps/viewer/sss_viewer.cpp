@@ -293,6 +293,13 @@ int run(ViewerOptions args) {
                              file + ": sss-viewer shows at most one mesh and one volume; this scene has " +
                                  std::to_string(scene->meshes.size()) + " and " + std::to_string(scene->volumes.size()) +
                                  " (render it with sss-render --scene)");
+        const bool isosurface = !scene->meshes.empty() && scene->meshes.front().isosurface;
+        const bool hidden = !scene->volumes.empty() && !scene->volumes.front().visible;
+        if (isosurface || hidden)
+            throw sss::Error(sss::ErrorKind::InvalidArgument,
+                             file + ": sss-viewer opens mesh files and shows its volume; this scene has " +
+                                 (isosurface ? "an isosurface mesh" : "a hidden volume") +
+                                 " (render it with sss-render --scene)");
         if (scene->lights.size() > 1 ||
             (scene->lights.size() == 1 && !std::holds_alternative<sss::DirectionalLight>(scene->lights.front())))
             throw sss::Error(sss::ErrorKind::InvalidArgument,

@@ -10,6 +10,7 @@
 #include "sss/camera.h"
 #include "sss/display.h"
 #include "sss/hybrid_compositor.h"
+#include "sss/isosurface.h"
 #include "sss/light.h"
 #include "sss/materials.h"
 #include "sss/mesh.h"
@@ -42,9 +43,21 @@ struct SceneTransform {
     bool operator==(const SceneTransform&) const = default;
 };
 
+/// A mesh extracted from one of the scene's volumes (sss::extractIsosurface), in that volume's
+/// box: with the volume's transform it lies inside the volume rendering, where it was scanned.
+struct SceneIsosurface {
+    int volume = 0;  ///< index into SceneDescription::volumes
+    IsosurfaceOptions options;
+    /// Millimetres per unit of the volume's spacing (default 1: CT spacing is in millimetres).
+    /// The mesh's MeshRenderOptions::millimetresPerUnit becomes this times the volume's largest
+    /// side, so the surface scatters light at its physical size.
+    double millimetresPerVolumeUnit = 1.0;
+};
+
 /// A triangle mesh in a scene.
 struct SceneMesh {
     std::string source;  ///< a mesh file (Mesh::load) or procedural:sphere|torus|slab|folds
+    std::optional<SceneIsosurface> isosurface;  ///< instead of `source` (and `size`): a surface of a scene volume
     /// If set, the mesh is first scaled uniformly to this largest side (scene units) and centred
     /// on the origin, then `transform` places it.
     std::optional<float> size;
@@ -71,6 +84,8 @@ struct SceneVolume {
     SceneTransferFunction transferFunction;
     SceneTransform transform;
     VolumeRenderOptions options;
+    /// false: the volume is not drawn, only read (by an isosurface mesh, say).
+    bool visible = true;
 };
 
 /// The camera orbits the scene's centre and frames it tightly for the image's aspect

@@ -289,15 +289,39 @@ SceneTransferFunction readTransferFunction(const json& j, const std::string& pat
     return tf;
 }
 
+SceneIsosurface readIsosurface(const json& j, const std::string& path, const std::string& file) {
+    SceneIsosurface iso;
+    ObjectReader reader(j, path, file);
+    reader("volume", iso.volume);
+    if (iso.volume < 0) fail(file, reader.path("volume"), "must be the index of a scene volume, >= 0");
+    if (!reader.find("value")) fail(file, reader.path("value"), "an isosurface needs a value (in the data's units)");
+    reader("value", iso.options.value);
+    reader("smoothingIterations", iso.options.smoothingIterations);
+    reader("maxTriangles", iso.options.maxTriangles);
+    reader("millimetresPerVolumeUnit", iso.millimetresPerVolumeUnit);
+    if (iso.options.smoothingIterations < 0) fail(file, reader.path("smoothingIterations"), "must be >= 0");
+    if (iso.options.maxTriangles < 0) fail(file, reader.path("maxTriangles"), "must be >= 0");
+    if (!(iso.millimetresPerVolumeUnit > 0.0 && iso.millimetresPerVolumeUnit <= 1e9))
+        fail(file, reader.path("millimetresPerVolumeUnit"), "must be in (0, 1e9]");
+    reader.finish();
+    return iso;
+}
+
 SceneMesh readMesh(const json& j, const std::string& path, const std::string& file) {
     SceneMesh mesh;
     ObjectReader reader(j, path, file);
     reader("source", mesh.source);
-    if (mesh.source.empty()) fail(file, reader.path("source"), "a mesh needs a non-empty source");
+    if (const json* iso = reader.find("isosurface")) {
+        if (!mesh.source.empty()) fail(file, reader.path("isosurface"), "a mesh has either a source or an isosurface");
+        mesh.isosurface = readIsosurface(*iso, reader.path("isosurface"), file);
+    } else if (mesh.source.empty()) {
+        fail(file, reader.path("source"), "a mesh needs a non-empty source (or an isosurface)");
+    }
     if (const json* size = reader.find("size")) {
         float s = 0.0f;
         reader.read(*size, reader.path("size"), s);
         if (!(s > 0.0f && s <= 1e6f)) fail(file, reader.path("size"), "must be in (0, 1e6] scene units");
+        if (mesh.isosurface) fail(file, reader.path("size"), "an isosurface keeps its volume's size");
         mesh.size = s;
     }
     if (const json* t = reader.find("transform")) readFields(*t, reader.path("transform"), file, mesh.transform);
@@ -333,6 +357,7 @@ SceneVolume readVolume(const json& j, const std::string& path, const std::string
         volume.transferFunction = readTransferFunction(*tf, reader.path("transferFunction"), file);
     if (const json* t = reader.find("transform")) readFields(*t, reader.path("transform"), file, volume.transform);
     if (const json* o = reader.find("options")) readFields(*o, reader.path("options"), file, volume.options);
+    reader("visible", volume.visible);
     reader.finish();
     validateAt(file, reader.path("options"), [&] { validate(volume.options); });
     return volume;
@@ -541,8 +566,12 @@ SceneDescription parseScene(std::string_view text, std::string_view name) {
     reader.finish();
     if (scene.meshes.empty() && scene.volumes.empty()) fail(file, "meshes", "the scene holds no mesh and no volume");
 
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         checkTransform(scene.meshes[i].transform, indexed("meshes", i) + ".transform", file);
+        if (const auto& iso = scene.meshes[i].isosurface; iso && iso->volume >= static_cast<int>(scene.volumes.size()))
+            fail(file, indexed("meshes", i) + ".isosurface.volume",
+                 "no volume " + std::to_string(iso->volume) + " (the scene has " + std::to_string(scene.volumes.size()) + ")");
+    }
     for (std::size_t i = 0; i < scene.volumes.size(); ++i)
         checkTransform(scene.volumes[i].transform, indexed("volumes", i) + ".transform", file);
     const SceneCamera& c = scene.camera;
@@ -580,7 +609,19 @@ std::string sceneToJson(const SceneDescription& scene) {
     json meshes = json::array();
     for (const SceneMesh& m : scene.meshes) {
         json j = json::object();
-        j["source"] = m.source;
+        if (m.isosurface) {
+            const SceneIsosurface& iso = *m.isosurface;
+            const SceneIsosurface defaults;
+            json i = {{"volume", iso.volume}, {"value", iso.options.value}};
+            if (iso.options.smoothingIterations != defaults.options.smoothingIterations)
+                i["smoothingIterations"] = iso.options.smoothingIterations;
+            if (iso.options.maxTriangles != defaults.options.maxTriangles) i["maxTriangles"] = iso.options.maxTriangles;
+            if (iso.millimetresPerVolumeUnit != defaults.millimetresPerVolumeUnit)
+                i["millimetresPerVolumeUnit"] = iso.millimetresPerVolumeUnit;
+            j["isosurface"] = i;
+        } else {
+            j["source"] = m.source;
+        }
         if (m.size) j["size"] = double(*m.size);
         if (json t = writeFields(m.transform); !t.empty()) j["transform"] = t;
         if (json o = writeFields(m.options); !o.empty()) j["options"] = o;
@@ -603,6 +644,7 @@ std::string sceneToJson(const SceneDescription& scene) {
         j["transferFunction"] = writeTransferFunction(v.transferFunction);
         if (json t = writeFields(v.transform); !t.empty()) j["transform"] = t;
         if (json o = writeFields(v.options); !o.empty()) j["options"] = o;
+        if (!v.visible) j["visible"] = false;
         volumes.push_back(j);
     }
     if (!volumes.empty()) root["volumes"] = volumes;
@@ -668,21 +710,27 @@ Volume loadVolumeSource(std::string_view source, const RawLoadOptions& raw, std:
     return Volume::loadRaw(resolved, raw);
 }
 
+namespace {
+
+// The volume's largest side in its own units (dims x spacing): the length that is one scene unit
+// in the volume's box (Volume::worldBounds).
+double largestSide(const Volume& volume) {
+    const glm::dvec3 extent = glm::dvec3(volume.dims()) * glm::dvec3(volume.spacing());
+    return std::max({extent.x, extent.y, extent.z});
+}
+
+// extractIsosurface's mesh (in the volume's units, centred) scaled into the volume's box.
+Mesh isosurfaceInVolumeBox(const Volume& volume, const IsosurfaceOptions& options) {
+    const float scale = static_cast<float>(1.0 / largestSide(volume));
+    return extractIsosurface(volume, options).transformed(glm::scale(glm::mat4(1.0f), glm::vec3(scale)));
+}
+
+}  // namespace
+
 SceneAssets loadSceneAssets(const SceneDescription& scene, std::span<const fs::path> searchDirs) {
     const std::vector<fs::path> dirs = searchList(scene, searchDirs);
     SceneAssets assets;
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-        const SceneMesh& m = scene.meshes[i];
-        Mesh mesh = atField(indexed("meshes", i), [&] { return loadMeshSource(m.source, dirs); });
-        if (m.size) {
-            const Bounds b = mesh.bounds();
-            const glm::vec3 size = b.size();
-            const float largest = std::max({size.x, size.y, size.z, 1e-30f});
-            mesh = mesh.transformed(glm::scale(glm::mat4(1.0f), glm::vec3(*m.size / largest)) *
-                                    glm::translate(glm::mat4(1.0f), -b.center()));
-        }
-        assets.meshes.push_back(std::move(mesh));
-    }
+    // Volumes first: isosurface meshes are made from them.
     for (std::size_t i = 0; i < scene.volumes.size(); ++i) {
         const SceneVolume& v = scene.volumes[i];
         const std::string path = indexed("volumes", i);
@@ -697,6 +745,22 @@ SceneAssets loadSceneAssets(const SceneDescription& scene, std::span<const fs::p
             return TransferFunction::preset(tf.preset);
         }));
         assets.volumes.push_back(std::move(volume));
+    }
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const SceneMesh& m = scene.meshes[i];
+        Mesh mesh = atField(indexed("meshes", i), [&] {
+            if (!m.isosurface) return loadMeshSource(m.source, dirs);
+            const Volume& volume = assets.volumes.at(static_cast<std::size_t>(m.isosurface->volume));
+            return isosurfaceInVolumeBox(volume, m.isosurface->options);
+        });
+        if (m.size) {
+            const Bounds b = mesh.bounds();
+            const glm::vec3 size = b.size();
+            const float largest = std::max({size.x, size.y, size.z, 1e-30f});
+            mesh = mesh.transformed(glm::scale(glm::mat4(1.0f), glm::vec3(*m.size / largest)) *
+                                    glm::translate(glm::mat4(1.0f), -b.center()));
+        }
+        assets.meshes.push_back(std::move(mesh));
     }
     return assets;
 }
@@ -714,11 +778,16 @@ void populateCompositor(HybridCompositor& compositor, const SceneDescription& sc
     compositor.setOptions(scene.options);
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& m = scene.meshes[i];
-        MeshScatteringRenderer& renderer = compositor.addMesh(assets.meshes[i], m.transform.matrix(), m.options);
+        MeshRenderOptions options = m.options;
+        if (m.isosurface)  // one scene unit is the volume's largest side
+            options.millimetresPerUnit = m.isosurface->millimetresPerVolumeUnit *
+                                         largestSide(assets.volumes.at(static_cast<std::size_t>(m.isosurface->volume)));
+        MeshScatteringRenderer& renderer = compositor.addMesh(assets.meshes[i], m.transform.matrix(), options);
         renderer.setScatteringMaterial(m.material);
         renderer.setMaterial(m.baseline);
     }
     for (std::size_t i = 0; i < scene.volumes.size(); ++i) {
+        if (!scene.volumes[i].visible) continue;
         // GPU limits are named with the file, which is what the user knows.
         atField(scene.volumes[i].source, [&] {
             VolumeScatteringRenderer& renderer =
@@ -743,7 +812,7 @@ Camera sceneCamera(const SceneDescription& scene, const SceneAssets& assets, con
         for (const glm::vec3& p : assets.meshes[i].positions()) framed.push_back(glm::vec3(model * glm::vec4(p, 1.0f)));
     }
     for (std::size_t i = 0; i < assets.volumes.size(); ++i)
-        addBox(assets.volumes[i].worldBounds(), scene.volumes[i].transform.matrix());
+        if (scene.volumes[i].visible) addBox(assets.volumes[i].worldBounds(), scene.volumes[i].transform.matrix());
     if (scene.options.cornellBox) {
         framed.clear();
         addBox(makeCornellBox(content).bounds, glm::mat4(1.0f));

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 #include <sss/isosurface.h>
+#include <sss/scene.h>
 
 #include <glm/geometric.hpp>
 
@@ -78,4 +79,57 @@ TEST_CASE("isosurface: options out of range name their field", "[cpu][io][isosur
     o.smoothingIterations = 0;
     o.maxTriangles = -5;
     REQUIRE_SSS_ERROR(extractIsosurface(volume, o), ErrorKind::InvalidArgument, Contains("IsosurfaceOptions::maxTriangles must be >= 0"));
+}
+
+TEST_CASE("isosurface: a scene mesh made from a scene volume lies in its box at its physical scale",
+          "[cpu][io][isosurface][scene]") {
+    const std::string text = R"({"volumes": [{"source": "procedural:blobs", "visible": false}],
+        "meshes": [{"isosurface": {"volume": 0, "value": 100, "maxTriangles": 3000, "millimetresPerVolumeUnit": 0.5},
+                    "material": "marble"}]})";
+    const SceneDescription scene = parseScene(text, "iso.json");
+    REQUIRE(scene.meshes.size() == 1);
+    REQUIRE(scene.meshes[0].isosurface);
+    CHECK(scene.meshes[0].isosurface->options.value == 100.0);
+    CHECK_FALSE(scene.volumes[0].visible);
+    // Written and read back field for field.
+    const SceneDescription again = parseScene(sceneToJson(scene), "again.json");
+    REQUIRE(again.meshes[0].isosurface);
+    CHECK(again.meshes[0].isosurface->options.maxTriangles == 3000);
+    CHECK(again.meshes[0].isosurface->millimetresPerVolumeUnit == 0.5);
+    CHECK(again.meshes[0].source.empty());
+    CHECK_FALSE(again.volumes[0].visible);
+
+    const SceneAssets assets = loadSceneAssets(scene);
+    const Mesh& mesh = assets.meshes.at(0);
+    CHECK(mesh.triangleCount() > 100);
+    CHECK(mesh.triangleCount() <= 3300);
+    // The blobs lie inside the volume's box (half a unit on its longest side), not at the
+    // extraction's physical scale (64 voxels).
+    const Bounds box = assets.volumes.at(0).worldBounds();
+    const Bounds bounds = mesh.bounds();
+    INFO("mesh " << bounds.min.x << ".." << bounds.max.x << ", box " << box.min.x << ".." << box.max.x);
+    CHECK(glm::all(glm::greaterThanEqual(bounds.min, box.min - 1e-4f)));
+    CHECK(glm::all(glm::lessThanEqual(bounds.max, box.max + 1e-4f)));
+    CHECK(glm::length(bounds.size()) > 0.2f);
+}
+
+TEST_CASE("isosurface: scene errors name the isosurface field", "[cpu][io][isosurface][scene]") {
+    const auto requireError = [](const std::string& text, const std::string& message) {
+        REQUIRE_SSS_ERROR(parseScene(text, "iso.json"), ErrorKind::InvalidArgument, Contains(message));
+    };
+    requireError(R"({"volumes": [{"source": "procedural:blobs"}], "meshes": [{"isosurface": {"volume": 1, "value": 9}}]})",
+                 "iso.json: meshes[0].isosurface.volume: no volume 1 (the scene has 1)");
+    requireError(R"({"volumes": [{"source": "procedural:blobs"}],
+                     "meshes": [{"source": "procedural:sphere", "isosurface": {"value": 9}}]})",
+                 "iso.json: meshes[0].isosurface: a mesh has either a source or an isosurface");
+    requireError(R"({"volumes": [{"source": "procedural:blobs"}], "meshes": [{"isosurface": {"value": 9}, "size": 2}]})",
+                 "iso.json: meshes[0].size: an isosurface keeps its volume's size");
+    requireError(R"({"volumes": [{"source": "procedural:blobs"}], "meshes": [{"isosurface": {"volume": 0}}]})",
+                 "iso.json: meshes[0].isosurface.value: an isosurface needs a value");
+    requireError(R"({"volumes": [{"source": "procedural:blobs"}], "meshes": [{"isosurface": {"value": 9, "maxTriangles": -1}}]})",
+                 "iso.json: meshes[0].isosurface.maxTriangles: must be >= 0");
+    // An iso value no voxel pair crosses is found when the assets load, and named there.
+    const SceneDescription scene =
+        parseScene(R"({"volumes": [{"source": "procedural:blobs"}], "meshes": [{"isosurface": {"value": 1000}}]})", "iso.json");
+    REQUIRE_SSS_ERROR(loadSceneAssets(scene), ErrorKind::InvalidArgument, Contains("meshes[0]"));
 }
