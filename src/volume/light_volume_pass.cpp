@@ -152,8 +152,10 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     // The unlit value everywhere: each sweep's first lookups, and beyond a smaller sweep's slice.
     const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};
     glClearTexImage(m_slices.id(), 0, GL_RGBA, GL_FLOAT, unlit);
-    if (blendedSweep >= 0 && (!m_blended || m_blended.size() != dims))
-        m_blended = gl::Texture::create3D(GL_RGBA16F, dims, "blended light sweep");
+    // Scratch for this rebuild only, so the memory a renderer holds between light changes stays
+    // one light volume per light.
+    gl::Texture blended;
+    if (blendedSweep >= 0) blended = gl::Texture::create3D(GL_RGBA16F, dims, "blended light sweep");
     p.set("previousSlices", 2);
     p.set("currentSlices", 1);
     p.set("blendedVolume", 2);  // image unit
@@ -166,7 +168,7 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     (medium.occupiedNeighbourhoods ? *medium.occupiedNeighbourhoods : volume.texture).bind(3);
     output.bindImage(0, GL_WRITE_ONLY);
     m_slices.bindImage(1, GL_WRITE_ONLY);
-    (blendedSweep >= 0 ? m_blended : output).bindImage(2, GL_WRITE_ONLY);
+    (blendedSweep >= 0 ? blended : output).bindImage(2, GL_WRITE_ONLY);
     p.use();
     const glm::ivec3 group = p.workGroupSize();
     const auto groupsX = static_cast<GLuint>((largestSlice.x + group.x - 1) / group.x);
@@ -177,10 +179,10 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
         // The next step samples this one's slices; the ray caster samples the volume afterwards.
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
-    if (blendedSweep >= 0) blend(output, layout.blendedWeight);
+    if (blendedSweep >= 0) blend(blended, layout.blendedWeight, output);
 }
 
-void LightVolumePass::blend(const gl::Texture& output, float weight) {
+void LightVolumePass::blend(const gl::Texture& blended, float weight, const gl::Texture& output) {
     if (!m_blendProgram) m_blendProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_volume_blend.comp"}});
     const gl::Program& p = *m_blendProgram;
     const glm::ivec3 dims = output.size();
@@ -189,7 +191,7 @@ void LightVolumePass::blend(const gl::Texture& output, float weight) {
     p.set("dims", dims);
     p.set("weight", weight);
     output.bindImage(0, GL_READ_WRITE);
-    m_blended.bindImage(1, GL_READ_ONLY);
+    blended.bindImage(1, GL_READ_ONLY);
     p.use();
     const glm::ivec3 group = p.workGroupSize();
     glDispatchCompute(static_cast<GLuint>((dims.x + group.x - 1) / group.x),

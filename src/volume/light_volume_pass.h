@@ -73,15 +73,14 @@ private:
     /// Runs the sweeps laid out in `p` (all uniforms but the step set) into `output`.
     void propagate(const gl::Program& p, const SweepLayout& layout, const LightVolumeMedium& medium, glm::vec4 outside,
                    gl::Texture& output);
-    /// Mixes the blended sweep's volume into `output` with `weight`.
-    void blend(const gl::Texture& output, float weight);
+    /// Mixes the blended sweep's volume `blended` into `output` with `weight`.
+    void blend(const gl::Texture& blended, float weight, const gl::Texture& output);
     /// The propagation program for this pass and `chromaticity`, linked on first use.
     const gl::Program& program(bool chromaticity);
     std::optional<gl::Program> m_programs[2];  // [chromaticity]
     std::optional<gl::Program> m_blendProgram;
     bool m_eyePass = false;
-    gl::Texture m_slices;   // per sweep, ping-pong: light leaving the previous / current slice
-    gl::Texture m_blended;  // the blended sweep's light volume, before it is mixed in
+    gl::Texture m_slices;  // per sweep, ping-pong: light leaving the previous / current slice
 };
 
 }  // namespace sss::detail
