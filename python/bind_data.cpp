@@ -8,6 +8,7 @@
 #include <sss/display.h>
 #include <sss/light.h>
 #include <sss/materials.h>
+#include <sss/isosurface.h>
 #include <sss/mesh.h>
 #include <sss/mesh_scattering_renderer.h>
 #include <sss/procedural.h>
@@ -246,6 +247,14 @@ void bindVolume(py::module_& m) {
     m.def("make_shell_volume", &sss::makeShellVolume, py::arg("n") = 64, py::arg("outer_radius") = 0.42f,
           py::arg("thickness") = 0.08f, "n^3 uint8 hollow spherical shell.");
     m.def("make_bucky_volume", &sss::makeBuckyLikeVolume, py::arg("n") = 32, "n^3 uint8 look-alike of C60 'bucky'.");
+    m.def(
+        "extract_isosurface",
+        [](const sss::Volume& volume, double value, int smoothingIterations, int maxTriangles) {
+            return sss::extractIsosurface(volume, {value, smoothingIterations, maxTriangles});
+        },
+        py::arg("volume"), py::arg("value"), py::arg("smoothing_iterations") = 15, py::arg("max_triangles") = 0,
+        "The surface where the volume's data cross `value` (its units: Hounsfield for CT) as a Mesh in the "
+        "volume's physical units (its spacing), centred, normals towards lower values (sss::extractIsosurface).");
 }
 
 void bindTransferFunction(py::module_& m) {

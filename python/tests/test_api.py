@@ -271,3 +271,16 @@ def test_log_handler_receives_library_warnings(tmp_path):
         sss.set_log_handler(None)
     assert mesh.triangle_count == 1
     assert any(level == sss.LogLevel.WARNING and "line.obj" in text for level, text in messages), messages
+
+
+def test_isosurface_of_a_volume_is_a_mesh_at_its_physical_size():
+    volume = sss.make_blobs_volume(32)
+    mesh = sss.extract_isosurface(volume, 100, max_triangles=2000)
+    positions = mesh.vertices
+    assert 100 < mesh.triangle_count <= 2200
+    # Centred voxel coordinates (spacing 1): within half the grid of the centre, and not tiny.
+    assert np.all(np.abs(positions) <= 16.0)
+    assert np.ptp(positions, axis=0).max() > 5.0
+    with pytest.raises(sss.InvalidArgumentError, match="IsosurfaceOptions::value"):
+        sss.extract_isosurface(volume, 1000)
+
