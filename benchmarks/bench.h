@@ -160,6 +160,11 @@ sss::DirectionalLight nudged(const sss::DirectionalLight& light);
 /// --passes.
 sss::VolumeRenderOptions thesisVolumeOptions(const Options& run, sss::VolumeShading shading);
 
+/// Renders into `target` (cleared each frame) until the renderer has converged: the scattering
+/// maps' or the estimate's accumulation after a change. Returns the wall time with the GPU
+/// finished, ms.
+double renderUntilConverged(sss::MeshScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target);
+
 /// --passes: what one renderer's passes cost over the timed frames of one measurement.
 class PassRecorder {
 public:

@@ -161,6 +161,16 @@ sss::DirectionalLight nudged(const sss::DirectionalLight& light) {
     return other;
 }
 
+double renderUntilConverged(sss::MeshScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target) {
+    const auto start = std::chrono::steady_clock::now();
+    do {
+        target.clear({0, 0, 0, 0});
+        renderer.render(camera, target);
+    } while (!renderer.converged());
+    sss::finishGpuWork();
+    return 1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 sss::VolumeRenderOptions thesisVolumeOptions(const Options& run, sss::VolumeShading shading) {
     sss::VolumeRenderOptions o;
     o.shading = shading;

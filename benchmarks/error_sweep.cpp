@@ -78,13 +78,7 @@ void realMeshRows(BenchmarkContext& bench, PlotSpec* plot) {
             renderer.setScatteringMaterial(marble);
             renderer.setLights({key});
             sss::RenderTarget target(kWidth, kHeight);
-            const auto start = std::chrono::steady_clock::now();
-            do {
-                target.clear({0, 0, 0, 0});
-                renderer.render(camera, target);
-            } while (!renderer.converged());
-            sss::finishGpuWork();
-            const double convergeMs = 1000.0 * secondsSince(start);
+            const double convergeMs = renderUntilConverged(renderer, camera, target);
             const sss::Image image = target.readColor();
             const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference);
             if (!o.imageDir.empty()) {

@@ -217,14 +217,7 @@ void meshScaleSweep(BenchmarkContext& bench) {
             renderer.setScatteringMaterial(material);
             renderer.setLights({key});
             sss::RenderTarget target(kWidth, kHeight);
-            const auto start = std::chrono::steady_clock::now();
-            do {
-                target.clear({0, 0, 0, 0});
-                renderer.render(camera, target);
-            } while (!renderer.converged());
-            sss::finishGpuWork();
-            const double regenerateMs =
-                1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double regenerateMs = renderUntilConverged(renderer, camera, target);
             const sss::Image image = target.readColor();
             const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference.image);
             const std::string id = "scale-" + scene + "-" + method.name;

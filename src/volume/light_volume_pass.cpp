@@ -144,7 +144,8 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     const glm::ivec2 largestSlice = layout.largestSlice;
     const int count = layout.sweeps;
     const int blendedSweep = layout.blendedSweep;
-    if (!m_slices || glm::ivec2(m_slices.size()) != largestSlice || m_slices.size().z != 2 * count) {
+    // Grown, never shrunk: lights of different kinds (2 or 6 sweeps) share one array.
+    if (!m_slices || glm::ivec2(m_slices.size()) != largestSlice || m_slices.size().z < 2 * count) {
         m_slices = gl::Texture::create2DArray(GL_RGBA16F, largestSlice.x, largestSlice.y, 2 * count, "light volume slices");
         m_slices.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume
     }

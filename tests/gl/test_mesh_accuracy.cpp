@@ -47,17 +47,29 @@ MeshRenderOptions comparable(MeshRenderOptions o = {}) {
     return o;
 }
 
-Image renderGpu(const Scene& scene, const MeshRenderOptions& options) {
+// A converged render and what the renderer chose for it.
+struct ConvergedRender {
+    Image image;
+    MeshCombine active = MeshCombine::Automatic;
+    double edgeRatio = 0.0;  // MeshScatteringRenderer::edgeToDiffusionLength
+};
+
+ConvergedRender renderConverged(const Mesh& mesh, const ScatteringMaterial& material, const std::vector<Light>& lights,
+                                const Camera& camera, const MeshRenderOptions& options, int width, int height) {
     MeshScatteringRenderer renderer(options);
-    renderer.setMesh(scene.mesh);
-    renderer.setScatteringMaterial(scene.material);
-    renderer.setLights(kLights);
-    RenderTarget target(kWidth, kHeight);
+    renderer.setMesh(mesh);
+    renderer.setScatteringMaterial(material);
+    renderer.setLights(lights);
+    RenderTarget target(width, height);
     do {
         target.clear({0, 0, 0, 0});
-        renderer.render(scene.camera, target);
+        renderer.render(camera, target);
     } while (!renderer.converged());
-    return target.readColor();
+    return {target.readColor(), renderer.activeCombine(), renderer.edgeToDiffusionLength()};
+}
+
+Image renderGpu(const Scene& scene, const MeshRenderOptions& options) {
+    return renderConverged(scene.mesh, scene.material, kLights, scene.camera, options, kWidth, kHeight).image;
 }
 
 const MeshReferenceResult& reference(const Scene& scene, ScatteringProfile profile = ScatteringProfile::Calibrated) {
@@ -154,17 +166,9 @@ TEST_CASE("the automatic combine takes whichever of vertex estimate and maps is 
             o.millimetresPerUnit = c.millimetresPerUnit;
             o.combine = combine;
             o.nearField = c.nearField;
-            MeshScatteringRenderer renderer(o);
-            renderer.setMesh(c.mesh);
-            renderer.setScatteringMaterial(material);
-            renderer.setLights(kLights);
-            RenderTarget target(kWidth, kHeight);
-            do {
-                target.clear({0, 0, 0, 0});
-                renderer.render(camera, target);
-            } while (!renderer.converged());
-            if (active) *active = renderer.activeCombine();
-            return computeErrorMetrics(target.readColor(), ref->image).relRmse;
+            const ConvergedRender r = renderConverged(c.mesh, material, kLights, camera, o, kWidth, kHeight);
+            if (active) *active = r.active;
+            return computeErrorMetrics(r.image, ref->image).relRmse;
         };
         MeshCombine active = MeshCombine::Automatic;
         const double automatic = render(MeshCombine::Automatic, &active);
@@ -252,22 +256,14 @@ glm::dvec3 renderSlabCentre(const ScatteringMaterial& material, double incidence
     // interpolates the corners' corrections across each face: 2.4 % low at potato's red,
     // docs/near-field.md.)
     o.combine = MeshCombine::PerPixel;
-    MeshScatteringRenderer renderer(o);
-    renderer.setMesh(makeSlab({2.0f, 2.0f, 1.0f}));
-    renderer.setScatteringMaterial(material);
     const double theta = incidenceDeg * 3.14159265358979 / 180.0;
-    renderer.setLights({DirectionalLight{
-        .direction = glm::vec3(static_cast<float>(-std::sin(theta)), 0.0f, static_cast<float>(-std::cos(theta)))}});
+    const std::vector<Light> lights{DirectionalLight{
+        .direction = glm::vec3(static_cast<float>(-std::sin(theta)), 0.0f, static_cast<float>(-std::cos(theta)))}};
     Camera camera;
     camera.setProjectionType(Projection::Orthographic);
     camera.setOrthoHeight(0.5f);
     camera.setDistance(3.0f);
-    RenderTarget target(64, 64);
-    do {
-        target.clear({0, 0, 0, 0});
-        renderer.render(camera, target);
-    } while (!renderer.converged());
-    const Image image = target.readColor();
+    const Image image = renderConverged(makeSlab({2.0f, 2.0f, 1.0f}), material, lights, camera, o, 64, 64).image;
     glm::dvec3 sum(0.0);
     for (int y = 16; y < 48; ++y)
         for (int x = 16; x < 48; ++x) sum += glm::dvec3(image.at(x, y));
@@ -328,17 +324,9 @@ TEST_CASE("a concave model with overhangs: no specks and near the CPU reference,
         o.millimetresPerUnit = kMmPerUnit;
         o.combine = combine;
         o.cameras = cameras;
-        MeshScatteringRenderer renderer(o);
-        renderer.setMesh(mesh);
-        renderer.setScatteringMaterial(marble);
-        renderer.setLights(lights);
-        RenderTarget target(kW, kH);
-        do {
-            target.clear({0, 0, 0, 0});
-            renderer.render(camera, target);
-        } while (!renderer.converged());
-        if (combine == MeshCombine::Automatic) CHECK(renderer.activeCombine() == MeshCombine::VertexEstimate);
-        return computeErrorMetrics(target.readColor(), ref.image);
+        const ConvergedRender r = renderConverged(mesh, marble, lights, camera, o, kW, kH);
+        if (combine == MeshCombine::Automatic) CHECK(r.active == MeshCombine::VertexEstimate);
+        return computeErrorMetrics(r.image, ref.image);
     };
     struct Case {
         const char* what;
@@ -391,18 +379,10 @@ TEST_CASE("large triangles: the near field stays near the reference from 2 cm to
         o.nearField = nearField;
         // Without a near field Automatic would take the maps here: the estimate is what is shown.
         if (nearField == 0.0f) o.combine = MeshCombine::VertexEstimate;
-        MeshScatteringRenderer renderer(o);
-        renderer.setMesh(mesh);
-        renderer.setScatteringMaterial(marble);
-        renderer.setLights(lights);
-        RenderTarget target(kW, kH);
-        do {
-            target.clear({0, 0, 0, 0});
-            renderer.render(camera, target);
-        } while (!renderer.converged());
-        CHECK(renderer.activeCombine() == MeshCombine::VertexEstimate);
-        *edgeRatio = renderer.edgeToDiffusionLength();
-        return target.readColor();
+        const ConvergedRender r = renderConverged(mesh, marble, lights, camera, o, kW, kH);
+        CHECK(r.active == MeshCombine::VertexEstimate);
+        *edgeRatio = r.edgeRatio;
+        return r.image;
     };
     struct Case {
         double millimetresPerUnit;
