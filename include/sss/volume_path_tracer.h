@@ -91,6 +91,7 @@
 /// so the images are bit-identical for a given seed whatever the number of threads, and a
 /// path's first collision does not depend on the mode.
 
+#include "sss/volume_clip.h"
 #include "sss/api.h"
 #include "sss/camera.h"
 #include "sss/image.h"
@@ -139,6 +140,8 @@ struct VolumePathTracerOptions {
     /// Each path through a uniformly random point of its pixel instead of the centre: the image
     /// is then the pixel-area average (default: false, the reference's centre rays).
     bool jitterPixels = false;
+    /// Clip planes and crop box, as VolumeScatteringRenderer::setClip (default: none).
+    VolumeClip clip{};
 };
 
 /// What renderVolumePathTraced() returns.

@@ -71,6 +71,7 @@
 /// scattering modes, reads c and l from a light volume (slice propagation, c blurred over a cone
 /// unless chromaticityConeScale models that).
 
+#include "sss/volume_clip.h"
 #include "sss/api.h"
 #include "sss/camera.h"
 #include "sss/image.h"
@@ -136,6 +137,8 @@ struct VolumeReferenceOptions {
     double gradientThreshold = 0.02;   ///< |g| (value per voxel) of full shading, finite and > 0
     /// Worker threads over image rows; 0 (default) uses std::thread::hardware_concurrency().
     int threads = 0;
+    /// Clip planes and crop box, as VolumeScatteringRenderer::setClip (default: none).
+    VolumeClip clip{};
 };
 
 /// The light arriving at a point from one light (Scattering model).
@@ -167,7 +170,8 @@ public:
     /// 0 < width, height <= 16384.
     Image render(const Camera& camera, int width, int height) const;
 
-    /// TF colour and opacity (C_tf, alpha_tf) at a model-space point.
+    /// TF colour and opacity (C_tf, alpha_tf) at a model-space point, as the light sees the
+    /// medium: zero where options().clip cuts the matter and it casts no shadows.
     glm::dvec4 classify(glm::dvec3 modelPoint) const;
     /// sigma_t at a model-space point, per model unit.
     double extinction(glm::dvec3 modelPoint) const;

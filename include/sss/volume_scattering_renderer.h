@@ -23,6 +23,7 @@
 #include "sss/stats.h"
 #include "sss/transfer_function.h"
 #include "sss/volume.h"
+#include "sss/volume_clip.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -208,6 +209,10 @@ public:
     void setLights(std::vector<Light> lights);
     void setOptions(const VolumeRenderOptions& options);
     const VolumeRenderOptions& options() const;
+    /// Clip planes and a crop box (sss/volume_clip.h); throws Error(InvalidArgument) naming the
+    /// field. A clip whose cut matter casts no shadows rebuilds the light volumes.
+    void setClip(const VolumeClip& clip);
+    const VolumeClip& clip() const;
 
     /// Throws Error(InvalidArgument) if no volume is set, Error(GpuLimit) if the scene does not
     /// fit the GPU (see LightVolumeFallback for the light volumes).

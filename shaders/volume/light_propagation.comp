@@ -28,6 +28,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "volume/transfer_function.glsl"
+#include "volume/clip.glsl"
 
 #define MAX_SWEEPS 6
 // Layer 2 s + parity holds the light leaving sweep s's previous (parity = step % 2) or current
@@ -138,7 +139,13 @@ void main() {
     }
     for (int k = 0; k < (empty ? 0 : n); ++k) {
         vec3 tcK = centreTc + ((float(k) + 0.5) / float(n) - 0.5) * slabTc;
-        vec4 medium = classify(texture(volumeTexture, tcK).r);
+#if EYE_PASS
+        // The viewer sees no cut matter, whatever the light does.
+        bool present = clipKeeps(tcK);
+#else
+        bool present = lightSeesMedium(tcK);
+#endif
+        vec4 medium = present ? classify(texture(volumeTexture, tcK).r) : vec4(0.0);
 #if EYE_PASS
         vec3 source = texture(litColour, tcK).rgb;
 #else

@@ -27,6 +27,7 @@
 //   status.abandoned counts paths given up after kMaxStepsPerPath steps (a degenerate ray).
 #include "volume/ray_setup.glsl"
 #include "volume/transfer_function.glsl"
+#include "volume/clip.glsl"
 #include "common/spot_cone.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -126,7 +127,9 @@ float sampleVolume(vec3 p) {
 // sigma_t from the TF opacity per voxel, capped (sss::kMaxOpticalDepthPerVoxel), and clamped to
 // the majorant so that float rounding in the filtering can never exceed it.
 float extinction(vec3 p, float majorant, out vec4 tf) {
-    tf = classify(sampleVolume(p));
+    // Camera segments are clipped to the kept region (cameraSegment); the cut matter stays for
+    // the light only if it casts shadows.
+    tf = lightSeesMedium((p - boxMin) / (boxMax - boxMin)) ? classify(sampleVolume(p)) : vec4(0.0);
     float depth = tf.a >= 1.0 ? kMaxOpticalDepthPerVoxel : min(-log(1.0 - tf.a), kMaxOpticalDepthPerVoxel);
     return min(depth / voxelLength, majorant);
 }
@@ -274,6 +277,7 @@ bool cameraSegment(ivec2 pixel, out vec3 o, out vec3 d, out float t0, out float 
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(imageSize) * 2.0 - 1.0;
     Ray ray = pixelRay(ndc);
     vec2 span = intersectBox(ray, boxMin, boxMax);
+    span = clipSpan((ray.origin - boxMin) / (boxMax - boxMin), ray.direction / (boxMax - boxMin), span);
     float depth = texelFetch(sceneDepth, pixel, 0).r;
     if (depth < 1.0) {
         vec4 hitWorld = inverseViewProjection * vec4(ndc, depth * 2.0 - 1.0, 1.0);

@@ -23,6 +23,7 @@
 #include "common/blinn_phong.glsl"
 #include "volume/ray_setup.glsl"
 #include "volume/transfer_function.glsl"
+#include "volume/clip.glsl"
 
 // One fetch per sample for value and gradient (see VALUES_IN_GRADIENTS above).
 #if SHADING_GRADIENT && GRADIENT_VOLUME && VALUES_IN_GRADIENTS
@@ -224,7 +225,8 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
         int subSteps = clamp(int(ceil(reachVoxels)), 1, 16);
         float subVoxels = reachVoxels / float(subSteps);
         for (int k = subSteps - 1; k >= 0; --k) {
-            vec4 medium = classify(texture(volumeTexture, tc + reach * ((float(k) + 0.5) / float(subSteps))).r);
+            vec3 tcK = tc + reach * ((float(k) + 0.5) / float(subSteps));
+            vec4 medium = lightSeesMedium(tcK) ? classify(texture(volumeTexture, tcK).r) : vec4(0.0);
             float a = correctOpacity(medium.a, subVoxels, 1.0);
             arriving = vec4((1.0 - a) * arriving.rgb + a * medium.rgb, (1.0 - a) * arriving.a);
         }
@@ -354,6 +356,7 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
     // The ray in texture coordinates: a sample's is a multiply-add, not three divisions.
     vec3 tcOrigin = toTexture(ray.origin);
     vec3 tcDirection = ray.direction / (boxMax - boxMin);
+    span = clipSpan(tcOrigin, tcDirection, span);  // the clip planes and crop box
     // Rays end at opaque geometry already in the target: a mesh in front hides the volume, a
     // mesh inside it cuts the rays at its surface.
     float depth = texelFetch(sceneDepth, ivec2(fragCoord), 0).r;

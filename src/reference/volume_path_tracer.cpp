@@ -1,5 +1,6 @@
 // Physical ground truth for volumes: delta tracking against a majorant grid, next-event
 // estimation with ratio tracking, RGB throughput (see sss/volume_path_tracer.h).
+#include "core/volume_clip_space.h"
 #include "sss/volume_path_tracer.h"
 
 #include "volume/box_clip.h"
@@ -47,6 +48,7 @@ const std::string kWho = "renderVolumePathTraced";
 [[noreturn]] void invalid(const std::string& message) { throw Error(ErrorKind::InvalidArgument, kWho + ": " + message); }
 
 void validate(const VolumePathTracerOptions& o) {
+    validate(o.clip, "VolumePathTracerOptions::clip");
     auto fail = [](const std::string& field, const std::string& rule, const std::string& value) {
         invalid("VolumePathTracerOptions::" + field + " must be " + rule + ", got " + value);
     };
@@ -124,11 +126,13 @@ class PathTracer {
 public:
     PathTracer(const Volume& volume, const TransferFunction& tf, int tfEntries, const glm::mat4& model,
                const std::vector<Light>& lights, const VolumePathTracerOptions& options)
-        : m_reference(volume, tf, tfEntries, model, lights), m_options(options) {
+        : m_reference(volume, tf, tfEntries, model, lights, VolumeReferenceOptions{.clip = options.clip}),
+          m_options(options) {
         const Bounds box = volume.worldBounds();
         m_boxMin = glm::dvec3(box.min);
         m_boxMax = glm::dvec3(box.max);
         m_voxel = m_reference.voxelLength();
+        m_clip = detail::textureClip(options.clip, model, box);
         m_modelToWorld = glm::dmat4(model);
         m_worldToModel = glm::inverse(m_modelToWorld);
         const glm::dmat3 worldToModelLinear(m_worldToModel);
@@ -207,7 +211,8 @@ private:
         dir = d / length;
         t0 = 0.0;
         t1 = length;
-        return clipToBox(m_boxMin, m_boxMax, origin, dir, t0, t1);
+        return clipToBox(m_boxMin, m_boxMax, origin, dir, t0, t1) &&
+               m_clip.clipSpan((origin - m_boxMin) / (m_boxMax - m_boxMin), dir / (m_boxMax - m_boxMin), t0, t1);
     }
 
     void buildMajorants(const Volume& volume, const TransferFunction& tf, int tfEntries) {
@@ -442,6 +447,7 @@ private:
         return value;
     }
 
+    detail::TextureClip m_clip;   // the camera segments' clip (the light's is m_reference's)
     VolumeReference m_reference;  // reconstruction and classification, exactly the reference's
     VolumePathTracerOptions m_options;
     glm::dvec3 m_boxMin{0.0}, m_boxMax{0.0};

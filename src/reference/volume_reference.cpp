@@ -1,3 +1,4 @@
+#include "core/volume_clip_space.h"
 #include "sss/volume_reference.h"
 
 #include "util/format.h"
@@ -53,6 +54,7 @@ std::string str(glm::dvec4 v) { return detail::formatVec(v); }
 bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void validate(const VolumeReferenceOptions& o) {
+    validate(o.clip, "VolumeReferenceOptions::clip");
     auto fail = [](const std::string& field, const std::string& rule, const std::string& value) {
         throw Error(ErrorKind::InvalidArgument, "VolumeReferenceOptions::" + field + " must be " + rule + ", got " + value);
     };
@@ -137,6 +139,7 @@ struct VolumeReference::Impl {
     glm::dmat3 normalToWorld{1.0};
     std::vector<PreparedLight> lights;
     VolumeReferenceOptions options;
+    detail::TextureClip volumeClip;  // options.clip in texture coordinates
     glm::dvec3 coneVoxel{0.0};  // the light volume's voxel at chromaticityConeScale
     detail::ChromaticityCone cone;
 
@@ -185,6 +188,15 @@ struct VolumeReference::Impl {
     }
 
     glm::dvec3 toTexture(glm::dvec3 p) const { return (p - boxMin) / boxSize; }
+
+    // The medium as the light sees it: without the cut matter unless it casts shadows.
+    glm::dvec4 classifyForLight(glm::dvec3 tc) const {
+        return volumeClip.lightSeesMedium(tc) ? classifySample(field(tc)) : glm::dvec4(0.0);
+    }
+
+    void prepareClip() {
+        volumeClip = detail::textureClip(options.clip, glm::mat4(modelToWorld), Bounds{glm::vec3(boxMin), glm::vec3(boxMax)});
+    }
 
     glm::dvec4 classifySample(double sample) const {
         const double x = std::clamp(sample * valueScale + valueOffset, 0.0, 1.0);
@@ -247,7 +259,7 @@ struct VolumeReference::Impl {
         // dc/ds = sigma_t (C_tf - c) over a piece with constant sigma_t and C_tf.
         for (long k = 0; k < m; ++k) {
             const double s = tEnd - (static_cast<double>(k) + 0.5) * h;
-            const glm::dvec4 tf = classifySample(field(toTexture(p + s * dir)));
+            const glm::dvec4 tf = classifyForLight(toTexture(p + s * dir));
             if (!(tf.a > 0.0)) continue;
             const double a = pieceOpacity(tf.a, h);
             c = (1.0 - a) * c + a * glm::dvec3(tf);
@@ -309,7 +321,7 @@ struct VolumeReference::Impl {
             const long m = pieces(t1 - t0, maxPiece);
             const double h = (t1 - t0) / static_cast<double>(m);
             for (long k = 0; k < m && through > 1e-4; ++k) {
-                const glm::dvec4 tf = classifySample(field(toTexture(x + (t0 + (static_cast<double>(k) + 0.5) * h) * toLight)));
+                const glm::dvec4 tf = classifyForLight(toTexture(x + (t0 + (static_cast<double>(k) + 0.5) * h) * toLight));
                 if (!(tf.a > 0.0)) continue;
                 const double alpha = pieceOpacity(tf.a, h);
                 colour += through * alpha * glm::dvec3(tf);
@@ -419,7 +431,8 @@ struct VolumeReference::Impl {
         glm::dvec3 color(0.0);
         double alpha = 0.0;
         double t0 = 0.0, t1 = length;
-        if (length > 0.0 && clip(nearModel, d / length, t0, t1)) {
+        if (length > 0.0 && clip(nearModel, d / length, t0, t1) &&
+            volumeClip.clipSpan(toTexture(nearModel), d / length / boxSize, t0, t1)) {
             const glm::dvec3 dir = d / length;
             const long m = pieces(t1 - t0, options.stepVoxels * voxel);
             const double h = (t1 - t0) / static_cast<double>(m);
@@ -489,6 +502,7 @@ VolumeReference::VolumeReference(const Volume& volume, const TransferFunction& t
         impl->lights.push_back(p);
     }
     impl->prepareCone();
+    impl->prepareClip();
     m_impl = std::move(impl);
 }
 
@@ -500,6 +514,7 @@ void VolumeReference::setOptions(const VolumeReferenceOptions& options) {
     validate(options);
     m_impl->options = options;
     m_impl->prepareCone();
+    m_impl->prepareClip();
 }
 
 const VolumeReferenceOptions& VolumeReference::options() const { return m_impl->options; }
@@ -507,7 +522,7 @@ const VolumeReferenceOptions& VolumeReference::options() const { return m_impl->
 double VolumeReference::voxelLength() const { return m_impl->voxel; }
 
 glm::dvec4 VolumeReference::classify(glm::dvec3 modelPoint) const {
-    return m_impl->classifySample(m_impl->field(m_impl->toTexture(modelPoint)));
+    return m_impl->classifyForLight(m_impl->toTexture(modelPoint));
 }
 
 double VolumeReference::extinction(glm::dvec3 modelPoint) const {

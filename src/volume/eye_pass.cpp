@@ -44,7 +44,8 @@ void EyePass::run(const EyePassInputs& in) {
     if (!m_sweep) m_sweep.emplace(true);
     m_sweep->runEyePass({.volume = in.volume,
                          .transferFunction = in.transferFunction,
-                         .occupiedNeighbourhoods = in.occupiedNeighbourhoods},
+                         .occupiedNeighbourhoods = in.occupiedNeighbourhoods,
+                         .clip = in.clip},
                         m_litColour, in.viewDirection, in.model, in.settings,
                         m_eyeVolume);
 }

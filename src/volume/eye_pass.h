@@ -27,6 +27,7 @@ struct EyePassInputs {
     float ambientStrength = 0.0f, diffuseStrength = 1.0f;
     LightVolumeSettings settings;
     const gl::Texture* occupiedNeighbourhoods = nullptr;  ///< empty-space skipping (LightVolumeMedium)
+    const VolumeClip* clip = nullptr;                     ///< the clip planes and crop box, if any
 };
 
 class EyePass {

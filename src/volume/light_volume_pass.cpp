@@ -1,5 +1,6 @@
 #include "volume/light_volume_pass.h"
 
+#include "volume/clip_uniforms.h"
 #include "core/light_geometry.h"
 #include "lighting/texture_units.h"
 #include "volume/empty_space.h"
@@ -132,6 +133,7 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     p.set("dataDims", volume.dims);
     p.set("brickVoxels", kBrickVoxels);
     p.set("textureToBrick", textureToBrick(volume.dims));
+    setClipUniforms(p, medium.clip, model, volume.box);
 
     propagate(p, setSweepFrames(p, sweeps, dims, voxelSize), medium, outside, output);
     glUseProgram(0);

@@ -15,6 +15,7 @@
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "sss/light.h"
+#include "sss/volume_clip.h"
 #include "volume/gpu_volume.h"
 #include "volume/light_sweep_plan.h"
 
@@ -33,6 +34,7 @@ struct LightVolumeMedium {
     const GpuVolume& volume;
     const gl::Texture& transferFunction;
     const gl::Texture* occupiedNeighbourhoods = nullptr;
+    const VolumeClip* clip = nullptr;  ///< the clip planes and crop box, if any
 };
 
 struct LightVolumeSettings {

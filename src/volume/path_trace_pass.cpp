@@ -1,5 +1,6 @@
 #include "volume/path_trace_pass.h"
 
+#include "volume/clip_uniforms.h"
 #include "volume/composite_over.h"
 #include "gl/device.h"
 #include "core/light_geometry.h"
@@ -107,6 +108,7 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("boxMin", volume.box.min);
     p.set("boxMax", volume.box.max);
+    setClipUniforms(p, in.clip, in.model, volume.box);
     p.set("cellSize", volume.box.size() * static_cast<float>(kBrickVoxels) / glm::vec3(volume.dims));
     p.set("voxelLength", volume.voxelLength);
     p.set("phaseG", in.options.anisotropy);

@@ -40,6 +40,7 @@ struct PathTraceInputs {
     const Camera& camera;
     float aspect = 1.0f;
     unsigned firstSample = 0;  ///< paths per pixel already in the sums (keys the random streams)
+    const VolumeClip* clip = nullptr;  ///< the clip planes and crop box, if any
 };
 
 /// Units (loop iterations) one invocation may spend per dispatch by default. llvmpipe stops every

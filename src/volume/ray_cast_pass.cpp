@@ -1,5 +1,6 @@
 #include "volume/ray_cast_pass.h"
 
+#include "volume/clip_uniforms.h"
 #include "volume/composite_over.h"
 #include "lighting/texture_units.h"
 #include "sss/error.h"
@@ -148,6 +149,7 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
     p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("boxMin", volume.box.min);
     p.set("boxMax", volume.box.max);
+    setClipUniforms(p, in.clip, model, volume.box);
     p.set("volumeDims", volume.dims);
     p.set("stepLength", stepLength);
     p.set("opacityExponent", options.stepSize);

@@ -60,6 +60,7 @@ struct RayCastInputs {
     const VolumeRenderOptions& options;
     const Camera& camera;
     float aspect = 1.0f;
+    const VolumeClip* clip = nullptr;  ///< the clip planes and crop box, if any
 };
 
 /// Where the gradient modes read gradients: computed per sample from six data fetches, or the

@@ -44,6 +44,7 @@ struct LightVolumeInputs {
     std::vector<Light> lights;
     glm::mat4 model{1.0f};
     detail::LightVolumeSettings settings;  // as asked: the scale before any fallback
+    VolumeClip clip;                       // the cut matter casts no shadows (by default)
     bool operator==(const LightVolumeInputs&) const = default;
 };
 
@@ -57,6 +58,7 @@ struct PathTraceInputsKey {
     glm::ivec2 size{0};
     float anisotropy = 0.0f;
     int maxBounces = 0;
+    VolumeClip clip;
     bool operator==(const PathTraceInputsKey&) const = default;
 };
 
@@ -86,6 +88,10 @@ struct VolumeScatteringRenderer::Impl {
     gl::Texture transferFunctionTable;
     std::vector<Light> lights{DirectionalLight{}};
     glm::mat4 model{1.0f};
+    VolumeClip clip;
+    const VolumeClip* clipOrNull() const { return clip.clipsNothing() ? nullptr : &clip; }
+    // What the light volumes see of the clip: nothing when the cut matter still casts shadows.
+    const VolumeClip* lightClip() const { return clip.clippedMatterCastsShadows ? nullptr : clipOrNull(); }
     std::optional<detail::GpuVolume> volume;
     std::optional<detail::OccupancyGrid> occupancy;
     std::uint64_t volumeGeneration = 0;
@@ -164,7 +170,7 @@ struct VolumeScatteringRenderer::Impl {
             return false;
         }
     }
-    std::optional<std::tuple<LightVolumeInputs, glm::vec3, float, float>> eyeInputs;
+    std::optional<std::tuple<LightVolumeInputs, glm::vec3, float, float, VolumeClip>> eyeInputs;
     const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
     // Multiple scattering: the path tracer, its running sums and what they were built from.
     std::optional<detail::PathTracePass> pathTrace;
@@ -183,7 +189,8 @@ struct VolumeScatteringRenderer::Impl {
         }
         PathTraceInputsKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
                                model, camera.view(), camera.projection(target.aspect()),
-                               glm::ivec2(target.width(), target.height()), options.anisotropy, options.maxBounces};
+                               glm::ivec2(target.width(), target.height()), options.anisotropy, options.maxBounces,
+                               clip};
         if (pathKey != key) {
             if (!pathSums || pathSums.size() != glm::ivec3(key.size, 1))
                 pathSums = gl::Texture::create2D(GL_RGBA32F, key.size.x, key.size.y, "path-tracer sums");
@@ -203,7 +210,8 @@ struct VolumeScatteringRenderer::Impl {
                                .options = options,
                                .camera = camera,
                                .aspect = target.aspect(),
-                               .firstSample = static_cast<unsigned>(pathSamples)},
+                               .firstSample = static_cast<unsigned>(pathSamples),
+                               .clip = clipOrNull()},
                               pathSums);
         pathSamples += options.samplesPerFrame;
         target.bindForDrawing();
@@ -231,7 +239,7 @@ struct VolumeScatteringRenderer::Impl {
                                                 .anisotropy = options.anisotropy,
                                                 .chromaticity = options.model != VolumeModel::Physical};
         const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
-                                       lights, model, asked};
+                                       lights, model, asked, lightClip() ? clip : VolumeClip{}};
         if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
         if (!lightVolumePass) lightVolumePass.emplace();
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
@@ -244,7 +252,8 @@ struct VolumeScatteringRenderer::Impl {
                     lightVolumePass->run({.volume = *volume,
                                           .transferFunction = transferFunctionTable,
                                           .occupiedNeighbourhoods =
-                                              options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr},
+                                              options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr,
+                                          .clip = lightClip()},
                                          lights[i], model, settings, lightVolumes[i]);
                 break;
             } catch (const Error& e) {
@@ -270,13 +279,13 @@ struct VolumeScatteringRenderer::Impl {
 
     void updateEyePass(const Camera& camera) {
         const auto inputs = std::make_tuple(*lightVolumeInputs, camera.forward(), options.ambient + options.emission,
-                                            options.diffuse);
+                                            options.diffuse, clip);
         if (eyeInputs == inputs) return;
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         if (!eyePass) eyePass.emplace();
         eyePass->run({*volume, transferFunctionTable, lightVolumes, lights, model, camera.forward(),
                       options.ambient + options.emission, options.diffuse, {lightVolumeScaleInUse, options.anisotropy},
-                      options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr});
+                      options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr, clipOrNull()});
         passTimer.end("eye-pass", mark, passTiming());
         eyeInputs = inputs;
     }
@@ -333,6 +342,13 @@ void VolumeScatteringRenderer::setLights(std::vector<Light> lights) {
     detail::validateLights(lights, "VolumeScatteringRenderer::setLights");
     m_impl->lights = std::move(lights);
 }
+
+void VolumeScatteringRenderer::setClip(const VolumeClip& clip) {
+    validate(clip, "VolumeScatteringRenderer::setClip");
+    m_impl->clip = clip;
+}
+
+const VolumeClip& VolumeScatteringRenderer::clip() const { return m_impl->clip; }
 
 void VolumeScatteringRenderer::setOptions(const VolumeRenderOptions& options) {
     validate(options);
@@ -395,7 +411,8 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .lights = r.lights,
                     .options = r.options,
                     .camera = camera,
-                    .aspect = target.aspect()});
+                    .aspect = target.aspect(),
+                    .clip = r.clipOrNull()});
     m_impl->passTimer.end("ray-cast", mark, m_impl->passTiming());
 }
 

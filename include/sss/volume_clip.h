@@ -1,0 +1,54 @@
+#pragma once
+/// @file
+/// Clip planes and a crop box for volumes: what is cut away is neither seen nor, unless asked,
+/// casts shadows, so a cut face is lit like the inside it exposes. Applies to the ray casters,
+/// the light volume and its eye pass, the GPU path tracer and the CPU references; meshes of a
+/// hybrid scene are not clipped.
+#include "sss/api.h"
+#include "sss/bounds.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <string>
+#include <vector>
+
+SSS_BEGIN_API
+
+namespace sss {
+
+/// A plane in world space; the half-space its normal points into is kept.
+struct ClipPlane {
+    glm::vec3 point{0.0f};
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};  ///< non-zero; need not be unit length
+    bool operator==(const ClipPlane&) const = default;
+};
+
+struct VolumeClip {
+    static constexpr int kMaxPlanes = 6;
+    /// Up to kMaxPlanes planes: a sample is kept where it is on the kept side of every plane.
+    std::vector<ClipPlane> planes;
+    /// The box of the volume kept, in its normalised data coordinates: (0,0,0) is the first
+    /// voxel's corner, (1,1,1) the last one's far corner, as a VTK cropping region (default:
+    /// the whole volume).
+    glm::vec3 cropMin{0.0f};
+    glm::vec3 cropMax{1.0f};
+    /// Clipped matter still shadows (and scatters light onto) what is kept (default: off).
+    bool clippedMatterCastsShadows = false;
+
+    /// Nothing is cut: no planes and the whole crop box.
+    bool clipsNothing() const;
+    bool operator==(const VolumeClip&) const = default;
+};
+
+/// Throws ErrorKind::InvalidArgument naming `context` and the field: more than kMaxPlanes
+/// planes, a zero or non-finite normal or point, a crop box that is empty or leaves [0, 1].
+void validate(const VolumeClip& clip, const std::string& context = {});
+
+/// Whether the point at normalised data coordinates `texture` of a volume placed by `model`
+/// (world = model * (box.min + texture * box.size())) is kept.
+bool keeps(const VolumeClip& clip, const glm::mat4& model, const Bounds& box, glm::vec3 texture);
+
+}  // namespace sss
+
+SSS_END_API
