@@ -16,6 +16,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -45,6 +46,11 @@ VALUE (its units: Hounsfield for CT) as a mesh in the volume's box, at its physi
 (spacing in millimetres), in MATERIAL (default: --material). With a volume MODE or hybrid the
 volume is drawn around it (--mesh-offset moves the surfaces beside it); with --mode sss or
 blinn-phong only the surfaces are drawn. Write negative values as --isosurface=-500:skin1.
+
+--clip-plane and --crop cut the volume (its rays, light volume and path tracer); meshes are not
+cut. The cut matter casts no shadows, so a cut face is lit like the inside it exposes, unless
+--clip-shadows. Planes are in world space, where the volume's box is 1 unit on its longest side
+and centred on the origin (before --volume-offset); write a leading minus as --clip-plane=-0.1,...
 )";
 
 /// Everything the command line says.
@@ -60,6 +66,9 @@ struct Args {
     sss::HybridOptions hybrid;
     std::optional<float> meshSize;
     std::vector<std::string> isosurfaces;  // --isosurface VALUE[:MATERIAL], repeatable
+    std::vector<std::string> clipPlanes;   // --clip-plane PX,PY,PZ,NX,NY,NZ, repeatable
+    std::string crop;                      // --crop X0,Y0,Z0,X1,Y1,Z1
+    bool clipShadows = false;              // --clip-shadows
     glm::vec3 meshOffset{0.0f}, volumeOffset{0.0f};
     int repeat = 1, turntable = 0;
     bool listTf = false, listMaterials = false;
@@ -88,6 +97,8 @@ std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
 
 /// The scene the command-line flags describe (without --scene).
 sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
+    if ((!a.clipPlanes.empty() || !a.crop.empty() || a.clipShadows) && a.input.volume.empty())
+        throw UsageError("--clip-plane, --crop and --clip-shadows need --volume: they cut the volume");
     if (!a.isosurfaces.empty() && a.input.volume.empty())
         throw UsageError("--isosurface needs --volume: the surface is extracted from it");
     if (a.input.mesh.empty() && a.input.volume.empty())
@@ -166,6 +177,9 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
         volume.options.shading = meshMode ? sss::VolumeShading::Scattering
                                           : volumeShading(a.mode).value_or(sss::VolumeShading::Scattering);
         volume.visible = !meshMode;  // a mesh mode with --isosurface draws the surfaces alone
+        for (const std::string& plane : a.clipPlanes) volume.clip.planes.push_back(parseClipPlane("--clip-plane", plane));
+        if (!a.crop.empty()) std::tie(volume.clip.cropMin, volume.clip.cropMax) = parseCrop("--crop", a.crop);
+        volume.clip.clippedMatterCastsShadows = a.clipShadows;
         if (volume.options.multipleScattering)
             volume.options.samplesPerFrame = a.mesh.samples;  // --samples: the path tracer's paths per frame
         scene.volumes.push_back(std::move(volume));
@@ -236,7 +250,8 @@ std::vector<std::string> sceneFlags() {
                                       "--preintegration", "--color", "--shininess", "--yaw", "--pitch", "--zoom",
                                       "--fov", "--ortho", "--light-dir", "--light-color", "--light-intensity",
                                       "--point-light", "--spot-light", "--mesh-size", "--mesh-offset",
-                                      "--volume-offset", "--cornell-box", "--background"};
+                                      "--volume-offset", "--cornell-box", "--background", "--clip-plane", "--crop",
+                                      "--clip-shadows"};
     auto add = [&flags](const auto& field) {
         if (!field.flag.empty()) flags.emplace_back(field.flag);
     };
@@ -506,6 +521,17 @@ int main(int argc, char** argv) {
             ->type_name("VALUE[:MATERIAL]")
             ->allow_extra_args(false)
             ->group("input");
+        app.add_option("--clip-plane", a.clipPlanes,
+                       "cut the volume by a world-space plane through P, keeping the side the normal N points to "
+                       "(repeatable, up to 6)")
+            ->type_name("PX,PY,PZ,NX,NY,NZ")
+            ->allow_extra_args(false)
+            ->group("clipping");
+        app.add_option("--crop", a.crop, "keep only this box of the volume, in normalised data coordinates (0..1)")
+            ->type_name("X0,Y0,Z0,X1,Y1,Z1")
+            ->group("clipping");
+        app.add_flag("--clip-shadows", a.clipShadows, "matter cut by --clip-plane or --crop still casts shadows")
+            ->group("clipping");
         addVec3(app, "--volume-offset", a.volumeOffset, "move the volume (its box is 1 unit on its longest side)")
             ->group("placement");
         app.add_flag("--cornell-box", a.hybrid.cornellBox, "put the scene in a Cornell box")->group("placement");

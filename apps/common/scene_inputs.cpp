@@ -59,6 +59,34 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text) {
     return {parseFloat(option, parts[0]), parseFloat(option, parts[1]), parseFloat(option, parts[2])};
 }
 
+namespace {
+
+std::vector<float> parseSix(const std::string& option, const std::string& text, const char* form) {
+    const auto parts = split(text, ',');
+    if (parts.size() != 6) throw UsageError(option + ": expected " + form + ", got \"" + text + "\"");
+    std::vector<float> values;
+    for (const auto& part : parts) values.push_back(parseFloat(option, part));
+    return values;
+}
+
+}  // namespace
+
+sss::ClipPlane parseClipPlane(const std::string& option, const std::string& text) {
+    const std::vector<float> v = parseSix(option, text, "PX,PY,PZ,NX,NY,NZ (a point, then the normal of the side kept)");
+    const sss::ClipPlane plane{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    if (plane.normal == glm::vec3(0.0f)) throw UsageError(option + ": the normal must be non-zero, got \"" + text + "\"");
+    return plane;
+}
+
+std::pair<glm::vec3, glm::vec3> parseCrop(const std::string& option, const std::string& text) {
+    const std::vector<float> v = parseSix(option, text, "X0,Y0,Z0,X1,Y1,Z1 (normalised data coordinates)");
+    const glm::vec3 lo(v[0], v[1], v[2]), hi(v[3], v[4], v[5]);
+    for (int a = 0; a < 3; ++a)
+        if (!(lo[a] >= 0.0f && hi[a] <= 1.0f && lo[a] < hi[a]))
+            throw UsageError(option + ": each axis needs 0 <= min < max <= 1, got \"" + text + "\"");
+    return {lo, hi};
+}
+
 glm::ivec3 parseDims(const std::string& option, const std::string& text) {
     const auto parts = split(text, 'x');
     if (parts.size() != 3) throw UsageError(option + ": expected XxYxZ, got \"" + text + "\"");

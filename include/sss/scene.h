@@ -18,6 +18,7 @@
 #include "sss/transfer_function.h"
 #include "sss/volume.h"
 #include "sss/volume_scattering_renderer.h"
+#include "sss/volume_clip.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -86,6 +87,8 @@ struct SceneVolume {
     VolumeRenderOptions options;
     /// false: the volume is not drawn, only read (by an isosurface mesh, say).
     bool visible = true;
+    /// Clip planes (world space) and crop box (VolumeScatteringRenderer::setClip).
+    VolumeClip clip;
 };
 
 /// The camera orbits the scene's centre and frames it tightly for the image's aspect

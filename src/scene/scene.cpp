@@ -335,6 +335,41 @@ SceneMesh readMesh(const json& j, const std::string& path, const std::string& fi
     return mesh;
 }
 
+VolumeClip readClip(const json& j, const std::string& path, const std::string& file) {
+    VolumeClip clip;
+    ObjectReader reader(j, path, file);
+    if (const json* planes = reader.find("planes")) {
+        if (!planes->is_array()) fail(file, reader.path("planes"), "expected an array, got " + typeName(*planes));
+        for (std::size_t i = 0; i < planes->size(); ++i) {
+            ObjectReader r((*planes)[i], reader.path(indexed("planes", i)), file);
+            ClipPlane& plane = clip.planes.emplace_back();
+            r("point", plane.point);
+            r("normal", plane.normal);
+            r.finish();
+        }
+    }
+    reader("cropMin", clip.cropMin);
+    reader("cropMax", clip.cropMax);
+    reader("clippedMatterCastsShadows", clip.clippedMatterCastsShadows);
+    reader.finish();
+    validateAt(file, path, [&] { validate(clip); });
+    return clip;
+}
+
+json writeClip(const VolumeClip& clip) {
+    json j = json::object();
+    if (!clip.planes.empty()) {
+        json planes = json::array();
+        for (const ClipPlane& p : clip.planes)
+            planes.push_back({{"point", {p.point.x, p.point.y, p.point.z}}, {"normal", {p.normal.x, p.normal.y, p.normal.z}}});
+        j["planes"] = planes;
+    }
+    if (clip.cropMin != glm::vec3(0.0f)) j["cropMin"] = {clip.cropMin.x, clip.cropMin.y, clip.cropMin.z};
+    if (clip.cropMax != glm::vec3(1.0f)) j["cropMax"] = {clip.cropMax.x, clip.cropMax.y, clip.cropMax.z};
+    if (clip.clippedMatterCastsShadows) j["clippedMatterCastsShadows"] = true;
+    return j;
+}
+
 SceneVolume readVolume(const json& j, const std::string& path, const std::string& file) {
     SceneVolume volume;
     ObjectReader reader(j, path, file);
@@ -358,6 +393,7 @@ SceneVolume readVolume(const json& j, const std::string& path, const std::string
     if (const json* t = reader.find("transform")) readFields(*t, reader.path("transform"), file, volume.transform);
     if (const json* o = reader.find("options")) readFields(*o, reader.path("options"), file, volume.options);
     reader("visible", volume.visible);
+    if (const json* clip = reader.find("clip")) volume.clip = readClip(*clip, reader.path("clip"), file);
     reader.finish();
     validateAt(file, reader.path("options"), [&] { validate(volume.options); });
     return volume;
@@ -645,6 +681,7 @@ std::string sceneToJson(const SceneDescription& scene) {
         if (json t = writeFields(v.transform); !t.empty()) j["transform"] = t;
         if (json o = writeFields(v.options); !o.empty()) j["options"] = o;
         if (!v.visible) j["visible"] = false;
+        if (!(v.clip == VolumeClip{})) j["clip"] = writeClip(v.clip);
         volumes.push_back(j);
     }
     if (!volumes.empty()) root["volumes"] = volumes;
@@ -793,6 +830,7 @@ void populateCompositor(HybridCompositor& compositor, const SceneDescription& sc
             VolumeScatteringRenderer& renderer =
                 compositor.addVolume(assets.volumes[i], scene.volumes[i].transform.matrix(), scene.volumes[i].options);
             renderer.setTransferFunction(assets.transferFunctions[i]);
+            renderer.setClip(scene.volumes[i].clip);
             return 0;
         });
     }
