@@ -272,6 +272,34 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
                       "TransferFunction (default: the ramp)")
         .def_property_readonly("accumulated_samples", [](W& w) { return w.get().accumulatedSamples(); },
                                "paths per pixel in the multiple-scattering mean")
+        .def("set_clip",
+             [](W& w, const std::vector<std::pair<glm::vec3, glm::vec3>>& planes, glm::vec3 cropMin, glm::vec3 cropMax,
+                bool clippedMatterCastsShadows) {
+                 sss::VolumeClip clip;
+                 for (const auto& [point, normal] : planes) clip.planes.push_back({point, normal});
+                 clip.cropMin = cropMin;
+                 clip.cropMax = cropMax;
+                 clip.clippedMatterCastsShadows = clippedMatterCastsShadows;
+                 w.get().setClip(clip);
+             },
+             py::arg("planes") = std::vector<std::pair<glm::vec3, glm::vec3>>{}, py::arg("crop_min") = glm::vec3(0.0f),
+             py::arg("crop_max") = glm::vec3(1.0f), py::arg("clipped_matter_casts_shadows") = false,
+             "Cuts the volume (sss::VolumeClip): planes as (point, normal) pairs in world space, keeping the side "
+             "the normal points to (up to 6); the crop box in normalised data coordinates; cut matter casts no "
+             "shadows unless clipped_matter_casts_shadows. No arguments: nothing cut.")
+        .def_property_readonly("clip",
+                               [](W& w) {
+                                   const sss::VolumeClip& c = w.get().clip();
+                                   std::vector<std::pair<glm::vec3, glm::vec3>> planes;
+                                   for (const sss::ClipPlane& p : c.planes) planes.emplace_back(p.point, p.normal);
+                                   py::dict d;
+                                   d["planes"] = planes;
+                                   d["crop_min"] = c.cropMin;
+                                   d["crop_max"] = c.cropMax;
+                                   d["clipped_matter_casts_shadows"] = c.clippedMatterCastsShadows;
+                                   return d;
+                               },
+                               "the clip as set_clip's keyword arguments")
         .def_property_readonly("light_volume_scale_in_use", [](W& w) { return w.get().lightVolumeScaleInUse(); })
         .def_property_readonly("stats", [](W& w) { return statsDict(w.get().stats()); });
 }

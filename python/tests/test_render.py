@@ -204,3 +204,26 @@ def translation(t):
     m = np.eye(4, dtype=np.float32)
     m[:3, 3] = t
     return m
+
+
+def test_clip_cuts_the_volume_and_refuses_bad_planes(gl):
+    """set_clip: a crop box keeping the volume's left half leaves the image's right part empty and
+    its left part as it was; a zero normal is refused with the field named."""
+    renderer = sss.VolumeRenderer(shading="emission-absorption", jitter=False)
+    renderer.set_volume(sss.make_blobs_volume(32))
+    # Seen along -z from x = 0: every ray left of the image's centre stays at x < 0.
+    camera = sss.Camera(yaw=0, pitch=0, distance=1.4)
+    whole = renderer.render(camera, width=64, height=48)
+    renderer.set_clip(crop_max=(0.5, 1.0, 1.0))
+    assert renderer.clip["crop_max"] == pytest.approx((0.5, 1.0, 1.0))
+    cropped = renderer.render(camera, width=64, height=48)
+    assert covered(whole[:, 34:]) > 0.05
+    assert covered(cropped[:, 34:]) == 0.0
+    assert np.array_equal(cropped[:, :30], whole[:, :30])
+    renderer.set_clip(planes=[((0.0, 0.0, 0.0), (-1.0, 0.0, 0.0))])
+    planes = renderer.render(camera, width=64, height=48)
+    assert np.abs(planes - cropped).max() <= 2.0 / 255.0
+    with pytest.raises(ValueError, match=r"planes\[0\]\.normal must be non-zero"):
+        renderer.set_clip(planes=[((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))])
+    renderer.set_clip()
+    assert renderer.clip["planes"] == []
