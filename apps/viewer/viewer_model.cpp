@@ -98,6 +98,7 @@ void ViewerModel::setSceneOptions(const sss::SceneDescription& scene) {
         volumeOptions = v.options;
         setVolumeShading(v.options.shading);
         volumeMultiple = v.options.multipleScattering;
+        volumeClip = v.clip;
     }
     if (!scene.lights.empty()) {
         const auto& d = std::get<sss::DirectionalLight>(scene.lights.front());
@@ -135,6 +136,7 @@ sss::SceneDescription ViewerModel::describeScene() const {
         v.transform = placedVolumeTransform();
         v.options = renderedVolumeOptions();
         v.options.finishEachPass = false;
+        v.clip = volumeClip;
         scene.volumes.push_back(v);
     }
     scene.lights = {light()};
@@ -268,6 +270,7 @@ void ViewerModel::rebuildScene() {
     if (volume) {
         sss::VolumeScatteringRenderer& r = compositor->addVolume(*volume, volumeModel(), renderedVolumeOptions());
         r.setTransferFunction(tfEditor.transferFunction());
+        r.setClip(volumeClip);
     }
     uploadedTf = tfEditor.transferFunction().revision();
     compositor->setLights({light()});
@@ -316,7 +319,10 @@ void ViewerModel::applyChanges() {
             compositor->mesh(i).setMaterial(blinnPhong);
         }
         for (std::size_t i = 0; i < compositor->volumeCount(); ++i) {
-            if (volumeDirty) compositor->volume(i).setOptions(renderedVolumeOptions());
+            if (volumeDirty) {
+                compositor->volume(i).setOptions(renderedVolumeOptions());
+                compositor->volume(i).setClip(volumeClip);
+            }
             if (uploadedTf != tfEditor.transferFunction().revision())
                 compositor->volume(i).setTransferFunction(tfEditor.transferFunction());
         }

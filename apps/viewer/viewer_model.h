@@ -91,6 +91,7 @@ public:
     sss::VolumeRenderOptions volumeOptions;
     bool volumeScattering = true, volumeHighlights = false, volumeBaselineGradient = true;
     bool volumeMultiple = false;  // the path tracer, where the options allow it (renderedVolumeOptions)
+    sss::VolumeClip volumeClip;   // changed with volumeDirty
     float lightAzimuth = 35.0f, lightElevation = 40.0f, lightIntensity = 1.0f;
     glm::vec3 lightColor{1.0f};
     bool spotLight = false;  // the light panel's spot: same direction, placed outside the content

@@ -6,6 +6,9 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -62,6 +65,7 @@ void Panels::draw() {
         meshSection();
     if (m_model.volume && ImGui::CollapsingHeader("Volume: light-volume scattering", ImGuiTreeNodeFlags_DefaultOpen))
         volumeSection();
+    if (m_model.volume && ImGui::CollapsingHeader("Volume: clipping")) clipSection();
     if (ImGui::CollapsingHeader("Timings")) timingSection();
     ImGui::PopItemWidth();
     ImGui::End();
@@ -258,6 +262,49 @@ void Panels::meshSection() {
                                  std::to_string(m_model.meshOptions.accumulationFrames);
         ImGui::ProgressBar(done, ImVec2(-1.0f, 0.0f), text.c_str());
     }
+}
+
+// One clip plane through the volume's centre (shifted along its normal) and the crop box.
+void Panels::clipSection() {
+    sss::VolumeClip& clip = m_model.volumeClip;
+    bool changed = false;
+    static const char* axes[] = {"crop x", "crop y", "crop z"};
+    for (int a = 0; a < 3; ++a) {
+        changed |= ImGui::DragFloatRange2(axes[a], &clip.cropMin[a], &clip.cropMax[a], 0.005f, 0.0f, 1.0f, "%.3f", "%.3f",
+                                          ImGuiSliderFlags_AlwaysClamp);
+        clip.cropMax[a] = std::max(clip.cropMax[a], std::min(clip.cropMin[a] + 0.01f, 1.0f));
+        clip.cropMin[a] = std::min(clip.cropMin[a], clip.cropMax[a] - 0.01f);
+    }
+    bool plane = !clip.planes.empty();
+    if (ImGui::Checkbox("clip plane", &plane)) {
+        clip.planes.clear();
+        if (plane) clip.planes.push_back({glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f)});
+        changed = true;
+    }
+    if (plane) {
+        // The normal as azimuth and elevation; the plane through centre + offset * normal.
+        sss::ClipPlane& p = clip.planes.front();
+        const glm::vec3 n = glm::normalize(p.normal);
+        float azimuth = glm::degrees(std::atan2(n.x, n.z)), elevation = glm::degrees(std::asin(std::clamp(n.y, -1.0f, 1.0f)));
+        float offset = glm::dot(p.point - glm::vec3(m_model.volumeModel()[3]), n);
+        bool moved = ImGui::SliderFloat("plane azimuth", &azimuth, -180.0f, 180.0f, "%.0f deg");
+        moved |= ImGui::SliderFloat("plane elevation", &elevation, -90.0f, 90.0f, "%.0f deg");
+        moved |= ImGui::SliderFloat("plane offset", &offset, -0.9f, 0.9f, "%.3f");
+        if (moved) {
+            const float a = glm::radians(azimuth), e = glm::radians(elevation);
+            p.normal = glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+            p.point = glm::vec3(m_model.volumeModel()[3]) + offset * p.normal;
+            changed = true;
+        }
+    }
+    changed |= ImGui::Checkbox("cut matter casts shadows", &clip.clippedMatterCastsShadows);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("off: the cut face is lit like the inside it exposes\non: the removed matter still shadows it");
+    if (ImGui::Button("reset clipping")) {
+        clip = {};
+        changed = true;
+    }
+    m_model.volumeDirty |= changed;
 }
 
 void Panels::volumeSection() {

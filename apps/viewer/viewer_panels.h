@@ -35,6 +35,7 @@ private:
     void lightSection();
     void meshSection();
     void volumeSection();
+    void clipSection();
     void transferFunctionSection(float windowHeight);
     // Window/level of the value window (Volume::setValueWindow, in data units): the TF's domain is
     // level -+ window / 2. Applied when a drag ends, since the volume is uploaded again.

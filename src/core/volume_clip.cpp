@@ -34,12 +34,13 @@ void validate(const VolumeClip& clip, const std::string& context) {
         if (!finite(p.point) || !finite(p.normal)) fail(field, "must be finite");
         if (glm::dot(p.normal, p.normal) == 0.0f) fail(field + ".normal", "must be non-zero");
     }
-    if (!finite(clip.cropMin) || !finite(clip.cropMax)) fail("cropMin", "and cropMax must be finite");
+    if (!finite(clip.cropMin)) fail("cropMin", "must be finite");
+    if (!finite(clip.cropMax)) fail("cropMax", "must be finite");
     for (int a = 0; a < 3; ++a) {
         if (!(clip.cropMin[a] >= 0.0f && clip.cropMax[a] <= 1.0f && clip.cropMin[a] < clip.cropMax[a]))
-            fail("cropMin", "and cropMax must satisfy 0 <= min < max <= 1 on every axis (normalised data coordinates), "
-                            "got axis " + std::to_string(a) + " [" + std::to_string(clip.cropMin[a]) + ", " +
-                            std::to_string(clip.cropMax[a]) + "]");
+            fail("cropMin", "must be below cropMax on every axis, both in [0, 1] (normalised data coordinates), got " +
+                                std::string("xyz").substr(static_cast<size_t>(a), 1) + " from " +
+                                std::to_string(clip.cropMin[a]) + " to " + std::to_string(clip.cropMax[a]));
     }
 }
 

@@ -577,7 +577,7 @@ SceneDescription parseScene(std::string_view text, std::string_view name) {
     json root;
     try {
         root = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond a double
         throw Error(ErrorKind::Parse, file + ": not valid JSON: " + e.what());
     }
     SceneDescription scene;

@@ -54,6 +54,10 @@ SceneDescription everyKindOfField() {
     volume.options.lightVolumeFallback = LightVolumeFallback::Fail;
     volume.options.stepSize = 0.5f;
     volume.options.jitter = false;
+    volume.clip.planes = {{{0.1f, 0.0f, -0.2f}, {1.0f, 0.5f, 0.0f}}, {{0.0f, 0.3f, 0.0f}, {0.0f, -1.0f, 0.0f}}};
+    volume.clip.cropMin = {0.0f, 0.25f, 0.0f};
+    volume.clip.cropMax = {0.75f, 1.0f, 1.0f};
+    volume.clip.clippedMatterCastsShadows = true;
     scene.volumes.push_back(volume);
     SceneVolume fromFile;
     fromFile.source = "procedural:bucky";
@@ -117,6 +121,8 @@ TEST_CASE("a scene survives a JSON round trip field for field", "[scene]") {
     CHECK(back.volumes[0].options.shading == VolumeShading::ScatteringGradient);
     CHECK(back.volumes[0].options.stepSize == 0.5f);
     CHECK_FALSE(back.volumes[0].options.jitter);
+    CHECK(back.volumes[0].clip == scene.volumes[0].clip);
+    CHECK(back.volumes[1].clip.clipsNothing());
     CHECK(back.volumes[1].transferFunction.file == "maps/ember.json");
     CHECK(back.lights == scene.lights);
     CHECK(back.camera == scene.camera);
@@ -162,6 +168,13 @@ TEST_CASE("bad scene fields are reported with their JSON path", "[scene]") {
                       "scattering-gradient, got \"xray\"");
     requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "options": {"stepSize": -1}}]})",
                       "scene.json: volumes[0].options.stepSize: must be finite and > 0 (voxels), got -1");
+    requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "clip": {"planes": [{"normal": [0, 0, 0]}]}}]})",
+                      "scene.json: volumes[0].clip.planes[0].normal: must be non-zero");
+    requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "clip": {"cropMin": [0.5, 0, 0], "cropMax": [0.4, 1, 1]}}]})",
+                      "scene.json: volumes[0].clip.cropMin: must be below cropMax on every axis, both in [0, 1] "
+                      "(normalised data coordinates), got x from 0.500000 to 0.400000");
+    requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "clip": {"planes": [{"point": [0, 0, 0], "normall": [1, 0, 0]}]}}]})",
+                      "scene.json: volumes[0].clip.planes[0].normall: unknown field");
     requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "valueWindow": [5, 1]}]})",
                       "scene.json: volumes[0].valueWindow: LO must be less than HI, got [5,1]");
     requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "transferFunction": {"points": [[0, 1, 1]]}}]})",

@@ -536,3 +536,50 @@ TEST_CASE("volume path tracer: report of the cost on a bucky-like volume", "[.][
                       << seconds * (r.relativeRmseEstimate / 0.01) * (r.relativeRmseEstimate / 0.01) << " s\n";
         }
 }
+
+TEST_CASE("the CPU path tracer and reference cut clipped matter out of the light unless it casts shadows",
+          "[volume][path-tracer][clip]") {
+    // A lit block (x in [2, 6)) behind a wall (x in [12, 14)) on the light's side; the plane keeps
+    // data x <= 0.6, so the wall is cut and, by default, no longer shadows the block.
+    const auto blockAndWall = [](bool wall) {
+        std::vector<uint8_t> bytes(16 * 16 * 16, 0);
+        for (int z = 3; z < 13; ++z)
+            for (int y = 3; y < 13; ++y)
+                for (int x = 0; x < 16; ++x)
+                    if ((x >= 2 && x < 6) || (wall && x >= 12 && x < 14)) bytes[static_cast<size_t>((z * 16 + y) * 16 + x)] = 255;
+        return Volume::fromData({16, 16, 16}, VoxelType::UInt8, std::move(bytes));
+    };
+    const TransferFunction dense({{0.0f, glm::vec3(0.9f), 0.0f}, {0.5f, glm::vec3(0.9f), 0.5f}, {1.0f, glm::vec3(0.9f), 0.9f}});
+    const std::vector<Light> lights{DirectionalLight{.direction = {-1.0f, 0.0f, 0.0f}, .intensity = 10.0f}};
+    Camera camera;
+    camera.frame(blockAndWall(true).worldBounds());
+    VolumeClip cut;
+    cut.planes = {{{0.1f, 0.0f, 0.0f}, {-1.0f, 0.0f, 0.0f}}};
+    VolumeClip shadowing = cut;
+    shadowing.clippedMatterCastsShadows = true;
+    const auto mean = [&](bool wall, const VolumeClip& clip) {
+        VolumePathTracerOptions o;
+        o.samplesPerPixel = 64;
+        o.mode = VolumeScatteringMode::SingleScattering;
+        o.clip = clip;
+        const Image image = renderVolumePathTraced(blockAndWall(wall), dense, 256, glm::mat4(1.0f), lights, camera, 24, 18, o).image;
+        double sum = 0.0;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x) sum += image.at(x, y).r;
+        return sum;
+    };
+    const double clipped = mean(true, cut), noWall = mean(false, {}), shadowed = mean(true, shadowing);
+    INFO("block light: clipped " << clipped << ", no wall " << noWall << ", shadowed " << shadowed);
+    CHECK(noWall > 0.0);
+    CHECK(std::abs(clipped - noWall) <= 0.03 * noWall);
+    CHECK(shadowed < 0.5 * clipped);
+
+    VolumePathTracerOptions bad;
+    bad.clip.planes.resize(7);
+    REQUIRE_THROWS_WITH(renderVolumePathTraced(blockAndWall(true), dense, 256, glm::mat4(1.0f), lights, camera, 8, 8, bad),
+                        Contains("VolumePathTracerOptions::clip: VolumeClip::planes holds at most 6 planes, got 7"));
+    VolumeReferenceOptions badReference;
+    badReference.clip.cropMin = glm::vec3(2.0f);
+    REQUIRE_THROWS_WITH(VolumeReference(blockAndWall(true), dense, 256, glm::mat4(1.0f), lights, badReference),
+                        Contains("VolumeReferenceOptions::clip: VolumeClip::cropMin must be below cropMax"));
+}

@@ -230,6 +230,6 @@ TEST_CASE("bad clips are refused with the field named", "[gl][volume][clip][erro
     VolumeClip inverted;
     inverted.cropMin = {0.6f, 0.0f, 0.0f};
     inverted.cropMax = {0.4f, 1.0f, 1.0f};
-    REQUIRE_THROWS_WITH(renderer.setClip(inverted), Catch::Contains("VolumeClip::cropMin and cropMax must satisfy"));
+    REQUIRE_THROWS_WITH(renderer.setClip(inverted), Catch::Contains("VolumeClip::cropMin must be below cropMax on every axis"));
     CHECK(renderer.clip().clipsNothing());  // a refused clip leaves the renderer's as it was
 }
