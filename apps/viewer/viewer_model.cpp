@@ -58,7 +58,8 @@ ViewerModel::ViewerModel(const ViewerOptions& options)
 void ViewerModel::setInitialScene(std::optional<sss::Mesh> initialMesh, std::optional<sss::Volume> initialVolume,
                                   sss::TransferFunction tf, const std::string& tfName) {
     if (initialMesh) mesh = meshTransform ? *initialMesh : normalised(*initialMesh);  // a scene's mesh is sized by the scene
-    if (initialVolume) setVolume(std::move(*initialVolume), args.input.volume);
+    // From a scene file the volume's source is the scene's (applyScene), not a command-line path.
+    if (initialVolume) setVolume(std::move(*initialVolume), args.input.volume.empty() ? volumePath : args.input.volume);
     tfEditor = sss::TransferFunctionEditor(std::move(tf));
     if (tfName.size() > 5 && tfName.substr(tfName.size() - 5) == ".json") tfPath = tfName;
     else tfPreset = tfName;
