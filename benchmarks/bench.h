@@ -42,6 +42,7 @@ struct Options {
     std::filesystem::path referenceCache;  // --reference-cache: CPU references kept as EXR (empty: none)
     std::string scene;  // --scene: time this scene file instead of the tables
     sss::RayCaster rayCaster = sss::RayCaster::Auto;  // --ray-caster: the volume rows' ray caster
+    sss::VolumeModel volumeModel = sss::VolumeModel::Paper;  // --volume-model: the thesis rows' shading model
     bool passes = false;  // --passes: GPU timestamps per pass; records with pass, gpu_ms, cpu_ms
 };
 

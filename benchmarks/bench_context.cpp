@@ -177,6 +177,7 @@ sss::VolumeRenderOptions thesisVolumeOptions(const Options& run, sss::VolumeShad
     o.stepSize = 1.0f;
     o.preintegration = false;
     o.rayCaster = run.rayCaster;
+    o.model = run.volumeModel;
     o.gpuPassTimes = run.passes;
     return o;
 }

@@ -109,6 +109,9 @@ Options parseArgs(int argc, char** argv) {
               "viewport size and ray step, with the fixed and per-pixel costs fitted; clear: the ways to clear a target",
               "T[,T...]");
     addEnum(app, "--ray-caster", o.rayCaster, "the ray caster of every volume row (casters: both)");
+    addEnum(app, "--volume-model", o.volumeModel,
+            "the shading model of the thesis tables' volume rows: paper (the thesis) or physical (its light volume "
+            "carries the intensity alone, one lookup per voxel instead of nine)");
     app.add_flag("--passes", o.passes,
                  "GL timestamps around each pass (non-blocking): tables 5.3 and 5.4 add one record per pass and frame "
                  "(change, fixed) with pass, gpu_ms and cpu_ms, means over the timed frames");
