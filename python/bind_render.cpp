@@ -5,6 +5,7 @@
 
 #include <sss/frame_accumulator.h>
 #include <sss/hybrid_compositor.h>
+#include <sss/isosurface.h>
 #include <sss/mesh_scattering_renderer.h>
 #include <sss/procedural.h>
 #include <sss/render_target.h>
@@ -477,6 +478,21 @@ void bindRenderers(py::module_& m) {
     volumeProperties<VR>(volumeCls, [](VR& w) -> sss::TransferFunction& { return w.transferFunction; });
 }
 
+// Scene.add_mesh and Scene.add_isosurface: the mesh with its placement and materials.
+SceneMeshPy addSceneMesh(const std::shared_ptr<ScenePy>& s, const sss::Mesh& mesh, const std::optional<glm::mat4>& model,
+                         const sss::MeshRenderOptions& options, const std::optional<sss::BlinnPhongMaterial>& material,
+                         const std::optional<sss::ScatteringMaterial>& scattering) {
+    SceneMeshInfo info{mesh.positions(), model.value_or(glm::mat4(1.0f)), material.value_or(sss::BlinnPhongMaterial{}),
+                       scattering.value_or(sss::ScatteringMaterial{})};
+    if (material) sss::validate(*material);
+    if (scattering) scattering->validate();
+    sss::MeshScatteringRenderer& r = s->get().addMesh(mesh, info.model, options);
+    r.setMaterial(info.material);
+    r.setScatteringMaterial(info.scatteringMaterial);
+    s->meshes.push_back(std::move(info));
+    return SceneMeshPy{{s, s->meshes.size() - 1, s->generation}};
+}
+
 void bindScene(py::module_& m) {
     py::class_<SceneMeshPy> sceneMesh(m, "SceneMesh", "A mesh of a Scene (valid until Scene.clear()).");
     sceneMesh.def_property("model", [](SceneMeshPy& w) { w.check(); return w.info().model; },
@@ -508,20 +524,31 @@ void bindScene(py::module_& m) {
              [](const std::shared_ptr<ScenePy>& s, const sss::Mesh& mesh, const std::optional<glm::mat4>& model,
                 const py::object& options, const std::optional<sss::BlinnPhongMaterial>& material,
                 const std::optional<sss::ScatteringMaterial>& scattering, const py::kwargs& kw) {
-                 const sss::MeshRenderOptions o = optionsFrom<sss::MeshRenderOptions>(options, kw);
-                 SceneMeshInfo info{mesh.positions(), model.value_or(glm::mat4(1.0f)), material.value_or(sss::BlinnPhongMaterial{}),
-                                    scattering.value_or(sss::ScatteringMaterial{})};
-                 if (material) sss::validate(*material);
-                 if (scattering) scattering->validate();
-                 sss::MeshScatteringRenderer& r = s->get().addMesh(mesh, info.model, o);
-                 r.setMaterial(info.material);
-                 r.setScatteringMaterial(info.scatteringMaterial);
-                 s->meshes.push_back(std::move(info));
-                 return SceneMeshPy{{s, s->meshes.size() - 1, s->generation}};
+                 return addSceneMesh(s, mesh, model, optionsFrom<sss::MeshRenderOptions>(options, kw), material, scattering);
              },
              py::arg("mesh"), py::arg("model") = py::none(), py::arg("options") = py::none(), py::kw_only(),
              py::arg("material") = py::none(), py::arg("scattering_material") = py::none(),
              "Adds a mesh; MeshRenderOptions as `options` and/or keyword arguments. Returns its SceneMesh.")
+        .def("add_isosurface",
+             [](const std::shared_ptr<ScenePy>& s, const sss::Volume& volume, double value,
+                const std::optional<glm::mat4>& model, const py::object& options,
+                const std::optional<sss::BlinnPhongMaterial>& material,
+                const std::optional<sss::ScatteringMaterial>& scattering, int smoothingIterations, int maxTriangles,
+                double millimetresPerVolumeUnit, const py::kwargs& kw) {
+                 sss::WorldIsosurface surface = sss::extractIsosurfaceInWorldBox(
+                     volume, {value, smoothingIterations, maxTriangles}, millimetresPerVolumeUnit);
+                 sss::MeshRenderOptions o = optionsFrom<sss::MeshRenderOptions>(options, kw);
+                 o.millimetresPerUnit = surface.millimetresPerUnit;
+                 return addSceneMesh(s, surface.mesh, model, o, material, scattering);
+             },
+             py::arg("volume"), py::arg("value"), py::arg("model") = py::none(), py::arg("options") = py::none(),
+             py::kw_only(), py::arg("material") = py::none(), py::arg("scattering_material") = py::none(),
+             py::arg("smoothing_iterations") = 15, py::arg("max_triangles") = 0,
+             py::arg("millimetres_per_volume_unit") = 1.0,
+             "Adds the surface where the volume's data cross `value` as a mesh where the volume lies under the same "
+             "`model`, at its physical size (millimetres_per_unit from the volume's spacing, in "
+             "millimetres_per_volume_unit mm); MeshRenderOptions as `options` and/or keyword arguments. Returns its "
+             "SceneMesh.")
         .def("add_volume",
              [](const std::shared_ptr<ScenePy>& s, const sss::Volume& volume, const std::optional<glm::mat4>& model,
                 const py::object& options, const std::optional<sss::TransferFunction>& tf, const py::kwargs& kw) {

@@ -34,6 +34,20 @@ struct IsosurfaceOptions {
 ///         VTK (SSS_WITH_VTK=OFF).
 Mesh extractIsosurface(const Volume& volume, const IsosurfaceOptions& options);
 
+/// An isosurface where the renderers place its volume, and the scale that keeps it life-size.
+struct WorldIsosurface {
+    Mesh mesh;  ///< extractIsosurface's mesh laid over the volume's Volume::worldBounds()
+    /// MeshRenderOptions::millimetresPerUnit for `mesh`: one world unit is the volume's largest
+    /// side, dims * spacing, in millimetres.
+    double millimetresPerUnit = 1.0;
+};
+
+/// extractIsosurface() in the volume's world box, for a volume whose spacing unit is
+/// `millimetresPerVolumeUnit` millimetres (1 for medical data), > 0 and finite. Throws as
+/// extractIsosurface(), and InvalidArgument naming millimetresPerVolumeUnit.
+WorldIsosurface extractIsosurfaceInWorldBox(const Volume& volume, const IsosurfaceOptions& options,
+                                            double millimetresPerVolumeUnit = 1.0);
+
 }  // namespace sss
 
 SSS_END_API

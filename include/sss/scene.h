@@ -150,6 +150,9 @@ Volume loadVolumeSource(std::string_view source, const RawLoadOptions& raw = {},
 /// The scene's assets in memory, ready to be placed (meshes already resized to SceneMesh::size).
 struct SceneAssets {
     std::vector<Mesh> meshes;
+    /// Per mesh: MeshRenderOptions::millimetresPerUnit of an isosurface (its volume's size),
+    /// 0 for meshes from files, which take their options' own.
+    std::vector<double> isosurfaceMillimetresPerUnit;
     std::vector<Volume> volumes;  ///< with their value windows set
     std::vector<TransferFunction> transferFunctions;  ///< one per volume
 };

@@ -227,3 +227,23 @@ def test_clip_cuts_the_volume_and_refuses_bad_planes(gl):
         renderer.set_clip(planes=[((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))])
     renderer.set_clip()
     assert renderer.clip["planes"] == []
+
+
+def test_scene_isosurface_lies_in_its_volume_at_its_physical_size(gl):
+    """Scene.add_isosurface: the surface of the blobs volume (32 voxels of 1.5 mm on its largest
+    side) lies inside the volume's world box, renders, and gets millimetres_per_unit = 48 (and
+    480 when a volume unit is 10 mm); a value no voxel crosses is refused."""
+    volume = sss.Volume(sss.make_blobs_volume(32).data, spacing=(1.5, 1.5, 1.5))
+    scene = sss.Scene(background=(0, 0, 0, 1))
+    scene.add_volume(volume, shading="scattering")
+    surface = scene.add_isosurface(volume, 128.0, shading="scattering", cameras=2, samples=4, map_resolution=64,
+                                   light_map_resolution=64, accumulation_frames=1)
+    assert surface.options.millimetres_per_unit == pytest.approx(48.0)
+    lo, hi = np.array(scene.bounds.min), np.array(scene.bounds.max)
+    assert np.all(lo >= -0.5 - 1e-6) and np.all(hi <= 0.5 + 1e-6)  # the volume's box holds both
+    image = scene.render(width=48, height=36)
+    assert covered(image) > 0.05
+    scaled = scene.add_isosurface(volume, 128.0, millimetres_per_volume_unit=10.0)
+    assert scaled.options.millimetres_per_unit == pytest.approx(480.0)
+    with pytest.raises(sss.InvalidArgumentError, match="value"):
+        scene.add_isosurface(volume, 1000.0)

@@ -747,23 +747,6 @@ Volume loadVolumeSource(std::string_view source, const RawLoadOptions& raw, std:
     return Volume::loadRaw(resolved, raw);
 }
 
-namespace {
-
-// The volume's largest side in its own units (dims x spacing): the length that is one scene unit
-// in the volume's box (Volume::worldBounds).
-double largestSide(const Volume& volume) {
-    const glm::dvec3 extent = glm::dvec3(volume.dims()) * glm::dvec3(volume.spacing());
-    return std::max({extent.x, extent.y, extent.z});
-}
-
-// extractIsosurface's mesh (in the volume's units, centred) scaled into the volume's box.
-Mesh isosurfaceInVolumeBox(const Volume& volume, const IsosurfaceOptions& options) {
-    const float scale = static_cast<float>(1.0 / largestSide(volume));
-    return extractIsosurface(volume, options).transformed(glm::scale(glm::mat4(1.0f), glm::vec3(scale)));
-}
-
-}  // namespace
-
 SceneAssets loadSceneAssets(const SceneDescription& scene, std::span<const fs::path> searchDirs) {
     const std::vector<fs::path> dirs = searchList(scene, searchDirs);
     SceneAssets assets;
@@ -785,11 +768,16 @@ SceneAssets loadSceneAssets(const SceneDescription& scene, std::span<const fs::p
     }
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& m = scene.meshes[i];
+        double millimetresPerUnit = 0.0;
         Mesh mesh = atField(indexed("meshes", i), [&] {
             if (!m.isosurface) return loadMeshSource(m.source, dirs);
             const Volume& volume = assets.volumes.at(static_cast<std::size_t>(m.isosurface->volume));
-            return isosurfaceInVolumeBox(volume, m.isosurface->options);
+            WorldIsosurface surface =
+                extractIsosurfaceInWorldBox(volume, m.isosurface->options, m.isosurface->millimetresPerVolumeUnit);
+            millimetresPerUnit = surface.millimetresPerUnit;
+            return std::move(surface.mesh);
         });
+        assets.isosurfaceMillimetresPerUnit.push_back(millimetresPerUnit);
         if (m.size) {
             const Bounds b = mesh.bounds();
             const glm::vec3 size = b.size();
@@ -816,9 +804,8 @@ void populateCompositor(HybridCompositor& compositor, const SceneDescription& sc
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& m = scene.meshes[i];
         MeshRenderOptions options = m.options;
-        if (m.isosurface)  // one scene unit is the volume's largest side
-            options.millimetresPerUnit = m.isosurface->millimetresPerVolumeUnit *
-                                         largestSide(assets.volumes.at(static_cast<std::size_t>(m.isosurface->volume)));
+        if (m.isosurface && i < assets.isosurfaceMillimetresPerUnit.size())
+            options.millimetresPerUnit = assets.isosurfaceMillimetresPerUnit[i];
         MeshScatteringRenderer& renderer = compositor.addMesh(assets.meshes[i], m.transform.matrix(), options);
         renderer.setScatteringMaterial(m.material);
         renderer.setMaterial(m.baseline);
