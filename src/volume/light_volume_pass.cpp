@@ -1,8 +1,8 @@
 #include "volume/light_volume_pass.h"
 
-#include "volume/clip_uniforms.h"
 #include "core/light_geometry.h"
 #include "lighting/texture_units.h"
+#include "volume/clip_uniforms.h"
 #include "volume/empty_space.h"
 
 #include <glm/geometric.hpp>
