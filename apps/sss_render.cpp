@@ -69,6 +69,7 @@ struct Args {
     std::vector<std::string> clipPlanes;   // --clip-plane PX,PY,PZ,NX,NY,NZ, repeatable
     std::string crop;                      // --crop X0,Y0,Z0,X1,Y1,Z1
     bool clipShadows = false;              // --clip-shadows
+    sss::CropSpace cropSpace = sss::CropSpace::Data;  // --crop-space
     glm::vec3 meshOffset{0.0f}, volumeOffset{0.0f};
     int repeat = 1, turntable = 0;
     bool listTf = false, listMaterials = false;
@@ -99,6 +100,7 @@ std::optional<sss::VolumeShading> volumeShading(const std::string& mode) {
 sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
     if ((!a.clipPlanes.empty() || !a.crop.empty() || a.clipShadows) && a.input.volume.empty())
         throw UsageError("--clip-plane, --crop and --clip-shadows need --volume: they cut the volume");
+    if (a.cropSpace == sss::CropSpace::World && a.crop.empty()) throw UsageError("--crop-space world needs --crop");
     if (!a.isosurfaces.empty() && a.input.volume.empty())
         throw UsageError("--isosurface needs --volume: the surface is extracted from it");
     if (a.input.mesh.empty() && a.input.volume.empty())
@@ -178,7 +180,8 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
                                           : volumeShading(a.mode).value_or(sss::VolumeShading::Scattering);
         volume.visible = !meshMode;  // a mesh mode with --isosurface draws the surfaces alone
         for (const std::string& plane : a.clipPlanes) volume.clip.planes.push_back(parseClipPlane("--clip-plane", plane));
-        if (!a.crop.empty()) std::tie(volume.clip.cropMin, volume.clip.cropMax) = parseCrop("--crop", a.crop);
+        volume.clip.cropSpace = a.cropSpace;
+        if (!a.crop.empty()) std::tie(volume.clip.cropMin, volume.clip.cropMax) = parseCrop("--crop", a.crop, a.cropSpace);
         volume.clip.clippedMatterCastsShadows = a.clipShadows;
         if (volume.options.multipleScattering)
             volume.options.samplesPerFrame = a.mesh.samples;  // --samples: the path tracer's paths per frame
@@ -251,7 +254,7 @@ std::vector<std::string> sceneFlags() {
                                       "--fov", "--ortho", "--light-dir", "--light-color", "--light-intensity",
                                       "--point-light", "--spot-light", "--mesh-size", "--mesh-offset",
                                       "--volume-offset", "--cornell-box", "--background", "--clip-plane", "--crop",
-                                      "--clip-shadows"};
+                                      "--crop-space", "--clip-shadows"};
     auto add = [&flags](const auto& field) {
         if (!field.flag.empty()) flags.emplace_back(field.flag);
     };
@@ -527,9 +530,12 @@ int main(int argc, char** argv) {
             ->type_name("PX,PY,PZ,NX,NY,NZ")
             ->allow_extra_args(false)
             ->group("clipping");
-        app.add_option("--crop", a.crop, "keep only this box of the volume, in normalised data coordinates (0..1)")
+        app.add_option("--crop", a.crop,
+                       "keep only this box of the volume, in normalised data coordinates (0..1) or, with --crop-space "
+                       "world, world coordinates")
             ->type_name("X0,Y0,Z0,X1,Y1,Z1")
             ->group("clipping");
+        addEnum(app, "--crop-space", a.cropSpace, "where --crop's box is given")->group("clipping");
         app.add_flag("--clip-shadows", a.clipShadows, "matter cut by --clip-plane or --crop still casts shadows")
             ->group("clipping");
         addVec3(app, "--volume-offset", a.volumeOffset, "move the volume (its box is 1 unit on its longest side)")

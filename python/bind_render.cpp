@@ -275,8 +275,9 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
                                "paths per pixel in the multiple-scattering mean")
         .def("set_clip",
              [](W& w, const std::vector<std::pair<glm::vec3, glm::vec3>>& planes, glm::vec3 cropMin, glm::vec3 cropMax,
-                bool clippedMatterCastsShadows) {
+                bool clippedMatterCastsShadows, sss::CropSpace cropSpace) {
                  sss::VolumeClip clip;
+                 clip.cropSpace = cropSpace;
                  for (const auto& [point, normal] : planes) clip.planes.push_back({point, normal});
                  clip.cropMin = cropMin;
                  clip.cropMax = cropMax;
@@ -285,9 +286,11 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
              },
              py::arg("planes") = std::vector<std::pair<glm::vec3, glm::vec3>>{}, py::arg("crop_min") = glm::vec3(0.0f),
              py::arg("crop_max") = glm::vec3(1.0f), py::arg("clipped_matter_casts_shadows") = false,
+             py::arg("crop_space") = sss::CropSpace::Data,
              "Cuts the volume (sss::VolumeClip): planes as (point, normal) pairs in world space, keeping the side "
-             "the normal points to (up to 6); the crop box in normalised data coordinates; cut matter casts no "
-             "shadows unless clipped_matter_casts_shadows. No arguments: nothing cut.")
+             "the normal points to (up to 6); the crop box in normalised data coordinates, or world coordinates with "
+             "crop_space=\"world\"; cut matter casts no shadows unless clipped_matter_casts_shadows. No arguments: "
+             "nothing cut.")
         .def_property_readonly("clip",
                                [](W& w) {
                                    const sss::VolumeClip& c = w.get().clip();
@@ -298,6 +301,7 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
                                    d["crop_min"] = c.cropMin;
                                    d["crop_max"] = c.cropMax;
                                    d["clipped_matter_casts_shadows"] = c.clippedMatterCastsShadows;
+                                   d["crop_space"] = c.cropSpace;
                                    return d;
                                },
                                "the clip as set_clip's keyword arguments")
@@ -334,6 +338,8 @@ void bindOptions(py::module_& m) {
                              {{"AUTO", sss::RayCaster::Auto}, {"FRAGMENT", sss::RayCaster::Fragment},
                               {"COMPUTE", sss::RayCaster::Compute}},
                              "Which ray caster draws a volume (the same image either way).");
+    bindEnum<sss::CropSpace>(m, "CropSpace", {{"DATA", sss::CropSpace::Data}, {"WORLD", sss::CropSpace::World}},
+                             "Where a clip's crop box is given: normalised data coordinates or world coordinates.");
 
     using MO = sss::MeshRenderOptions;
     Struct<MO>(m, "MeshRenderOptions", "Options of the mesh renderer (see sss::MeshRenderOptions for each range).")

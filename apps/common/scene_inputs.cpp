@@ -78,12 +78,15 @@ sss::ClipPlane parseClipPlane(const std::string& option, const std::string& text
     return plane;
 }
 
-std::pair<glm::vec3, glm::vec3> parseCrop(const std::string& option, const std::string& text) {
-    const std::vector<float> v = parseSix(option, text, "X0,Y0,Z0,X1,Y1,Z1 (normalised data coordinates)");
+std::pair<glm::vec3, glm::vec3> parseCrop(const std::string& option, const std::string& text, sss::CropSpace space) {
+    const bool data = space == sss::CropSpace::Data;
+    const std::vector<float> v =
+        parseSix(option, text, data ? "X0,Y0,Z0,X1,Y1,Z1 (normalised data coordinates)" : "X0,Y0,Z0,X1,Y1,Z1 (world)");
     const glm::vec3 lo(v[0], v[1], v[2]), hi(v[3], v[4], v[5]);
     for (int a = 0; a < 3; ++a)
-        if (!(lo[a] >= 0.0f && hi[a] <= 1.0f && lo[a] < hi[a]))
-            throw UsageError(option + ": each axis needs 0 <= min < max <= 1, got \"" + text + "\"");
+        if (!((!data || (lo[a] >= 0.0f && hi[a] <= 1.0f)) && lo[a] < hi[a]))
+            throw UsageError(option + ": each axis needs " + (data ? "0 <= min < max <= 1" : "min < max") + ", got \"" +
+                             text + "\"");
     return {lo, hi};
 }
 

@@ -56,8 +56,9 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text);  ///< "
 glm::ivec3 parseDims(const std::string& option, const std::string& text);  ///< "XxYxZ"
 /// "PX,PY,PZ,NX,NY,NZ": a point on the plane and the normal of the side kept (world space).
 sss::ClipPlane parseClipPlane(const std::string& option, const std::string& text);
-/// "X0,Y0,Z0,X1,Y1,Z1": the crop box's corners in normalised data coordinates, each in [0, 1].
-std::pair<glm::vec3, glm::vec3> parseCrop(const std::string& option, const std::string& text);
+/// "X0,Y0,Z0,X1,Y1,Z1": the crop box's corners, min below max on each axis; in `space` Data,
+/// normalised data coordinates in [0, 1].
+std::pair<glm::vec3, glm::vec3> parseCrop(const std::string& option, const std::string& text, sss::CropSpace space);
 /// "LO,HI" with LO < HI (a value window, e.g. --tf-range -1000,2000).
 std::optional<std::pair<double, double>> parseRange(const std::string& option, const std::string& text);
 float parseExposure(const std::string& option, const std::string& text);  ///< stops in [-64, 64]

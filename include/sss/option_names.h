@@ -31,7 +31,7 @@ struct EnumName {
 
 /// Every value of `Enum` with its name, in declaration order. Specialized for MeshShading,
 /// MeshCombine, ScatteringProfile, VolumeShading, VolumeModel, LightVolumeFallback, RayCaster,
-/// ToneMap, Projection and VoxelType.
+/// CropSpace, ToneMap, Projection and VoxelType.
 template <class Enum>
 std::span<const EnumName<Enum>> enumNames();
 

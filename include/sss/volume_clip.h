@@ -24,15 +24,22 @@ struct ClipPlane {
     bool operator==(const ClipPlane&) const = default;
 };
 
+/// Where a VolumeClip's crop box is given.
+enum class CropSpace {
+    Data,   ///< the volume's normalised data coordinates, [0, 1] per axis
+    World,  ///< world coordinates: a box aligned with the world's axes, whatever the volume's placement
+};
+
 struct VolumeClip {
     static constexpr int kMaxPlanes = 6;
     /// Up to kMaxPlanes planes: a sample is kept where it is on the kept side of every plane.
     std::vector<ClipPlane> planes;
-    /// The box of the volume kept, in its normalised data coordinates: (0,0,0) is the first
-    /// voxel's corner, (1,1,1) the last one's far corner, as a VTK cropping region (default:
-    /// the whole volume).
+    /// The box kept. In CropSpace::Data (the default) the volume's normalised data coordinates:
+    /// (0,0,0) is the first voxel's corner, (1,1,1) the last one's far corner, as a VTK cropping
+    /// region; the default is the whole volume. In CropSpace::World, world coordinates.
     glm::vec3 cropMin{0.0f};
     glm::vec3 cropMax{1.0f};
+    CropSpace cropSpace = CropSpace::Data;
     /// Clipped matter still shadows (and scatters light onto) what is kept (default: off).
     bool clippedMatterCastsShadows = false;
 
@@ -42,7 +49,8 @@ struct VolumeClip {
 };
 
 /// Throws ErrorKind::InvalidArgument naming `context` and the field: more than kMaxPlanes
-/// planes, a zero or non-finite normal or point, a crop box that is empty or leaves [0, 1].
+/// planes, a zero or non-finite normal or point, a crop box that is empty (or, in data space,
+/// leaves [0, 1]).
 void validate(const VolumeClip& clip, const std::string& context = {});
 
 /// Whether the point at normalised data coordinates `texture` of a volume placed by `model`

@@ -225,6 +225,10 @@ def test_clip_cuts_the_volume_and_refuses_bad_planes(gl):
     assert np.abs(planes - cropped).max() <= 2.0 / 255.0
     with pytest.raises(ValueError, match=r"planes\[0\]\.normal must be non-zero"):
         renderer.set_clip(planes=[((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))])
+    renderer.set_clip(crop_min=(-5.0, -5.0, -5.0), crop_max=(0.0, 5.0, 5.0), crop_space="world")
+    assert renderer.clip["crop_space"] == sss.CropSpace.WORLD
+    world = renderer.render(camera, width=64, height=48)
+    assert np.abs(world - planes).max() <= 2.0 / 255.0
     renderer.set_clip()
     assert renderer.clip["planes"] == []
 

@@ -1,7 +1,7 @@
 // Clip planes and crop box (sss/volume_clip.h) in texture coordinates, as
 // src/core/volume_clip_space.h computes them: a sample is kept where dot(plane.xyz, tc) + plane.w
 // >= 0 for every plane and tc lies in [cropMin, cropMax] (open faces at +-1e30).
-#define MAX_CLIP_PLANES 6
+#define MAX_CLIP_PLANES 12  // VolumeClip::kMaxPlanes, and a world-space crop box's six faces
 uniform int clipActive;             // 0: nothing is cut
 uniform int clipLight;              // 1: the cut matter is gone for the light as well (no shadows)
 uniform int clipPlaneCount;

@@ -56,6 +56,12 @@ std::span<const EnumName<RayCaster>> enumNames<RayCaster>() {
 }
 
 template <>
+std::span<const EnumName<CropSpace>> enumNames<CropSpace>() {
+    static constexpr EnumName<CropSpace> names[] = {{CropSpace::Data, "data"}, {CropSpace::World, "world"}};
+    return names;
+}
+
+template <>
 std::span<const EnumName<ToneMap>> enumNames<ToneMap>() {
     static constexpr EnumName<ToneMap> names[] = {{ToneMap::None, "none"}, {ToneMap::Filmic, "filmic"}};
     return names;

@@ -18,7 +18,7 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 }  // namespace
 
 bool VolumeClip::clipsNothing() const {
-    return planes.empty() && cropMin == glm::vec3(0.0f) && cropMax == glm::vec3(1.0f);
+    return planes.empty() && cropSpace == CropSpace::Data && cropMin == glm::vec3(0.0f) && cropMax == glm::vec3(1.0f);
 }
 
 void validate(const VolumeClip& clip, const std::string& context) {
@@ -36,10 +36,13 @@ void validate(const VolumeClip& clip, const std::string& context) {
     }
     if (!finite(clip.cropMin)) fail("cropMin", "must be finite");
     if (!finite(clip.cropMax)) fail("cropMax", "must be finite");
+    const bool data = clip.cropSpace == CropSpace::Data;
     for (int a = 0; a < 3; ++a) {
-        if (!(clip.cropMin[a] >= 0.0f && clip.cropMax[a] <= 1.0f && clip.cropMin[a] < clip.cropMax[a]))
-            fail("cropMin", "must be below cropMax on every axis, both in [0, 1] (normalised data coordinates), got " +
-                                std::string("xyz").substr(static_cast<size_t>(a), 1) + " from " +
+        const bool inside = !data || (clip.cropMin[a] >= 0.0f && clip.cropMax[a] <= 1.0f);
+        if (!(inside && clip.cropMin[a] < clip.cropMax[a]))
+            fail("cropMin", std::string("must be below cropMax on every axis") +
+                                (data ? ", both in [0, 1] (normalised data coordinates)" : " (world coordinates)") +
+                                ", got " + std::string("xyz").substr(static_cast<size_t>(a), 1) + " from " +
                                 std::to_string(clip.cropMin[a]) + " to " + std::to_string(clip.cropMax[a]));
     }
 }
@@ -83,14 +86,27 @@ TextureClip textureClip(const VolumeClip& clip, const glm::mat4& model, const Bo
     t.light = t.active && !clip.clippedMatterCastsShadows;
     // world = A (box.min + tc * size) + b, so n . (world - point) = (A^T n * size) . tc + rest.
     const glm::dmat4 m(model);
-    const glm::dmat3 a(m);
-    const glm::dvec3 b(m[3]);
+    const glm::dmat3 linear(m);
+    const glm::dvec3 translation(m[3]);
     const glm::dvec3 size(box.size()), origin(box.min);
-    for (const ClipPlane& p : clip.planes) {
-        const glm::dvec3 n = glm::transpose(a) * glm::dvec3(p.normal);
-        t.planes.emplace_back(n * size, glm::dot(n, origin) + glm::dot(glm::dvec3(p.normal), b - glm::dvec3(p.point)));
-    }
+    const auto toTexture = [&](const ClipPlane& p) {
+        const glm::dvec3 n = glm::transpose(linear) * glm::dvec3(p.normal);
+        return glm::dvec4(n * size, glm::dot(n, origin) + glm::dot(glm::dvec3(p.normal), translation - glm::dvec3(p.point)));
+    };
+    for (const ClipPlane& p : clip.planes) t.planes.push_back(toTexture(p));
     constexpr double open = std::numeric_limits<double>::infinity();
+    if (clip.cropSpace == CropSpace::World) {
+        // A world box is six planes in texture space, and the texture-space box stays open.
+        for (int a = 0; a < 3; ++a) {
+            glm::vec3 normal(0.0f);
+            normal[a] = 1.0f;
+            t.planes.push_back(toTexture({clip.cropMin, normal}));
+            t.planes.push_back(toTexture({clip.cropMax, -normal}));
+        }
+        t.cropMin = glm::dvec3(-open);
+        t.cropMax = glm::dvec3(open);
+        return t;
+    }
     for (int i = 0; i < 3; ++i) {
         t.cropMin[i] = clip.cropMin[i] > 0.0f ? clip.cropMin[i] : -open;
         t.cropMax[i] = clip.cropMax[i] < 1.0f ? clip.cropMax[i] : open;

@@ -350,6 +350,7 @@ VolumeClip readClip(const json& j, const std::string& path, const std::string& f
     }
     reader("cropMin", clip.cropMin);
     reader("cropMax", clip.cropMax);
+    reader("cropSpace", clip.cropSpace);
     reader("clippedMatterCastsShadows", clip.clippedMatterCastsShadows);
     reader.finish();
     validateAt(file, path, [&] { validate(clip); });
@@ -366,6 +367,7 @@ json writeClip(const VolumeClip& clip) {
     }
     if (clip.cropMin != glm::vec3(0.0f)) j["cropMin"] = {clip.cropMin.x, clip.cropMin.y, clip.cropMin.z};
     if (clip.cropMax != glm::vec3(1.0f)) j["cropMax"] = {clip.cropMax.x, clip.cropMax.y, clip.cropMax.z};
+    if (clip.cropSpace != CropSpace::Data) j["cropSpace"] = std::string(enumName(clip.cropSpace));
     if (clip.clippedMatterCastsShadows) j["clippedMatterCastsShadows"] = true;
     return j;
 }

@@ -62,6 +62,9 @@ SceneDescription everyKindOfField() {
     SceneVolume fromFile;
     fromFile.source = "procedural:bucky";
     fromFile.transferFunction.file = "maps/ember.json";
+    fromFile.clip.cropSpace = CropSpace::World;
+    fromFile.clip.cropMin = {-2.0f, -0.5f, 0.0f};
+    fromFile.clip.cropMax = {0.0f, 3.0f, 1.5f};
     scene.volumes.push_back(fromFile);
 
     scene.lights = {DirectionalLight{{-1.0f, -2.0f, 0.5f}, {1.0f, 0.9f, 0.8f}, 2.0f},
@@ -122,7 +125,8 @@ TEST_CASE("a scene survives a JSON round trip field for field", "[scene]") {
     CHECK(back.volumes[0].options.stepSize == 0.5f);
     CHECK_FALSE(back.volumes[0].options.jitter);
     CHECK(back.volumes[0].clip == scene.volumes[0].clip);
-    CHECK(back.volumes[1].clip.clipsNothing());
+    CHECK(back.volumes[1].clip == scene.volumes[1].clip);
+    CHECK(back.volumes[1].clip.cropSpace == CropSpace::World);
     CHECK(back.volumes[1].transferFunction.file == "maps/ember.json");
     CHECK(back.lights == scene.lights);
     CHECK(back.camera == scene.camera);
@@ -175,6 +179,8 @@ TEST_CASE("bad scene fields are reported with their JSON path", "[scene]") {
                       "(normalised data coordinates), got x from 0.500000 to 0.400000");
     requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "clip": {"planes": [{"point": [0, 0, 0], "normall": [1, 0, 0]}]}}]})",
                       "scene.json: volumes[0].clip.planes[0].normall: unknown field");
+    requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "clip": {"cropSpace": "model"}}]})",
+                      "scene.json: volumes[0].clip.cropSpace: expected data or world, got \"model\"");
     requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "valueWindow": [5, 1]}]})",
                       "scene.json: volumes[0].valueWindow: LO must be less than HI, got [5,1]");
     requireSceneError(R"({"volumes": [{"source": "procedural:blobs", "transferFunction": {"points": [[0, 1, 1]]}}]})",

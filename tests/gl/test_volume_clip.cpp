@@ -145,6 +145,17 @@ TEST_CASE("a clip plane cuts what the crop box cuts, in world space under any pl
         INFO("rotated " << angle << " degrees: largest difference " << largestDifference(a, b));
         CHECK(largestDifference(a, b) <= 1.5f / 255.0f);
         CHECK(largestDifference(a, whole) > 0.1f);  // the cut is visible
+        // A world-space crop box that only cuts at world x = 0.1 is that world plane, whatever
+        // the placement.
+        Render worldBox = unclipped, worldPlane = unclipped;
+        worldBox.clip.cropSpace = CropSpace::World;
+        worldBox.clip.cropMin = glm::vec3(-10.0f);
+        worldBox.clip.cropMax = {0.1f, 10.0f, 10.0f};
+        worldPlane.clip.planes = {{.point = {0.1f, 0.0f, 0.0f}, .normal = {-1.0f, 0.0f, 0.0f}}};
+        const Image c = render(volume, worldBox, camera), d = render(volume, worldPlane, camera);
+        INFO("world crop against world plane: largest difference " << largestDifference(c, d));
+        CHECK(largestDifference(c, d) <= 1.5f / 255.0f);
+        CHECK(largestDifference(c, whole) > 0.1f);
     }
     gl.requireNoErrors();
 }
