@@ -268,12 +268,17 @@ void Panels::meshSection() {
 void Panels::clipSection() {
     sss::VolumeClip& clip = m_model.volumeClip;
     bool changed = false;
-    static const char* axes[] = {"crop x", "crop y", "crop z"};
-    for (int a = 0; a < 3; ++a) {
-        changed |= ImGui::DragFloatRange2(axes[a], &clip.cropMin[a], &clip.cropMax[a], 0.005f, 0.0f, 1.0f, "%.3f", "%.3f",
-                                          ImGuiSliderFlags_AlwaysClamp);
-        clip.cropMax[a] = std::max(clip.cropMax[a], std::min(clip.cropMin[a] + 0.01f, 1.0f));
-        clip.cropMin[a] = std::min(clip.cropMin[a], clip.cropMax[a] - 0.01f);
+    if (clip.cropSpace == sss::CropSpace::Data) {
+        static const char* axes[] = {"crop x", "crop y", "crop z"};
+        for (int a = 0; a < 3; ++a) {
+            changed |= ImGui::DragFloatRange2(axes[a], &clip.cropMin[a], &clip.cropMax[a], 0.005f, 0.0f, 1.0f, "%.3f",
+                                              "%.3f", ImGuiSliderFlags_AlwaysClamp);
+            clip.cropMax[a] = std::max(clip.cropMax[a], std::min(clip.cropMin[a] + 0.01f, 1.0f));
+            clip.cropMin[a] = std::min(clip.cropMin[a], clip.cropMax[a] - 0.01f);
+        }
+    } else {  // a scene file's world-space box: kept as it is, the reset below removes it
+        ImGui::Text("world crop box (%.2f, %.2f, %.2f) to (%.2f, %.2f, %.2f)", clip.cropMin.x, clip.cropMin.y,
+                    clip.cropMin.z, clip.cropMax.x, clip.cropMax.y, clip.cropMax.z);
     }
     bool plane = !clip.planes.empty();
     if (ImGui::Checkbox("clip plane", &plane)) {
