@@ -139,6 +139,22 @@ render "cornell_box_${subject}.png" "Cornell box, hybrid" \
   "${scene[@]}" --mesh-size 1 --mesh-offset -0.4,-0.1,0.55 --volume-offset 0.35,0,-0.45 --material marble --scale 40 \
   --mode hybrid --cornell-box --pitch 8 "${light[@]}" --cameras 4 --frames 4 --size 500x450
 
+# 5. A CT head: cut open by a clip plane (the cut face lit by the light the removed half no longer
+#    holds back), and its skin as a translucent skin1 mesh at life size (the isosurface, 24 cm).
+if have volumes/invesalius_cthead_256x256x108_uint16.raw; then
+  render "ct_head_clipped.png" "CT head, clip plane" \
+    "The InVesalius CT head cut sagittally by a clip plane; the cut matter casts no shadow, so the cut face (skull, sinuses, soft tissue) is lit like the inside it exposes." \
+    --scene examples/scenes/ct_head_skin_clipped.json
+  render "ct_head_skin_life_size.png" "CT head skin, life size" \
+    "The same head's skin (the -500 HU isosurface) as a translucent skin1 mesh at its real size: its triangles are many diffusion lengths wide, the regime of life-size objects (docs/near-field.md)." \
+    --scene examples/scenes/ct_head_skin_isosurface.json
+else
+  missing volumes/invesalius_cthead_256x256x108_uint16.raw "the clip plane cuts the procedural blobs"
+  render "blobs_clipped.png" "blobs, clip plane" \
+    "The procedural blobs cut by a clip plane, showing their dense cores; the cut matter casts no shadow, so the cut face is lit like the inside it exposes." \
+    --volume procedural:blobs --tf bucky --mode scattering --clip-plane=0,0,0,-1,0,-1 --size 500x400
+fi
+
 # The contact sheet: out/index.png (every image above, in a grid) and out/index.html.
 sheet=() sheet_labels=()
 for i in "${!files[@]}"; do
