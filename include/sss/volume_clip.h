@@ -5,9 +5,6 @@
 /// the light volume and its eye pass, the GPU path tracer and the CPU references; meshes of a
 /// hybrid scene are not clipped.
 #include "sss/api.h"
-#include "sss/bounds.h"
-
-#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <string>
@@ -52,10 +49,6 @@ struct VolumeClip {
 /// planes, a zero or non-finite normal or point, a crop box that is empty (or, in data space,
 /// leaves [0, 1]).
 void validate(const VolumeClip& clip, const std::string& context = {});
-
-/// Whether the point at normalised data coordinates `texture` of a volume placed by `model`
-/// (world = model * (box.min + texture * box.size())) is kept.
-bool keeps(const VolumeClip& clip, const glm::mat4& model, const Bounds& box, glm::vec3 texture);
 
 }  // namespace sss
 

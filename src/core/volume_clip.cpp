@@ -47,10 +47,6 @@ void validate(const VolumeClip& clip, const std::string& context) {
     }
 }
 
-bool keeps(const VolumeClip& clip, const glm::mat4& model, const Bounds& box, glm::vec3 texture) {
-    return detail::textureClip(clip, model, box).keeps(texture);
-}
-
 namespace detail {
 
 bool TextureClip::keeps(glm::dvec3 tc) const {

@@ -3,8 +3,10 @@
 // light volume, the path tracer and the CPU references test their samples: each plane becomes
 // dot(n, tc) + d >= 0, and the crop box a box in the same coordinates.
 #include "sss/api.h"
+#include "sss/bounds.h"
 #include "sss/volume_clip.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
 #include <vector>

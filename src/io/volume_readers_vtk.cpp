@@ -430,7 +430,13 @@ void checkMetaImageHeader(const std::string& file, const std::string& prefix) {
         const std::size_t eq = line.find('=');
         if (eq == std::string::npos) bad("expected \"Key = Value\", got \"" + line.substr(0, 60) + "\"");
         const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
-        if (key.empty() || key.find_first_of(" \t") != std::string::npos) bad("bad key in \"" + line.substr(0, 60) + "\"");
+        // MetaIO copies keys and string values into fixed buffers of 255 characters: only
+        // identifiers of a sane length get to it (a longer key overflowed one, found by fuzzing).
+        const bool identifier = !key.empty() && key.size() <= 64 && std::all_of(key.begin(), key.end(), [](unsigned char c) {
+            return std::isalnum(c) || c == '_';
+        });
+        if (!identifier) bad("bad key in \"" + line.substr(0, 60) + "\" (keys are names of at most 64 letters, digits or _)");
+        if (value.size() > 200) bad(key + ": the value is " + std::to_string(value.size()) + " characters long, at most 200 are read");
         if (!seen.insert(key).second) bad(key + " appears twice");
         const std::size_t n = static_cast<std::size_t>(nDims);
         const bool sized = key == "DimSize" || key == "ElementSpacing" || key == "ElementSize" || key == "Offset" ||

@@ -406,6 +406,13 @@ TEST_CASE("Each Volume::load reader rejects corrupted files with a message namin
     expectParse(dir.write("t.mha", truncated(metaHeader(VoxelType::Int16, "1 0 0 0 1 0 0 0 1", "LOCAL") +
                                              voxelBytes(VoxelType::Int16))));
     expectParse(dir.write("g.mha", "this is not a header\n"));
+    // Keys and values that would overflow MetaIO's 255-character buffers (found by fuzzing).
+    const std::string longKey = "ObjectType = Image\nE1lement" + std::string(300, '\x9a') + " = x\nElementDataFile = LOCAL\n";
+    expectParse(dir.write("k.mha", longKey));
+    REQUIRE_SSS_ERROR(Volume::load(dir.write("k2.mha", longKey)), ErrorKind::Parse,
+                      Contains("keys are names of at most 64 letters, digits or _"));
+    REQUIRE_SSS_ERROR(Volume::load(dir.write("v.mha", "ObjectType = Image\nElementDataFile = " + std::string(300, 'd') + "\n")),
+                      ErrorKind::Parse, Contains("ElementDataFile: the value is 300 characters long, at most 200 are read"));
     expectParse(dir.write("t.nii", truncated(niftiFile(VoxelType::Float32, kAlignedRows))));
     expectParse(dir.write("g.nii", std::string(400, 'x')));
     {
