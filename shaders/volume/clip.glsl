@@ -1,6 +1,8 @@
 // Clip planes and crop box (sss/volume_clip.h) in texture coordinates, as
 // src/core/volume_clip_space.h computes them: a sample is kept where dot(plane.xyz, tc) + plane.w
 // >= 0 for every plane and tc lies in [cropMin, cropMax] (open faces at +-1e30).
+#include "common/ray_box.glsl"
+
 #define MAX_CLIP_PLANES 12  // VolumeClip::kMaxPlanes, and a world-space crop box's six faces
 uniform int clipActive;             // 0: nothing is cut
 uniform int clipLight;              // 1: the cut matter is gone for the light as well (no shadows)
@@ -30,8 +32,7 @@ vec2 clipSpan(vec3 origin, vec3 direction, vec2 span) {
         else if (rate < 0.0) span.y = min(span.y, -start / rate);
         else if (start < 0.0) span.y = span.x;
     }
-    vec3 inverse = vec3(direction.x != 0.0 ? 1.0 / direction.x : 1e30, direction.y != 0.0 ? 1.0 / direction.y : 1e30,
-                        direction.z != 0.0 ? 1.0 / direction.z : 1e30);
+    vec3 inverse = safeInverse(direction);
     vec3 t0 = (cropMin - origin) * inverse, t1 = (cropMax - origin) * inverse;
     vec3 near = min(t0, t1), far = max(t0, t1);
     span.x = max(span.x, max(max(near.x, near.y), near.z));
