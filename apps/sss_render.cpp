@@ -295,6 +295,8 @@ public:
         });
         m_multipleScattering = std::any_of(m_scene.volumes.begin(), m_scene.volumes.end(),
                                            [](const sss::SceneVolume& v) { return v.options.multipleScattering; });
+        m_scatteringCache = std::any_of(m_scene.volumes.begin(), m_scene.volumes.end(),
+                                        [](const sss::SceneVolume& v) { return v.options.multipleScatteringCache; });
         // The path tracer's frames before the timed ones: the first mesh's --frames.
         m_pathTraceFrames = m_scene.meshes.empty() ? a.mesh.accumulationFrames
                                                    : m_scene.meshes.front().options.accumulationFrames;
@@ -312,6 +314,11 @@ public:
             m_timer.begin();
             pathTrace();
             m_pathTraceMs = m_timer.endMilliseconds();
+        }
+        if (m_scatteringCache) {
+            m_timer.begin();
+            refineCaches();
+            m_cacheMs = m_timer.endMilliseconds();
         }
     }
 
@@ -335,6 +342,17 @@ private:
     void pathTrace() {
         for (int i = 0; i < m_pathTraceFrames; ++i) m_compositor.render(m_camera, m_target);
     }
+    // Frames until every volume's multiple-scattering cache holds its photons.
+    void refineCaches() {
+        for (std::size_t i = 0; i < m_compositor.volumeCount(); ++i) {
+            const sss::VolumeRenderOptions& o = m_compositor.volume(i).options();
+            if (!o.multipleScatteringCache) continue;
+            while (m_compositor.volume(i).cachedPhotons() < static_cast<std::uint64_t>(o.cachePhotons)) {
+                m_compositor.render(m_camera, m_target);
+                ++m_cacheFrames;
+            }
+        }
+    }
     sss::Image renderImage(bool timed);
     void write(const sss::Image& image, const fs::path& path) const {
         if (path.extension() == ".exr") image.saveExr(path);  // linear radiance, as rendered
@@ -351,9 +369,9 @@ private:
     sss::HybridCompositor m_compositor;
     sss::Camera m_camera;
     sss::GpuTimer m_timer;
-    bool m_scattering = false, m_multipleScattering = false;
-    int m_pathTraceFrames = 0;
-    double m_convergeMs = 0.0, m_pathTraceMs = 0.0;
+    bool m_scattering = false, m_multipleScattering = false, m_scatteringCache = false;
+    int m_pathTraceFrames = 0, m_cacheFrames = 0;
+    double m_convergeMs = 0.0, m_pathTraceMs = 0.0, m_cacheMs = 0.0;
     std::vector<double> m_times;
     sss::Image m_image{1, 1};
 };
@@ -448,6 +466,13 @@ void Render::report() {
             std::printf("multiple scattering: %d paths per pixel (%d frames took %.2f ms before the timed frames, "
                         "includes shader compilation)\n",
                         m_compositor.volume(i).accumulatedSamples(), m_pathTraceFrames, m_pathTraceMs);
+    if (m_scatteringCache)
+        for (std::size_t i = 0; i < m_compositor.volumeCount(); ++i)
+            if (m_compositor.volume(i).options().multipleScatteringCache)
+                std::printf("multiple-scattering cache: %llu photons (%d frames took %.2f ms before the timed frames, "
+                            "includes shader compilation)\n",
+                            static_cast<unsigned long long>(m_compositor.volume(i).cachedPhotons()), m_cacheFrames,
+                            m_cacheMs);
 }
 
 void Render::reportScattering() {

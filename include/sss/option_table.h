@@ -162,6 +162,18 @@ struct OptionTable<VolumeRenderOptions> {
         OptionField<O, int>{&O::maxBounces, "maxBounces",
             "with --multiple-scattering: scatterings per path (1 = single scattering; Russian roulette ends paths "
             "earlier)", atLeast(1), "--max-bounces", "B"},
+        OptionField<O, bool>{&O::multipleScatteringCache, "multipleScatteringCache",
+            "add light scattered more than once from a view-independent photon-traced cache (the physical model)", {},
+            "--multiple-scattering-cache"},
+        OptionField<O, int>{&O::cacheResolution, "cacheResolution",
+                            "multiple-scattering cache cells along the box's longest side", between(1, 1024),
+                            "--cache-resolution", "N"},
+        OptionField<O, int>{&O::cachePhotonsPerFrame, "cachePhotonsPerFrame",
+                            "photons each render adds while the multiple-scattering cache refines", between(1, 1 << 24),
+                            "--cache-photons-per-frame", "N"},
+        OptionField<O, int>{&O::cachePhotons, "cachePhotons",
+                            "photons after which the multiple-scattering cache stops refining", between(1, 1 << 30),
+                            "--cache-photons", "N"},
         OptionField<O, RayCaster>{&O::rayCaster, "rayCaster",
             "ray caster: fragment (fullscreen triangle), compute (dispatch over the volume's screen rectangle) or auto "
             "(per device: compute on hardware GPUs)", {}, "--ray-caster"},

@@ -28,6 +28,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -178,6 +179,26 @@ struct VolumeRenderOptions {
     /// Scatterings after which a path ends, >= 1: 1 is single scattering (default: 100000, as
     /// VolumePathTracerOptions::maxBounces; Russian roulette ends paths long before).
     int maxBounces = 100000;
+    // Multiple-scattering cache (VolumeShading::Scattering or ScatteringGradient with
+    // VolumeModel::Physical; docs/multiple-scattering.md):
+    /// Adds the light scattered more than once to the light volume's single scattering, from a
+    /// view-independent cache: per cell of a grid over the box, the fluence of the light that has
+    /// scattered at least once and its flux vector, which each sample scatters towards the eye
+    /// with the phase function (the radiance taken as linear in direction). Photons from the
+    /// lights fill it by the path tracer's estimator (delta tracking, HG scattering, Russian
+    /// roulette; maxBounces and anisotropy apply), cachePhotonsPerFrame per render()
+    /// until it holds cachePhotons; camera moves reuse it, and a change of the lights, transfer
+    /// function, volume, model transform, clip or these options restarts it. Meshes of a hybrid
+    /// scene cast no shadows into it (default: off).
+    bool multipleScatteringCache = false;
+    /// Cells of the cache along the box's longest side, the other sides in proportion, at most
+    /// one per voxel, 1..1024 (default: 64).
+    int cacheResolution = 64;
+    /// Photons each render() adds while the cache refines, 1..2^24 (default: 65536).
+    int cachePhotonsPerFrame = 1 << 16;
+    /// Photons after which the cache stops refining and frames trace none, 1..2^30
+    /// (default: 2^21).
+    int cachePhotons = 1 << 21;
     /// The ray caster: fragment or compute, or picked per device (default: Auto; see RayCaster).
     RayCaster rayCaster = RayCaster::Auto;
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).
@@ -228,6 +249,9 @@ public:
     /// Paths per pixel in the multiple-scattering mode's running mean (0 in the other modes,
     /// and after anything that restarts it, until the next render()).
     int accumulatedSamples() const;
+    /// Photons in the multiple-scattering cache (0 when it is off, and after anything that
+    /// restarts it, until the next render()).
+    std::uint64_t cachedPhotons() const;
 
     const RenderStats& stats() const;
 

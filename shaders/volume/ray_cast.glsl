@@ -176,6 +176,33 @@ LightReach rayLightReaches[MAX_LIGHTS];
 #endif
 #endif
 
+#if SCATTERING_CACHE
+// The multiple-scattering cache (src/volume/fluence_cache.h): per cell, the fluence of the light
+// scattered at least once (rgb) and the flux vector of its mean channel (model space), both
+// weighted by the cell's medium, which alpha holds (normalised interpolation). The radiance is
+// taken as the HG lobe with the same first moment, phi p_HG(k, w . F / |F|), k = |F| / phi; the HG
+// phase function convolves it to phi p_HG(g k, v . F / |F|) towards the viewer v (the Legendre
+// coefficients of HG lobes multiply: g^l k^l).
+uniform sampler3D cacheFluence;
+uniform sampler3D cacheFlux;
+vec3 cacheViewDirection;  // model space, towards the viewer (set in castRay)
+
+vec3 cachedInScattering(vec3 tc) {
+    vec4 weighted = texture(cacheFluence, tc);
+    if (!(weighted.a > 0.0)) return vec3(0.0);
+    vec3 phi = weighted.rgb / weighted.a;
+    vec3 flux = texture(cacheFlux, tc).xyz / weighted.a;
+    float mean = (phi.r + phi.g + phi.b) / 3.0;
+    float fluxLength = length(flux);
+    // The radiance as a Henyey-Greenstein lobe about the flux with mean cosine k = |F| / phi: the
+    // phase function's lobe and it convolve to the HG lobe of mean cosine g k.
+    float gk = mean > 0.0 ? phaseG * min(fluxLength / mean, 0.99) : 0.0;
+    float cosTheta = fluxLength > 0.0 ? dot(flux, cacheViewDirection) / fluxLength : 0.0;
+    float d = 1.0 + gk * gk - 2.0 * gk * cosTheta;
+    return phi * ((1.0 - gk * gk) / (12.5663706 * d * sqrt(d)));
+}
+#endif
+
 vec3 shade(vec3 p, vec3 tc, vec3 color) {
 #if !DIRECTIONAL_LIGHTS_ONLY
     vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
@@ -253,6 +280,9 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
 #endif
     }
 #if SHADING_SCATTERING
+#if SCATTERING_CACHE
+    lit += color * cachedInScattering(tc);
+#endif
 #if EYE_PASS
     if (physicalModel == 0) lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;
 #endif
@@ -351,6 +381,9 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #endif
 #if SHADING_SCATTERING && DIRECTIONAL_LIGHTS_ONLY
     for (int i = 0; i < LIGHT_COUNT; ++i) rayLightReaches[i] = lightReachTowards(i, lightVector[i].xyz);
+#endif
+#if SCATTERING_CACHE
+    cacheViewDirection = normalize(worldToModelDirection * viewerDirection);
 #endif
     vec2 span = intersectBox(ray, boxMin, boxMax);
     // The ray in texture coordinates: a sample's is a multiply-add, not three divisions.

@@ -53,6 +53,10 @@ bool usesEyePass(const VolumeRenderOptions& o) {
     return o.eyePass && usesLightVolume(o.shading) && o.model == VolumeModel::Paper;
 }
 
+bool usesScatteringCache(const VolumeRenderOptions& o) {
+    return o.multipleScatteringCache && usesLightVolume(o.shading) && o.model == VolumeModel::Physical;
+}
+
 RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
                                   GradientSource gradients, bool preintegration, bool softwareDevice) {
     RayCastVariant v;
@@ -69,6 +73,7 @@ RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std:
     if (usesGradient(options.shading) && shininess >= 1.0f && shininess <= 256.0f && shininess == std::floor(shininess))
         v.integerShininess = static_cast<int>(shininess);
     v.compute = usesComputeRayCaster(options.rayCaster, softwareDevice);
+    v.scatteringCache = usesScatteringCache(options);
     return v;
 }
 
@@ -88,7 +93,8 @@ RayCastPass::RayCastPass(const RayCastVariant& variant)
                                    {"VALUES_IN_GRADIENTS", variant.gradients == GradientSource::VolumeWithValues ? "1" : "0"},
                                    {"PREINTEGRATED", variant.preintegration ? "1" : "0"},
                                    {"DIRECTIONAL_LIGHTS_ONLY", variant.directionalLightsOnly ? "1" : "0"},
-                                   {"INTEGER_SHININESS", std::to_string(variant.integerShininess)}})),
+                                   {"INTEGER_SHININESS", std::to_string(variant.integerShininess)},
+                                   {"SCATTERING_CACHE", variant.scatteringCache ? "1" : "0"}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const RayCastInputs& in) const {
@@ -208,6 +214,12 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
             in.eyeVolume->bind(units::kEyeVolume);
         }
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
+        if (m_variant.scatteringCache && in.cacheFluence && in.cacheFlux) {
+            p.set("cacheFluence", units::kCacheFluence);
+            p.set("cacheFlux", units::kCacheFlux);
+            in.cacheFluence->bind(units::kCacheFluence);
+            in.cacheFlux->bind(units::kCacheFlux);
+        }
         // Reads the light volume this many texels towards the light and carries the light back
         // through the data (shaders/volume/ray_cast.glsl, shade()).
         p.set("lightVolumeReach", options.lightVolumeReach);

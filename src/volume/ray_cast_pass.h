@@ -23,6 +23,8 @@ bool usesLightVolume(VolumeShading shading);
 bool usesGradient(VolumeShading shading);
 /// Whether the eye pass runs for these options (the paper's model in a light-volume mode).
 bool usesEyePass(const VolumeRenderOptions& options);
+/// Whether the multiple-scattering cache is built and read for these options.
+bool usesScatteringCache(const VolumeRenderOptions& options);
 
 /// Whether `caster` resolves to the compute ray caster on a software rasteriser or a hardware
 /// GPU (gl::currentDeviceIsSoftware()).
@@ -52,6 +54,9 @@ struct RayCastInputs {
     const std::vector<gl::Texture>& lightVolumes;  ///< one per light in the scattering modes
     const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights
     const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
+    /// The multiple-scattering cache's fluence and flux (volume/fluence_cache.h), if it is on.
+    const gl::Texture* cacheFluence = nullptr;
+    const gl::Texture* cacheFlux = nullptr;
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)
@@ -86,6 +91,8 @@ struct RayCastVariant {
     int integerShininess = 0;
     /// The compute ray caster (ray_cast.comp) rather than the fragment one (ray_cast.frag).
     bool compute = false;
+    /// Samples add what they scatter of the multiple-scattering cache.
+    bool scatteringCache = false;
 
     static RayCastVariant of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
                              GradientSource gradients, bool preintegration, bool softwareDevice);

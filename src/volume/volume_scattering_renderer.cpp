@@ -15,6 +15,7 @@
 #include "volume/gradient_volume_pass.h"
 #include "volume/gpu_volume.h"
 #include "volume/eye_pass.h"
+#include "volume/fluence_cache.h"
 #include "volume/light_volume_pass.h"
 #include "volume/path_trace_pass.h"
 #include "volume/preintegration.h"
@@ -62,6 +63,20 @@ struct PathTraceInputsKey {
     bool operator==(const PathTraceInputsKey&) const = default;
 };
 
+// Everything the multiple-scattering cache depends on; it restarts when this changes.
+struct FluenceCacheKey {
+    std::uint64_t volumeGeneration = 0;
+    std::uint64_t transferFunctionRevision = 0;
+    int transferFunctionEntries = 0;
+    std::vector<Light> lights;
+    glm::mat4 model{1.0f};
+    float anisotropy = 0.0f;
+    int maxBounces = 0;
+    VolumeClip clip;
+    glm::ivec3 cells{0};
+    bool operator==(const FluenceCacheKey&) const = default;
+};
+
 }  // namespace
 
 std::string_view toString(VolumeModel model) { return model == VolumeModel::Physical ? "physical" : "paper"; }
@@ -80,6 +95,11 @@ void validate(const VolumeRenderOptions& o) {
     if (o.multipleScattering && (o.shading != VolumeShading::Scattering || o.model != VolumeModel::Physical))
         throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions", "multipleScattering",
                     "needs shading Scattering and model Physical (it path-traces the physical model)");
+    if (o.multipleScatteringCache &&
+        (!detail::usesLightVolume(o.shading) || o.model != VolumeModel::Physical || o.multipleScattering))
+        throw Error(ErrorKind::InvalidArgument, "VolumeRenderOptions", "multipleScatteringCache",
+                    "needs a light-volume shading (Scattering or ScatteringGradient) and model Physical, without "
+                    "multipleScattering (the cache adds to the physical model's single scattering)");
 }
 
 struct VolumeScatteringRenderer::Impl {
@@ -180,13 +200,50 @@ struct VolumeScatteringRenderer::Impl {
     gl::Texture majorants;                                  // per brick, for the current TF
     std::optional<std::tuple<std::uint64_t, std::uint64_t, int>> majorantKey;
 
+    void updateMajorants() {
+        const auto tableKey = std::make_tuple(volumeGeneration, transferFunction.revision(), options.transferFunctionEntries);
+        if (majorantKey == tableKey) return;
+        majorants = detail::brickMajorants(*occupancy, volume->voxelLength);
+        majorantKey = tableKey;
+    }
+
+    // The multiple-scattering cache: restarted when its inputs change, refined by each frame
+    // until it holds options.cachePhotons.
+    std::optional<detail::FluenceCache> fluenceCache;
+    std::optional<FluenceCacheKey> fluenceKey;
+    void updateFluenceCache() {
+        const glm::ivec3 cells = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution);
+        FluenceCacheKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
+                            model, options.anisotropy, options.maxBounces, clip, cells};
+        const auto photons = static_cast<std::uint64_t>(options.cachePhotons);
+        if (fluenceKey == key && fluenceCache->photons() >= photons) return;  // refined: nothing to trace
+        const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
+        updateMajorants();
+        if (!fluenceCache) fluenceCache.emplace();
+        const detail::FluenceCacheInputs inputs{.volume = *volume,
+                                                .transferFunction = transferFunctionTable,
+                                                .majorants = majorants,
+                                                .model = model,
+                                                .lights = lights,
+                                                .anisotropy = options.anisotropy,
+                                                .maxBounces = options.maxBounces,
+                                                .clip = clipOrNull()};
+        if (fluenceKey != key) {
+            const auto medium = [](const FluenceCacheKey& k) {
+                return std::tie(k.volumeGeneration, k.transferFunctionRevision, k.transferFunctionEntries, k.model, k.clip,
+                                k.cells);
+            };
+            fluenceCache->restart(inputs, cells, fluenceKey && medium(*fluenceKey) == medium(key));
+            fluenceKey = std::move(key);
+        }
+        const std::uint64_t left = photons - std::min(photons, fluenceCache->photons());
+        fluenceCache->add(inputs, static_cast<int>(std::min<std::uint64_t>(left, options.cachePhotonsPerFrame)));
+        passTimer.end("scattering-cache", mark, passTiming());
+    }
+
     void renderPathTraced(const Camera& camera, RenderTarget& target) {
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
-        const auto tableKey = std::make_tuple(volumeGeneration, transferFunction.revision(), options.transferFunctionEntries);
-        if (majorantKey != tableKey) {
-            majorants = detail::brickMajorants(*occupancy, volume->voxelLength);
-            majorantKey = tableKey;
-        }
+        updateMajorants();
         PathTraceInputsKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
                                model, camera.view(), camera.projection(target.aspect()),
                                glm::ivec2(target.width(), target.height()), options.anisotropy, options.maxBounces,
@@ -362,6 +419,9 @@ const VolumeRenderOptions& VolumeScatteringRenderer::options() const { return m_
 const RenderStats& VolumeScatteringRenderer::stats() const { return m_impl->stats; }
 float VolumeScatteringRenderer::lightVolumeScaleInUse() const { return m_impl->lightVolumeScaleInUse; }
 int VolumeScatteringRenderer::accumulatedSamples() const { return m_impl->pathSamples; }
+std::uint64_t VolumeScatteringRenderer::cachedPhotons() const {
+    return m_impl->fluenceCache ? m_impl->fluenceCache->photons() : 0;
+}
 std::size_t VolumeScatteringRenderer::gradientVolumeBytes() const {
     return m_impl->gradientVolume ? m_impl->gradientVolume->bytes() : 0;
 }
@@ -391,6 +451,13 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (!m_impl->rayCast || m_impl->rayCast->variant() != variant) m_impl->rayCast.emplace(variant);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
+    const bool scatteringCache = detail::usesScatteringCache(m_impl->options);
+    if (scatteringCache) {
+        m_impl->updateFluenceCache();
+    } else {
+        m_impl->fluenceKey.reset();  // leaving the mode drops the cache
+        m_impl->fluenceCache.reset();
+    }
     const detail::PassTimer::Mark mark = m_impl->passTimer.begin(m_impl->passTiming());
     // The fragment caster cannot sample the depth of the framebuffer it draws into: it reads a copy.
     if (!variant.compute) m_impl->copyDepth(target);
@@ -404,6 +471,8 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .lightVolumes = r.lightVolumes,
                     .meshShadows = r.meshShadows,
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
+                    .cacheFluence = scatteringCache ? &r.fluenceCache->fluence() : nullptr,
+                    .cacheFlux = scatteringCache ? &r.fluenceCache->flux() : nullptr,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,

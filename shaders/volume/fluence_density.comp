@@ -1,0 +1,32 @@
+// The multiple-scattering cache's weights: per cell, the integral over it of s, sigma_t at the
+// centre of each voxel taken as constant across the voxel (fluence_photons.comp averages the
+// fluence with the same s), in model units^2; voxels that straddle cells count by their overlap.
+#include "common/ray_box.glsl"
+#include "volume/transfer_function.glsl"
+#include "volume/clip.glsl"
+#include "volume/medium_walk.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(std430, binding = 3) writeonly buffer Weights { float cellWeight[]; };
+uniform ivec3 cacheCells;
+uniform float voxelVolume;  // model units^3
+
+void main() {
+    ivec3 c = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(c, cacheCells))) return;
+    ivec3 dims = textureSize(volumeTexture, 0);
+    vec3 lo = vec3(c) * vec3(dims) / vec3(cacheCells);
+    vec3 hi = vec3(c + 1) * vec3(dims) / vec3(cacheCells);
+    ivec3 first = ivec3(floor(lo));
+    ivec3 last = min(ivec3(ceil(hi)), dims) - 1;
+    float sum = 0.0;
+    for (int z = first.z; z <= last.z; ++z)
+        for (int y = first.y; y <= last.y; ++y)
+            for (int x = first.x; x <= last.x; ++x) {
+                vec3 v = vec3(x, y, z);
+                vec3 overlap = max(min(hi, v + 1.0) - max(lo, v), vec3(0.0));
+                sum += voxelExtinction(ivec3(x, y, z)) * overlap.x * overlap.y * overlap.z;
+            }
+    cellWeight[(c.z * cacheCells.y + c.y) * cacheCells.x + c.x] = sum * voxelVolume;
+}

@@ -1,0 +1,267 @@
+// The multiple-scattering cache's photons (volume/fluence_cache.h): paths from the lights through
+// the medium, in model space, by the path tracer's delta tracking and Henyey-Greenstein
+// scattering. Once a photon has scattered, every tentative collision at p adds w s(p) / majorant
+// to the cell p lies in, s being sigma_t at the centre of p's voxel: the collision estimator of
+// the integral of s times the track length, so that the cell's fluence comes out averaged with
+// the weight s, where the medium scatters (fluence_density.comp gives the integral of s). Per
+// channel for the fluence, and times the direction of travel for the flux vector of the mean
+// channel. Light that has not scattered yet is the light volume's, and is left out.
+//
+// The sums are 64-bit fixed point in pairs of uints (low word, high word), added with integer
+// atomics and stochastic rounding: unbiased, and the same sums whatever the order of the adds,
+// so a cache does not depend on how the GPU schedules its photons. Slots per cell: fluence r, g,
+// b, then the flux's positive and negative parts along x, y and z.
+//
+// Photons are resumable, as the path tracer's paths (path_trace.comp says why): a dispatch
+// spends at most `stepsPerDispatch` units per invocation and keeps each photon's state in
+// `photons`; the host dispatches until no invocation reports unfinished work.
+#include "common/ray_box.glsl"
+#include "volume/transfer_function.glsl"
+#include "volume/clip.glsl"
+#include "common/spot_cone.glsl"
+#include "volume/medium_walk.glsl"
+
+layout(local_size_x = 64) in;
+
+uniform int invocations;             // photon slots in this run
+uniform uint photonsPerInvocation;   // photons each slot traces in this run
+uniform uint firstPhoton;            // index of this run's first photon (keys the random streams)
+uniform int restart;                 // 1: each slot starts its photons; 0: resume `photons`
+uniform int stepsPerDispatch;
+uniform int maxBounces;
+uniform ivec3 cacheCells;
+uniform float depositScale;          // fixed-point quanta per unit of w s / majorant
+uniform mat4 modelToWorld;
+uniform vec3 boxCentre;              // the box's bounding sphere, model space
+uniform float boxRadius;
+uniform int lightCount;
+uniform vec4 lightModel[MAX_LIGHTS];        // w 0: unit direction towards the light; w 1: position
+uniform vec3 lightWeight[MAX_LIGHTS];       // a photon's starting weight (rgb, largest channel 1)
+uniform float lightPick[MAX_LIGHTS];        // cumulative probability of emitting from each light
+uniform float lightConeCosine[MAX_LIGHTS];  // point lights: cone of directions that can reach the box
+uniform vec3 lightSpotAxis[MAX_LIGHTS];     // world space, as path_trace.comp
+uniform vec2 lightSpotCosines[MAX_LIGHTS];
+
+const int kRouletteStartBounce = 3;  // as the path tracer
+const uint kMaxStepsPerPhoton = 1u << 24;
+const int kWalkStepsPerEvent = 16;
+const int kSlotsPerCell = 9;
+
+// std430: 80 bytes.
+struct PhotonState {
+    vec4 throughput;  // rgb: weight; a: tau
+    vec4 origin;      // xyz: the walk's origin; w: t
+    vec4 direction;   // xyz: direction of travel; w: the walk's end
+    ivec4 cell;       // xyz: brick; w: stage
+    uvec4 counters;   // x: random state; y: scatterings so far; z: photons left; w: steps
+};
+layout(std430, binding = 0) buffer Photons { PhotonState photons[]; };
+layout(std430, binding = 1) buffer Status {
+    uint unfinished;
+    uint abandoned;
+} status;
+layout(std430, binding = 2) buffer Sums { uint sums[]; };
+
+const int kStageDone = 0;
+const int kStageTrack = 1;
+const int kStageScatter = 2;
+const int kStageFinished = 3;
+
+int stage;
+vec3 throughput;
+int bounce;
+uint photonsLeft;
+uint photonSteps;
+
+void addFixed(uint slot, float quanta) {
+    uint v = uint(quanta + uniform01());  // stochastic rounding: unbiased
+    if (v == 0u) return;
+    uint old = atomicAdd(sums[2u * slot], v);
+    if (old + v < old) atomicAdd(sums[2u * slot + 1u], 1u);  // this add wrapped the low word
+}
+
+void deposit(vec3 p) {
+    vec3 tc = (p - boxMin) / (boxMax - boxMin);
+    ivec3 dims = textureSize(volumeTexture, 0);
+    float weight = voxelExtinction(clamp(ivec3(tc * vec3(dims)), ivec3(0), dims - 1)) / majorant;
+    if (!(weight > 0.0)) return;
+    ivec3 c = clamp(ivec3(tc * vec3(cacheCells)), ivec3(0), cacheCells - 1);
+    uint base = uint((c.z * cacheCells.y + c.y) * cacheCells.x + c.x) * uint(kSlotsPerCell);
+    vec3 q = throughput * (weight * depositScale);
+    addFixed(base, q.r);
+    addFixed(base + 1u, q.g);
+    addFixed(base + 2u, q.b);
+    vec3 f = (q.r + q.g + q.b) / 3.0 * walkDirection;
+    addFixed(base + (f.x >= 0.0 ? 3u : 4u), abs(f.x));
+    addFixed(base + (f.y >= 0.0 ? 5u : 6u), abs(f.y));
+    addFixed(base + (f.z >= 0.0 ? 7u : 8u), abs(f.z));
+}
+
+// One tentative collision or brick crossing of the photon's walk.
+void walkStep() {
+    int a = nextAxis(tNext);
+    float tb = min(tNext[a], tEnd);
+    if (tb > t && majorant > 0.0 && tau < majorant * (tb - t)) {
+        t += tau / majorant;
+        vec3 p = origin + t * walkDirection;
+        vec4 tf;
+        float sigma = extinction(p, majorant, tf);
+        if (bounce > 0) deposit(p);
+        if (uniform01() * majorant < sigma) {
+            origin = p;
+            throughput *= clamp(tf.rgb, 0.0, 1.0);
+            stage = kStageScatter;
+        }
+        tau = exponential();
+    } else {
+        if (tb > t && majorant > 0.0) tau = max(0.0, tau - majorant * (tb - t));
+        t = max(t, tb);
+        int next = cell[a] + int(sign(walkDirection[a]));
+        if (tNext[a] >= tEnd || next < 0 || next >= textureSize(majorants, 0)[a]) {
+            stage = kStageFinished;  // left the box
+        } else {
+            cell[a] = next;
+            enterCell();
+        }
+    }
+}
+
+// A unit vector and two more completing an orthonormal basis (Duff et al. 2017).
+void basisAround(vec3 d, out vec3 t1, out vec3 t2) {
+    float sgn = d.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (sgn + d.z);
+    float b = d.x * d.y * a;
+    t1 = vec3(1.0 + sgn * d.x * d.x * a, sgn * b, -sgn * d.x);
+    t2 = vec3(b, sgn + d.y * d.y * a, -d.y);
+}
+
+// Emits from light i: a directional light's beam through a disk covering the box, a point
+// light's directions within the cone that can reach the box (its weight times the spot cone).
+void emit(int i, out vec3 o, out vec3 d) {
+    vec3 t1, t2;
+    float u1 = uniform01(), u2 = uniform01();
+    if (lightModel[i].w == 0.0) {
+        vec3 l = lightModel[i].xyz;
+        basisAround(l, t1, t2);
+        float r = boxRadius * sqrt(u1), phi = 2.0 * kPi * u2;
+        o = boxCentre + 2.0 * boxRadius * l + r * (cos(phi) * t1 + sin(phi) * t2);
+        d = -l;
+        return;
+    }
+    o = lightModel[i].xyz;
+    vec3 axis = boxCentre - o;
+    float axisLength = length(axis);
+    axis = axisLength > 0.0 ? axis / axisLength : vec3(0.0, 0.0, 1.0);
+    basisAround(axis, t1, t2);
+    float cosT = 1.0 - u1 * (1.0 - lightConeCosine[i]);
+    float sinT = sqrt(max(0.0, 1.0 - cosT * cosT)), phi = 2.0 * kPi * u2;
+    d = normalize(cosT * axis + sinT * (cos(phi) * t1 + sin(phi) * t2));
+    float cosAxis = dot(normalize(mat3(modelToWorld) * d), lightSpotAxis[i]);
+    throughput *= spotConeFactor(lightSpotCosines[i], cosAxis);
+}
+
+void startPhoton(uint slot) {
+    if (photonsLeft == 0u) {
+        stage = kStageDone;
+        return;
+    }
+    uint index = firstPhoton + slot * photonsPerInvocation + (photonsPerInvocation - photonsLeft);
+    rngState = pcgHash(pcgHash(index ^ 0x510e527fu) ^ 0x9b05688cu);
+    float u = uniform01();
+    int i = 0;
+    while (i + 1 < lightCount && u >= lightPick[i]) ++i;
+    throughput = lightWeight[i];
+    bounce = 0;
+    photonSteps = 0u;
+    vec3 o, d;
+    emit(i, o, d);
+    float t0 = 0.0, t1 = kFar;
+    if (!(max(max(throughput.r, throughput.g), throughput.b) > 0.0) || !clipToBox(o, d, t0, t1)) {
+        stage = kStageFinished;  // misses the box (counted all the same: the estimate stays unbiased)
+        return;
+    }
+    stage = kStageTrack;
+    startWalk(o, d, t0, t1);
+}
+
+// At a real collision: the photon scatters for the (bounce + 1)-th time, if the cache holds
+// that order (maxBounces scatterings in all, the last one the eye's), after Russian roulette.
+void scatter() {
+    float q = max(max(throughput.r, throughput.g), throughput.b);
+    if (!(q > 0.0) || bounce + 1 >= maxBounces) {
+        stage = kStageFinished;
+        return;
+    }
+    if (bounce + 1 >= kRouletteStartBounce && q < 1.0) {
+        if (uniform01() >= q) {
+            stage = kStageFinished;
+            return;
+        }
+        throughput /= q;
+    }
+    ++bounce;
+    vec3 d = scatterHG(walkDirection);
+    float t0 = 0.0, t1 = kFar;
+    if (!clipToBox(origin, d, t0, t1)) {
+        stage = kStageFinished;
+        return;
+    }
+    stage = kStageTrack;
+    startWalk(origin, d, t0, t1);
+}
+
+void load(uint i) {
+    PhotonState s = photons[i];
+    throughput = s.throughput.rgb;
+    tau = s.throughput.a;
+    origin = s.origin.xyz;
+    t = s.origin.w;
+    walkDirection = s.direction.xyz;
+    tEnd = s.direction.w;
+    cell = s.cell.xyz;
+    stage = s.cell.w;
+    rngState = s.counters.x;
+    bounce = int(s.counters.y);
+    photonsLeft = s.counters.z;
+    photonSteps = s.counters.w;
+    if (stage == kStageTrack) enterCell();
+}
+
+void store(uint i) {
+    photons[i] = PhotonState(vec4(throughput, tau), vec4(origin, t), vec4(walkDirection, tEnd), ivec4(cell, stage),
+                             uvec4(rngState, uint(bounce), photonsLeft, photonSteps));
+}
+
+void main() {
+    uint slot = gl_GlobalInvocationID.x;
+    if (slot >= uint(invocations)) return;
+    if (restart != 0) {
+        photonsLeft = photonsPerInvocation;
+        startPhoton(slot);
+    } else {
+        if (photons[slot].cell.w == kStageDone) return;
+        load(slot);
+    }
+    int budget = stepsPerDispatch;
+    while (budget > 0 && stage != kStageDone) {
+        --budget;
+        ++photonSteps;
+        for (int w = 0; w < kWalkStepsPerEvent && budget > 0 && photonSteps < kMaxStepsPerPhoton && stage == kStageTrack;
+             ++w) {
+            --budget;
+            ++photonSteps;
+            walkStep();
+        }
+        if (photonSteps >= kMaxStepsPerPhoton && stage != kStageFinished) {
+            atomicAdd(status.abandoned, 1u);
+            stage = kStageFinished;
+        }
+        if (stage == kStageScatter) scatter();
+        if (stage == kStageFinished) {
+            --photonsLeft;
+            startPhoton(slot);
+        }
+    }
+    store(slot);
+    if (stage != kStageDone) atomicAdd(status.unfinished, 1u);
+}

@@ -1,0 +1,35 @@
+// The multiple-scattering cache's textures from its photon sums (fluence_photons.comp): per cell,
+// the fluence of light scattered at least once (rgb) and the flux vector of the mean channel
+// (xyz), both in the lights' units (colour x intensity), averaged over the cell with the weight s
+// (fluence_density.comp), and premultiplied by the cell's mean weight, which the fluence
+// texture's alpha holds. Readers divide the filtered values by the filtered weight: cells
+// interpolate in proportion to the medium they hold, and cells without medium, which hold no
+// estimate, do not pull their neighbours' values towards zero.
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(std430, binding = 2) readonly buffer Sums { uint sums[]; };
+layout(std430, binding = 3) readonly buffer Weights { float cellWeight[]; };  // fluence_density.comp
+layout(rgba32f, binding = 0) uniform writeonly image3D fluence;
+layout(rgba32f, binding = 1) uniform writeonly image3D flux;
+uniform ivec3 cacheCells;
+uniform float sumsToFluence;  // power per photon / (photons x quanta per unit)
+uniform float cellVolume;     // model units^3
+
+const uint kSlotsPerCell = 9u;
+
+float slotValue(uint slot) { return float(sums[2u * slot + 1u]) * 4294967296.0 + float(sums[2u * slot]); }
+
+void main() {
+    ivec3 c = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(c, cacheCells))) return;
+    uint cellIndex = uint((c.z * cacheCells.y + c.y) * cacheCells.x + c.x);
+    uint base = cellIndex * kSlotsPerCell;
+    // The weighted mean fluence is the photons' sum over the cell's weight; times the mean weight,
+    // the weight cancels.
+    float scale = sumsToFluence / cellVolume;
+    vec3 phi = vec3(slotValue(base), slotValue(base + 1u), slotValue(base + 2u)) * scale;
+    vec3 f = vec3(slotValue(base + 3u) - slotValue(base + 4u), slotValue(base + 5u) - slotValue(base + 6u),
+                  slotValue(base + 7u) - slotValue(base + 8u)) * scale;
+    imageStore(fluence, c, vec4(phi, cellWeight[cellIndex] / cellVolume));
+    imageStore(flux, c, vec4(f, 0.0));
+}

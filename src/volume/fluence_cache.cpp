@@ -1,0 +1,233 @@
+#include "volume/fluence_cache.h"
+
+#include "core/light_geometry.h"
+#include "gl/device.h"
+#include "lighting/light_uniforms.h"
+#include "sss/log.h"
+#include "volume/clip_uniforms.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtx/component_wise.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <variant>
+
+namespace sss::detail {
+
+namespace {
+constexpr int kSlotsPerCell = 9;             // fluence_photons.comp
+constexpr std::size_t kPhotonStateBytes = 80;
+constexpr int kMaxPhotonSlots = 1 << 15;     // photons in flight at once (2.5 MiB of state)
+constexpr int kStepsPerDispatch = 1024;      // as the path tracer: under llvmpipe's loop limit
+// Fixed-point quanta per unit of a deposit (w s / majorant, at most 1): fine enough that rounding
+// is far below the photons' own noise, coarse enough that every add stays in 32 bits.
+constexpr float kQuantaPerUnit = 1048576.0f;
+// Voxels per cell side at most: the weights' pass loops over a cell's voxels in one invocation,
+// which llvmpipe stops after 65535 iterations.
+constexpr int kMaxVoxelsPerCell = 32;
+
+float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
+}  // namespace
+
+glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution) {
+    const float longest = std::max({boxSize.x, boxSize.y, boxSize.z});
+    glm::ivec3 cells;
+    for (int a = 0; a < 3; ++a)
+        cells[a] = std::clamp(static_cast<int>(std::lround(static_cast<float>(resolution) * boxSize[a] / longest)),
+                              (dims[a] + kMaxVoxelsPerCell - 1) / kMaxVoxelsPerCell, dims[a]);
+    return cells;
+}
+
+FluenceCache::FluenceCache()
+    : m_photonProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_photons.comp"}},
+                                        {{"MAX_LIGHTS", std::to_string(kMaxLights)}})),
+      m_densityProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_density.comp"}})),
+      m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})) {
+    const std::uint32_t zero[2] = {0, 0};
+    m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");
+    m_resumable = gl::currentDeviceIsSoftware();
+}
+
+void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameMedium) {
+    const std::size_t count = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
+    if (cells != m_cells) {
+        sameMedium = false;
+        m_sums = gl::Buffer::create(count * kSlotsPerCell * 2 * sizeof(std::uint32_t), nullptr, 0, "fluence-cache sums");
+        m_weights = gl::Buffer::create(count * sizeof(float), nullptr, 0, "fluence-cache cell weights");
+        m_fluence = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache");
+        m_flux = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux");
+        m_cells = cells;
+    }
+    const std::uint32_t zero = 0;
+    glClearNamedBufferData(m_sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(m_fluence.id(), 0, GL_RGBA, GL_FLOAT, black);
+    glClearTexImage(m_flux.id(), 0, GL_RGBA, GL_FLOAT, black);
+    m_photons = 0;
+    m_cellVolume = glm::compMul(in.volume.box.size()) / static_cast<float>(count);
+    if (!sameMedium) computeWeights(in);
+}
+
+void FluenceCache::computeWeights(const FluenceCacheInputs& in) {
+    const gl::Program& p = m_densityProgram;
+    setMediumUniforms(p, in);
+    const glm::vec3 voxelSize = in.volume.box.size() / glm::vec3(in.volume.dims);
+    p.set("voxelVolume", voxelSize.x * voxelSize.y * voxelSize.z);
+    p.set("cacheCells", m_cells);
+    in.volume.texture.bind(0);
+    in.transferFunction.bind(1);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
+    p.use();
+    glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
+                      static_cast<GLuint>((m_cells.z + 3) / 4));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
+}
+
+void FluenceCache::setMediumUniforms(const gl::Program& p, const FluenceCacheInputs& in) const {
+    const Bounds& box = in.volume.box;
+    p.set("volumeTexture", 0);
+    p.set("transferFunction", 1);
+    p.set("transferFunctionEntries", static_cast<float>(in.transferFunction.size().x));
+    p.set("valueScaleOffset", in.volume.valueScaleOffset);
+    p.set("boxMin", box.min);
+    p.set("boxMax", box.max);
+    p.set("voxelLength", in.volume.voxelLength);
+    setClipUniforms(p, in.clip, in.model, box);
+}
+
+void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
+    const gl::Program& p = m_photonProgram;
+    const Bounds& box = in.volume.box;
+    setMediumUniforms(p, in);
+    p.set("majorants", 2);
+    p.set("cellSize", box.size() * static_cast<float>(kBrickVoxels) / glm::vec3(in.volume.dims));
+    p.set("phaseG", in.anisotropy);
+    p.set("maxBounces", in.maxBounces);
+    p.set("cacheCells", m_cells);
+    p.set("depositScale", kQuantaPerUnit);
+    p.set("modelToWorld", in.model);
+    const glm::vec3 centre = box.center();
+    const float radius = 0.5f * glm::length(box.size());
+    p.set("boxCentre", centre);
+    p.set("boxRadius", radius);
+
+    // Each light's power into the box, in model space: a directional beam through a disk of the
+    // bounding sphere's radius; a point light's intensity (falloff in world units, so divided by
+    // the model's mean scale squared) over the cone of directions towards the sphere.
+    const glm::mat4 worldToModel = glm::inverse(in.model);
+    const glm::mat3 worldToModelLinear(worldToModel);
+    const float meanScale = std::cbrt(std::abs(glm::determinant(glm::mat3(in.model))));
+    struct Emitter {
+        glm::vec4 modelVector;
+        glm::vec3 power;
+        float coneCosine;
+        const Light* light;
+    };
+    std::vector<Emitter> emitters;
+    for (const Light& light : in.lights) {
+        const glm::vec3 radiance = lightRadiance(light);
+        if (!(largestChannel(radiance) > 0.0f)) continue;
+        if (const auto* d = std::get_if<DirectionalLight>(&light)) {
+            const glm::vec3 towards = glm::normalize(worldToModelLinear * -glm::normalize(d->direction));
+            emitters.push_back({glm::vec4(towards, 0.0f), radiance * std::numbers::pi_v<float> * radius * radius, 1.0f,
+                                &light});
+        } else {
+            const glm::vec3 position(worldToModel * glm::vec4(*lightPosition(light), 1.0f));
+            const float distance = glm::length(position - centre);
+            const float coneCosine =
+                distance > radius ? std::sqrt(std::max(0.0f, 1.0f - (radius / distance) * (radius / distance))) : -1.0f;
+            const float solidAngle = 2.0f * std::numbers::pi_v<float> * (1.0f - coneCosine);
+            emitters.push_back({glm::vec4(position, 1.0f), radiance / (meanScale * meanScale) * solidAngle, coneCosine,
+                                &light});
+        }
+    }
+    m_powerUnit = 0.0f;
+    for (const Emitter& e : emitters) m_powerUnit += largestChannel(e.power);
+    float cumulative = 0.0f;
+    for (std::size_t k = 0; k < emitters.size(); ++k) {
+        const Emitter& e = emitters[k];
+        const std::string i = "[" + std::to_string(k) + "]";
+        cumulative += largestChannel(e.power) / m_powerUnit;
+        p.set("lightModel" + i, e.modelVector);
+        p.set("lightWeight" + i, e.power / largestChannel(e.power));
+        p.set("lightPick" + i, k + 1 == emitters.size() ? 1.0f : cumulative);
+        p.set("lightConeCosine" + i, e.coneCosine);
+        setSpotConeUniforms(p, static_cast<int>(k), *e.light);
+    }
+    p.set("lightCount", static_cast<int>(emitters.size()));
+}
+
+void FluenceCache::add(const FluenceCacheInputs& in, int photons) {
+    if (photons <= 0 || m_cells.x == 0) return;
+    setUniforms(in);
+    const gl::Program& p = m_photonProgram;
+    const int slots = std::min(photons, kMaxPhotonSlots);
+    const unsigned perSlot = static_cast<unsigned>((photons + slots - 1) / slots);
+    if (m_photonStates.size() < static_cast<std::size_t>(slots) * kPhotonStateBytes)
+        m_photonStates = gl::Buffer::create(static_cast<std::size_t>(kMaxPhotonSlots) * kPhotonStateBytes, nullptr, 0,
+                                            "fluence-cache photon states");
+    p.set("invocations", slots);
+    p.set("photonsPerInvocation", perSlot);
+    p.set("firstPhoton", static_cast<unsigned>(m_photons));
+    p.set("stepsPerDispatch", m_resumable ? kStepsPerDispatch : std::numeric_limits<int>::max());
+    in.volume.texture.bind(0);
+    in.transferFunction.bind(1);
+    in.majorants.bind(2);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_photonStates.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_status.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_sums.id());
+    p.use();
+    if (m_powerUnit > 0.0f) dispatchPhotons(slots);
+    m_photons += static_cast<std::uint64_t>(slots) * perSlot;
+    resolve();
+    glUseProgram(0);
+    for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+}
+
+void FluenceCache::dispatchPhotons(int invocations) {
+    const gl::Program& p = m_photonProgram;
+    const std::uint32_t zero[2] = {0, 0};
+    std::uint32_t status[2] = {0, 0};
+    m_status.upload(0, sizeof(zero), zero);
+    m_lastDispatches = 0;
+    for (bool restart = true;; restart = false) {
+        p.set("restart", restart ? 1 : 0);
+        glDispatchCompute(static_cast<GLuint>((invocations + 63) / 64), 1, 1);
+        ++m_lastDispatches;
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (!m_resumable) break;
+        glGetNamedBufferSubData(m_status.id(), 0, sizeof(status), status);
+        if (status[0] == 0) break;
+        m_status.upload(0, sizeof(std::uint32_t), zero);
+    }
+    if (status[1] > 0)
+        log(LogLevel::Warning, "FluenceCache: " + std::to_string(status[1]) +
+                                   " photons were given up after 2^24 steps each (degenerate rays)");
+}
+
+void FluenceCache::resolve() {
+    const gl::Program& p = m_resolveProgram;
+    p.set("cacheCells", m_cells);
+    p.set("sumsToFluence", m_photons > 0 ? m_powerUnit / (static_cast<float>(m_photons) * kQuantaPerUnit) : 0.0f);
+    p.set("cellVolume", m_cellVolume);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_sums.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
+    m_fluence.bindImage(0, GL_WRITE_ONLY);
+    m_flux.bindImage(1, GL_WRITE_ONLY);
+    p.use();
+    glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
+                      static_cast<GLuint>((m_cells.z + 3) / 4));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+}
+
+}  // namespace sss::detail

@@ -1,0 +1,92 @@
+#pragma once
+// The multiple-scattering cache (VolumeRenderOptions::multipleScatteringCache): a grid over the
+// volume's box holding, per cell, the fluence of the light that has scattered at least once
+// (rgb) and the flux vector of its mean channel, in model space. The ray caster adds what a
+// sample scatters of it towards the eye, sigma_s (phi + 3 g F . w) / (4 pi), to the light
+// volume's single scattering: the radiance field taken as linear in direction (first-order
+// spherical harmonics), convolved with the Henyey-Greenstein phase function.
+//
+// It is built by photons from the lights (shaders/volume/fluence_photons.comp): the path
+// tracer's medium, delta tracking and scattering, with the collision estimator of each cell's
+// track length once a photon has scattered. View-independent: camera moves reuse it. It refines
+// progressively: each add() traces more photons into the same sums, and the textures are their
+// mean so far.
+#include "gl/buffer.h"
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "sss/light.h"
+#include "sss/volume_clip.h"
+#include "volume/empty_space.h"
+#include "volume/gpu_volume.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace sss::detail {
+
+/// What the photons cross and where they come from. References stay owned by the renderer.
+struct FluenceCacheInputs {
+    const GpuVolume& volume;
+    const gl::Texture& transferFunction;
+    const gl::Texture& majorants;      ///< brickMajorants() for the current TF
+    const glm::mat4& model;
+    const std::vector<Light>& lights;
+    float anisotropy = 0.5f;           ///< Henyey-Greenstein g
+    int maxBounces = 100000;           ///< scatterings in all, the eye's included
+    const VolumeClip* clip = nullptr;  ///< cut matter casts no shadows unless the clip says so
+};
+
+/// Cells of the cache along each axis: `resolution` along the box's longest side, the others in
+/// proportion, at most one per voxel and at most 32 voxels wide.
+glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution);
+
+class FluenceCache {
+public:
+    FluenceCache();
+    /// Empties the cache for new inputs, at `cells` cells. `sameMedium`: the volume, transfer
+    /// function, model transform and clip are those of the last restart (only the lights or the
+    /// scattering changed), so the cells' weights are kept.
+    void restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameMedium);
+    /// Traces `photons` more photons into the sums and updates the textures to their mean.
+    void add(const FluenceCacheInputs& in, int photons);
+
+    /// Per cell: rgb fluence times the cell's mean weight, and that weight (RGBA32F): divide
+    /// filtered values by the filtered weight (fluence_resolve.comp). Texel centres are the
+    /// cells' centres.
+    const gl::Texture& fluence() const { return m_fluence; }
+    /// Per cell: xyz flux vector of the mean channel times the weight, model space (RGBA32F).
+    const gl::Texture& flux() const { return m_flux; }
+    /// Photons traced since the last restart (those that missed the box included).
+    std::uint64_t photons() const { return m_photons; }
+    glm::ivec3 cells() const { return m_cells; }
+    /// Dispatches the last add() took.
+    int lastDispatches() const { return m_lastDispatches; }
+
+private:
+    void setUniforms(const FluenceCacheInputs& in);
+    void setMediumUniforms(const gl::Program& p, const FluenceCacheInputs& in) const;
+    /// Each cell's integral of the weight s (fluence_density.comp).
+    void computeWeights(const FluenceCacheInputs& in);
+    void dispatchPhotons(int invocations);
+    void resolve();
+
+    gl::Program m_photonProgram;
+    gl::Program m_densityProgram;
+    gl::Program m_resolveProgram;
+    glm::ivec3 m_cells{0};
+    gl::Buffer m_sums;            // 9 slots per cell, 64-bit fixed point (fluence_photons.comp)
+    gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
+    gl::Buffer m_photonStates;
+    gl::Buffer m_status;
+    gl::Texture m_fluence, m_flux;
+    std::uint64_t m_photons = 0;
+    float m_cellVolume = 1.0f;    // model units^3
+    float m_powerUnit = 0.0f;     // power a photon of weight 1 carries (see setUniforms)
+    bool m_resumable = true;
+    int m_lastDispatches = 0;
+};
+
+}  // namespace sss::detail
