@@ -391,6 +391,72 @@ TimedImage renderVolumeTimed(const sss::Volume& volume, const sss::TransferFunct
     return {target.readColor(), times[1]};
 }
 
+// Median of three timed frames of `renderer` at a fixed view, each waited for.
+double fixedFrameMs(sss::VolumeScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target) {
+    std::vector<double> times;
+    for (int r = 0; r < 3; ++r) {
+        target.clear({0, 0, 0, 0});
+        const auto t0 = std::chrono::steady_clock::now();
+        renderer.render(camera, target);
+        sss::finishGpuWork();
+        times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(times.begin(), times.end());
+    return times[1];
+}
+
+// The multiple-scattering cache after a light change: the first frame (light volume and the
+// first photons), then frames until the cache holds its photons, each timed and its error
+// against the truth read back outside the clock; then fixed frames, and an emission-absorption
+// frame of the same scene in the same run.
+struct CacheRun {
+    double firstFrameError = 0.0, refinedError = 0.0, rebuildMs = 0.0, msTo10 = -1.0, msTo5 = -1.0, totalMs = 0.0;
+    double fixedMs = 0.0, eaMs = 0.0, truthNoiseShare = 0.0;
+    glm::dvec3 ratio{0.0};
+    std::uint64_t photons = 0;
+    sss::Image image{1, 1};
+};
+
+CacheRun runScatteringCache(const sss::Volume& volume, const sss::TransferFunction& tf, const sss::DirectionalLight& light,
+                            const sss::VolumeRenderOptions& options, const sss::Camera& camera, int width, int height,
+                            const sss::Image& truth) {
+    CacheRun run;
+    sss::VolumeScatteringRenderer renderer(options);
+    renderer.setVolume(volume);
+    renderer.setTransferFunction(tf);
+    renderer.setLights({nudged(light)});
+    sss::RenderTarget target(width, height);
+    target.clear({0, 0, 0, 0});
+    renderer.render(camera, target);  // compiles the programs: not part of a light change
+    renderer.setLights({light});
+    const auto budget = static_cast<std::uint64_t>(options.cachePhotons);
+    for (bool first = true; first || renderer.cachedPhotons() < budget; first = false) {
+        target.clear({0, 0, 0, 0});
+        const auto t0 = std::chrono::steady_clock::now();
+        renderer.render(camera, target);
+        sss::finishGpuWork();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        run.totalMs += ms;
+        run.image = target.readColor();
+        const double error = sss::computeErrorMetrics(run.image, truth).relRmse;
+        if (first) run.firstFrameError = error, run.rebuildMs = ms;
+        if (run.msTo10 < 0.0 && error <= 0.10) run.msTo10 = run.totalMs;
+        if (run.msTo5 < 0.0 && error <= 0.05) run.msTo5 = run.totalMs;
+        run.refinedError = error;
+    }
+    run.photons = renderer.cachedPhotons();
+    run.ratio = meanRatio(run.image, truth);
+    run.fixedMs = fixedFrameMs(renderer, camera, target);
+    sss::VolumeScatteringRenderer ea{sss::VolumeRenderOptions{}};
+    ea.setVolume(volume);
+    ea.setTransferFunction(tf);
+    ea.setLights({light});
+    target.clear({0, 0, 0, 0});
+    ea.render(camera, target);
+    run.eaMs = fixedFrameMs(ea, camera, target);
+    return run;
+}
+
 }  // namespace
 
 AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions& options) {
@@ -437,6 +503,15 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
           << (options.quick ? 5 : 120) << " s.\n\n"
           << "| scene | paths per pixel | vs multiple | without truth noise | mean ratio R / G / B | to 10 % | to 5 % | ms per frame |\n"
           << "|---|---:|---:|---:|---|---|---|---:|\n";
+    std::ostringstream cacheMd;
+    cacheMd << "\nThe multiple-scattering cache (multiple-scattering-cache: VolumeRenderOptions::multipleScatteringCache, "
+               "physical model, defaults but the cells) after a light change, against the multiple-scattering truth: "
+               "the first frame (light volume and the first photons), then frames until the cache holds its photons "
+               "(error also without the truth's noise); fixed frame (camera moves: nothing rebuilt) and "
+               "emission-absorption frame of the same scene in the same run, ms; each frame waited for.\n\n"
+            << "| scene | cells | photons | first frame | refined | mean ratio R / G / B | rebuild ms | to 10 % | to 5 % | "
+               "fixed ms | EA ms | fixed / EA | rebuild / EA |\n"
+            << "|---|---:|---:|---:|---:|---|---:|---|---|---:|---:|---:|---:|\n";
     PlotSeries series[3] = {{"paper light volume (scaled)", {}, 0xd62728, false},
                             {"physical single", {}, 0x1f77b4, false},
                             {"GPU path traced vs multiple", {}, 0x2ca02c, false}};
@@ -505,6 +580,51 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
             series[m].points.push_back({double(index), 100.0 * (physical ? eSingle : eSingleScaled)});
             if (!options.imageDir.empty())
                 sss::toDisplay(gpu, {}).savePng(options.imageDir / ("accuracy-volume-" + scene.name + "-" + method + ".png"));
+        }
+        for (const int resolution : {32, 64}) {
+            sss::VolumeRenderOptions o;
+            o.shading = sss::VolumeShading::Scattering;
+            o.model = sss::VolumeModel::Physical;
+            o.multipleScatteringCache = true;
+            o.anisotropy = kG;
+            o.cacheResolution = resolution;
+            if (options.quick) o.cachePhotons = o.cachePhotonsPerFrame;
+            const CacheRun run = runScatteringCache(scene.volume, scene.tf, light, o, camera, width, height, multiple.image);
+            auto orNull = [](double v) { return v < 0.0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v); };
+            const double eCorrected = std::sqrt(std::max(0.0, run.refinedError * run.refinedError -
+                                                                  multiple.relativeRmseEstimate * multiple.relativeRmseEstimate));
+            const std::string method = "multiple-scattering-cache";
+            report.json.push_back({{"scene", scene.name},
+                                   {"method", method},
+                                   {"cache_resolution", resolution},
+                                   {"photons", run.photons},
+                                   {"photons_per_frame", o.cachePhotonsPerFrame},
+                                   {"rel_rmse_single", sss::computeErrorMetrics(run.image, single.image).relRmse},
+                                   {"rel_rmse_multiple", run.refinedError},
+                                   {"rel_rmse_multiple_without_truth_noise", eCorrected},
+                                   {"rel_rmse_multiple_first_frame", run.firstFrameError},
+                                   {"mean_ratio", {run.ratio.x, run.ratio.y, run.ratio.z}},
+                                   {"ms", run.fixedMs},
+                                   {"fixed_ms", run.fixedMs},
+                                   {"ea_ms", run.eaMs},
+                                   {"rebuild_ms", run.rebuildMs},
+                                   {"ms_to_10_percent", orNull(run.msTo10)},
+                                   {"ms_to_5_percent", orNull(run.msTo5)},
+                                   {"ms_total", run.totalMs},
+                                   {"width", width},
+                                   {"height", height},
+                                   {"truth_paths_per_pixel", spp},
+                                   {"truth_noise_multiple", multiple.relativeRmseEstimate}});
+            auto when = [](double ms) { return ms < 0.0 ? std::string("not reached") : fixed(ms / 1000.0, 2) + " s"; };
+            cacheMd << "| " << scene.name << " | " << resolution << " | " << run.photons << " | "
+                    << fixed(100.0 * run.firstFrameError, 1) << " % | " << fixed(100.0 * run.refinedError, 1) << " % ("
+                    << fixed(100.0 * eCorrected, 1) << " %) | " << fixed(run.ratio.x, 3) << " / " << fixed(run.ratio.y, 3)
+                    << " / " << fixed(run.ratio.z, 3) << " | " << fixed(run.rebuildMs, 0) << " | " << when(run.msTo10)
+                    << " | " << when(run.msTo5) << " | " << fixed(run.fixedMs, 1) << " | " << fixed(run.eaMs, 1) << " | "
+                    << fixed(run.fixedMs / run.eaMs, 2) << " | " << fixed(run.rebuildMs / run.eaMs, 1) << " |\n";
+            if (!options.imageDir.empty())
+                sss::toDisplay(run.image, {}).savePng(options.imageDir / ("accuracy-volume-" + scene.name + "-" + method +
+                                                                          "-" + std::to_string(resolution) + ".png"));
         }
         {
             // The progressive GPU path tracer (VolumeRenderOptions::multipleScattering): frames
@@ -591,6 +711,7 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
         }
     }
     md << truthMd.str();
+    md << cacheMd.str();
     md << gpuMd.str();
     md << "\nScenes in the plot, left to right: ";
     for (size_t i = 0; i < scenes.size(); ++i) md << (i ? ", " : "") << i + 1 << " = " << scenes[i].name;

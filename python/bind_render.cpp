@@ -273,6 +273,8 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
                       "TransferFunction (default: the ramp)")
         .def_property_readonly("accumulated_samples", [](W& w) { return w.get().accumulatedSamples(); },
                                "paths per pixel in the multiple-scattering mean")
+        .def_property_readonly("cached_photons", [](W& w) { return w.get().cachedPhotons(); },
+                               "photons in the multiple-scattering cache (0 when it is off)")
         .def("set_clip",
              [](W& w, const std::vector<std::pair<glm::vec3, glm::vec3>>& planes, glm::vec3 cropMin, glm::vec3 cropMax,
                 bool clippedMatterCastsShadows, sss::CropSpace cropSpace) {

@@ -98,6 +98,201 @@ double meanRatio(const Image& test, const Image& reference) {
 
 }  // namespace
 
+TEST_CASE("the multiple-scattering cache converges towards the CPU path tracer's full transport",
+          "[gl][volume][scattering-cache]") {
+    test::GlTestScope gl;
+    const Camera camera = blobsCamera();
+    const VolumePathTracerResult truth =
+        cpuPathTraced(blobs(), blobsTf(), camera, VolumeScatteringMode::MultipleScattering, 2048);
+    const VolumePathTracerResult single =
+        cpuPathTraced(blobs(), blobsTf(), camera, VolumeScatteringMode::SingleScattering, 512);
+    // Multiple scattering carries more light than single scattering here.
+    REQUIRE(meanRatio(truth.image, single.image) > 2.0);
+
+    Scene scene(cached(1 << 20, 24), blobs(), blobsTf());
+    const Image first = scene.frame(camera);
+    REQUIRE(scene.renderer.cachedPhotons() == (1u << 16));
+    const Image refined = scene.refined(camera);
+    REQUIRE(scene.renderer.cachedPhotons() == (1u << 20));
+    VolumeRenderOptions withoutCache = cached(1);
+    withoutCache.multipleScatteringCache = false;
+    Scene singleScene(withoutCache, blobs(), blobsTf());
+    const double errorSingle = computeErrorMetrics(singleScene.frame(camera), truth.image).relRmse;
+    const double errorFirst = computeErrorMetrics(first, truth.image).relRmse;
+    const double errorRefined = computeErrorMetrics(refined, truth.image).relRmse;
+    INFO("relRMSE against the full transport: single scattering " << errorSingle << ", first frame " << errorFirst
+                                                                  << ", refined " << errorRefined << " (truth's noise "
+                                                                  << truth.relativeRmseEstimate << ")");
+    // Measured on llvmpipe: single scattering 69 %, first frame (2^16 photons) 12.9 %, refined
+    // (2^20) 7.8 % with the truth's own 4.1 %, mean ratio 1.00 (with the fluence averaged without
+    // the sigma weight it was 0.96, and with the radiance taken as linear in direction 0.92).
+    CHECK(errorSingle > 0.5);
+    CHECK(errorFirst < 0.16);
+    CHECK(errorRefined < 0.09);
+    CHECK(errorRefined < errorFirst);
+    CHECK(meanRatio(refined, truth.image) == Approx(1.0).margin(0.03));
+    gl.requireNoErrors();
+}
+
+TEST_CASE("an albedo-1 cube lit by the cache sends out all the power it takes from the beam",
+          "[gl][volume][scattering-cache]") {
+    // A unit cube, sigma_t = 2, albedo 1, g = 0.5, lit along -z with E = 1: it takes 1 - exp(-2)
+    // of the beam's power, and all of it must leave. What leaves is the intensity I(w) (an
+    // orthographic image's radiance times pixel area) integrated over the sphere: 64 strata of
+    // equal area, one jittered direction each. Only the camera moves: the cache is built once.
+    test::GlTestScope gl;
+    const int n = 8;
+    const double voxel = 1.0 / n;
+    const float opacity = static_cast<float>(-std::expm1(-2.0 * voxel));
+    const double sigma = -std::log1p(-static_cast<double>(opacity)) / voxel;
+    const Volume cube = Volume::fromData({n, n, n}, VoxelType::UInt8, std::vector<uint8_t>(n * n * n, 255));
+    const TransferFunction tf({{0.0f, glm::vec3(1.0f), opacity}, {1.0f, glm::vec3(1.0f), opacity}});
+    const std::vector<Light> beam{DirectionalLight{.direction = {0.0f, 0.0f, -1.0f}, .intensity = 1.0f}};
+
+    constexpr int kPixels = 64;
+    constexpr float kViewSize = 1.8f;  // > sqrt(3): the cube fits from any side
+    const double pixelArea = double(kViewSize) / kPixels * double(kViewSize) / kPixels;
+    const glm::vec3 centre = cube.worldBounds().center();
+    auto leavingPower = [&](const VolumeRenderOptions& options, std::uint64_t* cacheRuns) {
+        VolumeScatteringRenderer renderer(options);
+        renderer.setVolume(cube);
+        renderer.setTransferFunction(tf);
+        renderer.setLights(beam);
+        RenderTarget target(kPixels, kPixels);
+        std::uint64_t state = 0x2545f491ull;
+        auto uniform = [&] {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            return double(state >> 11) * 0x1.0p-53;
+        };
+        constexpr int kStrata = 8;
+        double sum = 0.0;
+        for (int i = 0; i < kStrata; ++i)
+            for (int j = 0; j < kStrata; ++j) {
+                const double z = -1.0 + (i + uniform()) * 2.0 / kStrata, yaw = (j + uniform()) * 360.0 / kStrata;
+                Camera camera;
+                camera.setProjectionType(Projection::Orthographic);
+                camera.setOrthoHeight(kViewSize);
+                camera.setTarget(centre);
+                camera.setDistance(3.0f);
+                camera.setYaw(static_cast<float>(yaw - 180.0));
+                camera.setPitch(static_cast<float>(std::asin(z) * 180.0 / std::numbers::pi));
+                target.clear(glm::vec4(0.0f));
+                renderer.render(camera, target);
+                while (renderer.cachedPhotons() < static_cast<std::uint64_t>(options.cachePhotons) &&
+                       options.multipleScatteringCache) {
+                    target.clear(glm::vec4(0.0f));
+                    renderer.render(camera, target);
+                }
+                if (i == 0 && j == 0 && cacheRuns) *cacheRuns = renderer.stats().runs("scattering-cache");
+                const Image image = target.readColor();
+                for (int y = 0; y < kPixels; ++y)
+                    for (int x = 0; x < kPixels; ++x) sum += image.at(x, y).r * pixelArea;
+            }
+        if (cacheRuns) *cacheRuns = renderer.stats().runs("scattering-cache") - *cacheRuns;
+        return 4.0 * std::numbers::pi / (kStrata * kStrata) * sum;
+    };
+    const double expected = -std::expm1(-sigma);
+    VolumeRenderOptions o = cached(1 << 20, 8);
+    std::uint64_t cacheRunsAfterFirstView = 0;
+    const double withCache = leavingPower(o, &cacheRunsAfterFirstView);
+    o.multipleScatteringCache = false;
+    const double singleOnly = leavingPower(o, nullptr);
+    INFO("scattered out: with the cache " << withCache << ", single scattering only " << singleOnly
+                                          << "; taken from the beam " << expected);
+    // Measured 0.872 against 0.865 (+0.8 %), single scattering alone 0.374.
+    CHECK(withCache == Approx(expected).epsilon(0.03));
+    CHECK(singleOnly < 0.75 * expected);  // the test sees missing orders
+    CHECK(cacheRunsAfterFirstView == 0);  // 63 camera moves traced no photons
+    gl.requireNoErrors();
+}
+
+TEST_CASE("the multiple-scattering cache adds nothing for a black medium or a single bounce",
+          "[gl][volume][scattering-cache]") {
+    test::GlTestScope gl;
+    const Camera camera = blobsCamera();
+    for (int variant = 0; variant < 2; ++variant) {
+        const bool black = variant == 0;
+        const TransferFunction tf = black ? blobsTf(glm::vec3(0.0f)) : blobsTf();
+        VolumeRenderOptions o = cached(1 << 16, 24);
+        if (!black) o.maxBounces = 1;
+        Scene scene(o, blobs(), tf);
+        const Image image = scene.frame(camera);
+        REQUIRE(scene.renderer.cachedPhotons() == (1u << 16));
+        o.multipleScatteringCache = false;
+        Scene without(o, blobs(), tf);
+        const Image reference = without.frame(camera);
+        INFO((black ? "albedo 0" : "maxBounces 1"));
+        // Exactly single scattering: the same image, bit for bit.
+        CHECK(computeErrorMetrics(image, reference).maxAbsError == 0.0);
+    }
+    gl.requireNoErrors();
+}
+
+TEST_CASE("the multiple-scattering cache is kept for camera moves and restarted by light changes",
+          "[gl][volume][scattering-cache]") {
+    test::GlTestScope gl;
+    VolumeRenderOptions o = cached(1 << 17, 16);
+    o.cachePhotonsPerFrame = 1 << 16;
+    Scene scene(o, blobs(), blobsTf());
+    scene.frame(blobsCamera(30.0f));
+    scene.frame(blobsCamera(30.0f));
+    REQUIRE(scene.renderer.cachedPhotons() == (1u << 17));
+    const std::uint64_t runs = scene.renderer.stats().runs("scattering-cache");
+    const std::uint64_t lightVolumeRuns = scene.renderer.stats().runs("light-volume");
+    for (float yaw : {60.0f, 120.0f, -90.0f}) scene.frame(blobsCamera(yaw));
+    CHECK(scene.renderer.stats().runs("scattering-cache") == runs);
+    CHECK(scene.renderer.stats().runs("light-volume") == lightVolumeRuns);
+    CHECK(scene.renderer.cachedPhotons() == (1u << 17));
+    scene.renderer.setLights({DirectionalLight{.direction = {1.0f, -0.7f, -0.4f}, .intensity = 10.0f}});
+    scene.frame(blobsCamera());
+    CHECK(scene.renderer.cachedPhotons() == (1u << 16));  // restarted with the first frame's photons
+    CHECK(scene.renderer.stats().runs("scattering-cache") == runs + 1);
+    // Leaving the mode drops the cache.
+    o.multipleScatteringCache = false;
+    scene.renderer.setOptions(o);
+    scene.frame(blobsCamera());
+    CHECK(scene.renderer.cachedPhotons() == 0);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("the multiple-scattering cache's sums do not depend on how photons are split into frames",
+          "[gl][volume][scattering-cache]") {
+    // Integer sums: the same photons give the same cache bit for bit, whatever the order in
+    // which the GPU adds them.
+    test::GlTestScope gl;
+    VolumeRenderOptions twoFrames = cached(1 << 16, 16);
+    twoFrames.cachePhotonsPerFrame = 1 << 15;
+    VolumeRenderOptions oneFrame = cached(1 << 16, 16);
+    Scene a(twoFrames, blobs(), blobsTf()), b(oneFrame, blobs(), blobsTf());
+    a.frame(blobsCamera());
+    const Image split = a.frame(blobsCamera());
+    const Image whole = b.frame(blobsCamera());
+    REQUIRE(a.renderer.cachedPhotons() == b.renderer.cachedPhotons());
+    CHECK(computeErrorMetrics(split, whole).maxAbsError == 0.0);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("multiple-scattering cache options are validated", "[gl][volume][scattering-cache][errors]") {
+    VolumeRenderOptions o = cached(1 << 16);
+    o.model = VolumeModel::Paper;
+    CHECK_THROWS_WITH(validate(o), Catch::Contains("multipleScatteringCache") && Catch::Contains("Physical"));
+    o = cached(1 << 16);
+    o.shading = VolumeShading::EmissionAbsorption;
+    CHECK_THROWS_WITH(validate(o), Catch::Contains("multipleScatteringCache"));
+    o = cached(1 << 16);
+    o.multipleScattering = true;
+    CHECK_THROWS_WITH(validate(o), Catch::Contains("multipleScatteringCache"));
+    o = cached(1 << 16);
+    o.cacheResolution = 0;
+    CHECK_THROWS_WITH(validate(o), Catch::Contains("cacheResolution"));
+    o = cached(1 << 16);
+    o.cachePhotons = 0;
+    CHECK_THROWS_WITH(validate(o), Catch::Contains("cachePhotons"));
+    o = cached(1 << 16);
+    o.shading = VolumeShading::ScatteringGradient;
+    CHECK_NOTHROW(validate(o));
+}
+
 TEST_CASE("multiple-scattering cache: report against the CPU path tracer", "[.][scattering-cache-report]") {
     test::GlTestScope gl;
     const bool cube = std::getenv("SSS_CACHE_REPORT_CUBE") != nullptr;
