@@ -124,6 +124,18 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
                              "--volume-model paper");
         a.volume.model = sss::VolumeModel::Physical;
     }
+    if (a.volume.multipleScatteringCache) {
+        if (a.volume.multipleScattering)
+            throw UsageError("--multiple-scattering-cache adds to single scattering what --multiple-scattering path-traces "
+                             "whole: give one of them");
+        if (a.mode != "scattering" && a.mode != "scattering-gradient" && a.mode != "hybrid")
+            throw UsageError("--multiple-scattering-cache needs --mode scattering, scattering-gradient or hybrid (with a "
+                             "volume), got --mode " + a.mode);
+        if (given(app, "--volume-model") && a.volume.model != sss::VolumeModel::Physical)
+            throw UsageError("--multiple-scattering-cache adds to the physical model's single scattering: it cannot be "
+                             "combined with --volume-model paper");
+        a.volume.model = sss::VolumeModel::Physical;
+    }
     if (a.mode == "hybrid") {
         if (!hasMesh || a.input.volume.empty()) throw UsageError("--mode hybrid needs --mesh (or --isosurface) and --volume");
     } else if (!meshMode && !volumeShading(a.mode)) {

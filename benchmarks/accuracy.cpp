@@ -581,7 +581,7 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
             if (!options.imageDir.empty())
                 sss::toDisplay(gpu, {}).savePng(options.imageDir / ("accuracy-volume-" + scene.name + "-" + method + ".png"));
         }
-        for (const int resolution : {32, 64}) {
+        for (const int resolution : {64, 128}) {
             sss::VolumeRenderOptions o;
             o.shading = sss::VolumeShading::Scattering;
             o.model = sss::VolumeModel::Physical;

@@ -175,7 +175,9 @@ void Viewer::renderScene(glm::ivec2 size) {
     const glm::mat4 viewProjection = m_model.camera.projection(m_model.target->aspect()) * m_model.camera.view();
     if (!m_accumulator || m_accumulator->result().width() != size.x || m_accumulator->result().height() != size.y)
         m_accumulator.emplace(size.x, size.y);
-    if (m_model.viewChanged || viewProjection != m_lastViewProjection || !m_model.mapsConverged) m_accumulator->reset();
+    if (m_model.viewChanged || viewProjection != m_lastViewProjection || !m_model.mapsConverged ||
+        m_model.cacheRefining())
+        m_accumulator->reset();
     m_model.viewChanged = false;
     m_lastViewProjection = viewProjection;
     if (m_model.pathTracing()) {

@@ -223,11 +223,21 @@ sss::VolumeRenderOptions ViewerModel::renderedVolumeOptions() const {
     // The path tracer needs the physical model without highlights; elsewhere the box is inert.
     o.multipleScattering = volumeMultiple && o.shading == sss::VolumeShading::Scattering &&
                            o.model == sss::VolumeModel::Physical;
+    // The cache adds to the physical model's single scattering; the path tracer has it all.
+    o.multipleScatteringCache = volumeOptions.multipleScatteringCache && volumeScattering &&
+                                o.model == sss::VolumeModel::Physical && !o.multipleScattering;
     return o;
 }
 
 bool ViewerModel::pathTracing() const {
     return volume && renderedVolumeOptions().multipleScattering;
+}
+
+bool ViewerModel::cacheRefining() {
+    if (!volume || !compositor || compositor->volumeCount() == 0) return false;
+    const sss::VolumeRenderOptions o = renderedVolumeOptions();
+    return o.multipleScatteringCache &&
+           compositor->volume(0).cachedPhotons() < static_cast<std::uint64_t>(o.cachePhotons);
 }
 
 sss::Light ViewerModel::light() const {

@@ -52,6 +52,8 @@ public:
     sss::MeshRenderOptions renderedMeshOptions() const;
     sss::VolumeRenderOptions renderedVolumeOptions() const;
     bool pathTracing() const;
+    /// The volume's multiple-scattering cache is on and still taking photons (each frame adds some).
+    bool cacheRefining();
     sss::Light light() const;
     // A scene file's placement, else side by side when both are there.
     sss::SceneTransform placedMeshTransform() const;

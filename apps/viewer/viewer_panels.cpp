@@ -349,6 +349,17 @@ void Panels::volumeSection() {
         }
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("on: TF colour as albedo x phase function x light (about 4 pi dimmer)\noff: the paper's ambient + diffuse x light-volume colour");
+        if (physical && !m_model.volumeMultiple) {
+            m_model.volumeDirty |=
+                ImGui::Checkbox("multiple scattering (cache)", &m_model.volumeOptions.multipleScatteringCache);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("adds the light scattered more than once, from a view-independent cache that\n"
+                                  "photons from the light fill over the next frames; camera moves reuse it");
+            if (m_model.volumeOptions.multipleScatteringCache)
+                ImGui::Text("cache photons: %llu of %d",
+                            static_cast<unsigned long long>(m_model.compositor->volume(0).cachedPhotons()),
+                            m_model.volumeOptions.cachePhotons);
+        }
         if (physical && !m_model.volumeHighlights) {
             m_model.volumeDirty |= ImGui::Checkbox("multiple scattering (path traced)", &m_model.volumeMultiple);
             if (ImGui::IsItemHovered())

@@ -4,13 +4,13 @@
 // to the cell p lies in, s being sigma_t at the centre of p's voxel: the collision estimator of
 // the integral of s times the track length, so that the cell's fluence comes out averaged with
 // the weight s, where the medium scatters (fluence_density.comp gives the integral of s). Per
-// channel for the fluence, and times the direction of travel for the flux vector of the mean
-// channel. Light that has not scattered yet is the light volume's, and is left out.
+// channel for the fluence, and times the direction of travel for each channel's flux vector.
+// Light that has not scattered yet is the light volume's, and is left out.
 //
-// The sums are 64-bit fixed point in pairs of uints (low word, high word), added with integer
-// atomics and stochastic rounding: unbiased, and the same sums whatever the order of the adds,
-// so a cache does not depend on how the GPU schedules its photons. Slots per cell: fluence r, g,
-// b, then the flux's positive and negative parts along x, y and z.
+// The sums are 64-bit two's-complement fixed point in pairs of uints (low word, high word), added
+// with integer atomics and stochastic rounding: unbiased, and the same sums whatever the order of
+// the adds, so a cache does not depend on how the GPU schedules its photons. Slots per cell:
+// fluence r, g, b, then the flux vector of r, of g and of b (x, y, z each).
 //
 // Photons are resumable, as the path tracer's paths (path_trace.comp says why): a dispatch
 // spends at most `stepsPerDispatch` units per invocation and keeps each photon's state in
@@ -45,7 +45,7 @@ uniform vec2 lightSpotCosines[MAX_LIGHTS];
 const int kRouletteStartBounce = 3;  // as the path tracer
 const uint kMaxStepsPerPhoton = 1u << 24;
 const int kWalkStepsPerEvent = 16;
-const int kSlotsPerCell = 9;
+const int kSlotsPerCell = 12;
 
 // std430: 80 bytes.
 struct PhotonState {
@@ -73,11 +73,15 @@ int bounce;
 uint photonsLeft;
 uint photonSteps;
 
+// Adds `quanta` (either sign) to a slot's 64-bit two's-complement sum: rounded stochastically
+// (unbiased), the low word added atomically, and its carry with the high word.
 void addFixed(uint slot, float quanta) {
-    uint v = uint(quanta + uniform01());  // stochastic rounding: unbiased
-    if (v == 0u) return;
-    uint old = atomicAdd(sums[2u * slot], v);
-    if (old + v < old) atomicAdd(sums[2u * slot + 1u], 1u);  // this add wrapped the low word
+    int v = int(floor(quanta + uniform01()));
+    if (v == 0) return;
+    uint low = uint(v);
+    uint old = atomicAdd(sums[2u * slot], low);
+    uint high = (v < 0 ? 0xffffffffu : 0u) + (old + low < old ? 1u : 0u);  // sign extension + carry
+    if (high != 0u) atomicAdd(sums[2u * slot + 1u], high);
 }
 
 void deposit(vec3 p) {
@@ -88,13 +92,11 @@ void deposit(vec3 p) {
     ivec3 c = clamp(ivec3(tc * vec3(cacheCells)), ivec3(0), cacheCells - 1);
     uint base = uint((c.z * cacheCells.y + c.y) * cacheCells.x + c.x) * uint(kSlotsPerCell);
     vec3 q = throughput * (weight * depositScale);
-    addFixed(base, q.r);
-    addFixed(base + 1u, q.g);
-    addFixed(base + 2u, q.b);
-    vec3 f = (q.r + q.g + q.b) / 3.0 * walkDirection;
-    addFixed(base + (f.x >= 0.0 ? 3u : 4u), abs(f.x));
-    addFixed(base + (f.y >= 0.0 ? 5u : 6u), abs(f.y));
-    addFixed(base + (f.z >= 0.0 ? 7u : 8u), abs(f.z));
+    for (int channel = 0; channel < 3; ++channel) {
+        addFixed(base + uint(channel), q[channel]);
+        for (int axis = 0; axis < 3; ++axis)
+            addFixed(base + uint(3 + 3 * channel + axis), q[channel] * walkDirection[axis]);
+    }
 }
 
 // One tentative collision or brick crossing of the photon's walk.

@@ -1,6 +1,7 @@
 // The multiple-scattering cache's textures from its photon sums (fluence_photons.comp): per cell,
-// the fluence of light scattered at least once (rgb) and the flux vector of the mean channel
-// (xyz), both in the lights' units (colour x intensity), averaged over the cell with the weight s
+// the fluence of light scattered at least once (rgb), the flux vector of the mean channel (xyz:
+// the direction the light flows) and each channel's flux length (rgb: how strongly), all in the
+// lights' units (colour x intensity), averaged over the cell with the weight s
 // (fluence_density.comp), and premultiplied by the cell's mean weight, which the fluence
 // texture's alpha holds. Readers divide the filtered values by the filtered weight: cells
 // interpolate in proportion to the medium they hold, and cells without medium, which hold no
@@ -11,13 +12,17 @@ layout(std430, binding = 2) readonly buffer Sums { uint sums[]; };
 layout(std430, binding = 3) readonly buffer Weights { float cellWeight[]; };  // fluence_density.comp
 layout(rgba32f, binding = 0) uniform writeonly image3D fluence;
 layout(rgba32f, binding = 1) uniform writeonly image3D flux;
+layout(rgba32f, binding = 2) uniform writeonly image3D fluxLengths;
 uniform ivec3 cacheCells;
 uniform float sumsToFluence;  // power per photon / (photons x quanta per unit)
 uniform float cellVolume;     // model units^3
 
-const uint kSlotsPerCell = 9u;
+const uint kSlotsPerCell = 12u;
 
-float slotValue(uint slot) { return float(sums[2u * slot + 1u]) * 4294967296.0 + float(sums[2u * slot]); }
+// A slot's 64-bit two's-complement sum.
+float slotValue(uint slot) { return float(int(sums[2u * slot + 1u])) * 4294967296.0 + float(sums[2u * slot]); }
+
+vec3 slotVector(uint slot) { return vec3(slotValue(slot), slotValue(slot + 1u), slotValue(slot + 2u)); }
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
@@ -27,9 +32,9 @@ void main() {
     // The weighted mean fluence is the photons' sum over the cell's weight; times the mean weight,
     // the weight cancels.
     float scale = sumsToFluence / cellVolume;
-    vec3 phi = vec3(slotValue(base), slotValue(base + 1u), slotValue(base + 2u)) * scale;
-    vec3 f = vec3(slotValue(base + 3u) - slotValue(base + 4u), slotValue(base + 5u) - slotValue(base + 6u),
-                  slotValue(base + 7u) - slotValue(base + 8u)) * scale;
+    vec3 phi = slotVector(base) * scale;
+    vec3 red = slotVector(base + 3u) * scale, green = slotVector(base + 6u) * scale, blue = slotVector(base + 9u) * scale;
     imageStore(fluence, c, vec4(phi, cellWeight[cellIndex] / cellVolume));
-    imageStore(flux, c, vec4(f, 0.0));
+    imageStore(flux, c, vec4((red + green + blue) / 3.0, 0.0));
+    imageStore(fluxLengths, c, vec4(length(red), length(green), length(blue), 0.0));
 }

@@ -178,27 +178,29 @@ LightReach rayLightReaches[MAX_LIGHTS];
 
 #if SCATTERING_CACHE
 // The multiple-scattering cache (src/volume/fluence_cache.h): per cell, the fluence of the light
-// scattered at least once (rgb) and the flux vector of its mean channel (model space), both
-// weighted by the cell's medium, which alpha holds (normalised interpolation). The radiance is
-// taken as the HG lobe with the same first moment, phi p_HG(k, w . F / |F|), k = |F| / phi; the HG
-// phase function convolves it to phi p_HG(g k, v . F / |F|) towards the viewer v (the Legendre
-// coefficients of HG lobes multiply: g^l k^l).
+// scattered at least once (rgb), the flux vector of its mean channel (model space) and each
+// channel's flux length, all weighted by the cell's medium, which alpha holds (normalised
+// interpolation). The radiance is taken as the HG lobe with the same first moment,
+// phi p_HG(k, w . F / |F|), k = |F| / phi; the HG phase function convolves it to
+// phi p_HG(g k, v . F / |F|) towards the viewer v (the Legendre coefficients of HG lobes
+// multiply: g^l k^l).
 uniform sampler3D cacheFluence;
 uniform sampler3D cacheFlux;
+uniform sampler3D cacheFluxLengths;
 vec3 cacheViewDirection;  // model space, towards the viewer (set in castRay)
 
 vec3 cachedInScattering(vec3 tc) {
     vec4 weighted = texture(cacheFluence, tc);
     if (!(weighted.a > 0.0)) return vec3(0.0);
     vec3 phi = weighted.rgb / weighted.a;
-    vec3 flux = texture(cacheFlux, tc).xyz / weighted.a;
-    float mean = (phi.r + phi.g + phi.b) / 3.0;
+    vec3 flux = texture(cacheFlux, tc).xyz;
+    vec3 k = min(texture(cacheFluxLengths, tc).rgb / max(weighted.rgb, vec3(1e-30)), vec3(0.99));
     float fluxLength = length(flux);
-    // The radiance as a Henyey-Greenstein lobe about the flux with mean cosine k = |F| / phi: the
-    // phase function's lobe and it convolve to the HG lobe of mean cosine g k.
-    float gk = mean > 0.0 ? phaseG * min(fluxLength / mean, 0.99) : 0.0;
     float cosTheta = fluxLength > 0.0 ? dot(flux, cacheViewDirection) / fluxLength : 0.0;
-    float d = 1.0 + gk * gk - 2.0 * gk * cosTheta;
+    // Per channel, the radiance as a Henyey-Greenstein lobe about the flux with mean cosine k =
+    // |F| / phi: the phase function's lobe and it convolve to the HG lobe of mean cosine g k.
+    vec3 gk = phaseG * k;
+    vec3 d = 1.0 + gk * gk - 2.0 * gk * cosTheta;
     return phi * ((1.0 - gk * gk) / (12.5663706 * d * sqrt(d)));
 }
 #endif

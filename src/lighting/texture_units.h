@@ -26,6 +26,7 @@ inline constexpr int kStepTransferFunction = 16;
 // The multiple-scattering cache (volume/fluence_cache.h), in the ray caster only.
 inline constexpr int kCacheFluence = 17;
 inline constexpr int kCacheFlux = 18;
+inline constexpr int kCacheFluxLengths = 19;
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

@@ -21,7 +21,7 @@
 namespace sss::detail {
 
 namespace {
-constexpr int kSlotsPerCell = 9;             // fluence_photons.comp
+constexpr int kSlotsPerCell = 12;            // fluence_photons.comp
 constexpr std::size_t kPhotonStateBytes = 80;
 constexpr int kMaxPhotonSlots = 1 << 15;     // photons in flight at once (2.5 MiB of state)
 constexpr int kStepsPerDispatch = 1024;      // as the path tracer: under llvmpipe's loop limit
@@ -33,6 +33,43 @@ constexpr float kQuantaPerUnit = 1048576.0f;
 constexpr int kMaxVoxelsPerCell = 32;
 
 float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
+
+// A light as photons leave it, in model space.
+struct Emitter {
+    glm::vec4 modelVector;  ///< w 0: unit direction towards the light; w 1: position
+    glm::vec3 power;        ///< into the box, rgb
+    float coneCosine;       ///< point lights: the cone of directions that reach the box
+    const Light* light;
+};
+
+// Each light's power into the box, in model space: a directional beam through a disk of the
+// bounding sphere's radius; a point light's intensity (falloff in world units, so divided by the
+// model's mean scale squared) over the cone of directions towards the sphere. Black lights are
+// left out.
+std::vector<Emitter> emittersOf(const FluenceCacheInputs& in, glm::vec3 centre, float radius) {
+    const glm::mat4 worldToModel = glm::inverse(in.model);
+    const glm::mat3 worldToModelLinear(worldToModel);
+    const float meanScale = std::cbrt(std::abs(glm::determinant(glm::mat3(in.model))));
+    std::vector<Emitter> emitters;
+    for (const Light& light : in.lights) {
+        const glm::vec3 radiance = lightRadiance(light);
+        if (!(largestChannel(radiance) > 0.0f)) continue;
+        if (const auto* d = std::get_if<DirectionalLight>(&light)) {
+            const glm::vec3 towards = glm::normalize(worldToModelLinear * -glm::normalize(d->direction));
+            emitters.push_back({glm::vec4(towards, 0.0f), radiance * std::numbers::pi_v<float> * radius * radius, 1.0f,
+                                &light});
+        } else {
+            const glm::vec3 position(worldToModel * glm::vec4(*lightPosition(light), 1.0f));
+            const float distance = glm::length(position - centre);
+            const float coneCosine =
+                distance > radius ? std::sqrt(std::max(0.0f, 1.0f - (radius / distance) * (radius / distance))) : -1.0f;
+            const float solidAngle = 2.0f * std::numbers::pi_v<float> * (1.0f - coneCosine);
+            emitters.push_back({glm::vec4(position, 1.0f), radiance / (meanScale * meanScale) * solidAngle, coneCosine,
+                                &light});
+        }
+    }
+    return emitters;
+}
 }  // namespace
 
 glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution) {
@@ -62,6 +99,7 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_weights = gl::Buffer::create(count * sizeof(float), nullptr, 0, "fluence-cache cell weights");
         m_fluence = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache");
         m_flux = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux");
+        m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths");
         m_cells = cells;
     }
     const std::uint32_t zero = 0;
@@ -69,6 +107,7 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(m_fluence.id(), 0, GL_RGBA, GL_FLOAT, black);
     glClearTexImage(m_flux.id(), 0, GL_RGBA, GL_FLOAT, black);
+    glClearTexImage(m_fluxLengths.id(), 0, GL_RGBA, GL_FLOAT, black);
     m_photons = 0;
     m_cellVolume = glm::compMul(in.volume.box.size()) / static_cast<float>(count);
     if (!sameMedium) computeWeights(in);
@@ -119,36 +158,7 @@ void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
     p.set("boxCentre", centre);
     p.set("boxRadius", radius);
 
-    // Each light's power into the box, in model space: a directional beam through a disk of the
-    // bounding sphere's radius; a point light's intensity (falloff in world units, so divided by
-    // the model's mean scale squared) over the cone of directions towards the sphere.
-    const glm::mat4 worldToModel = glm::inverse(in.model);
-    const glm::mat3 worldToModelLinear(worldToModel);
-    const float meanScale = std::cbrt(std::abs(glm::determinant(glm::mat3(in.model))));
-    struct Emitter {
-        glm::vec4 modelVector;
-        glm::vec3 power;
-        float coneCosine;
-        const Light* light;
-    };
-    std::vector<Emitter> emitters;
-    for (const Light& light : in.lights) {
-        const glm::vec3 radiance = lightRadiance(light);
-        if (!(largestChannel(radiance) > 0.0f)) continue;
-        if (const auto* d = std::get_if<DirectionalLight>(&light)) {
-            const glm::vec3 towards = glm::normalize(worldToModelLinear * -glm::normalize(d->direction));
-            emitters.push_back({glm::vec4(towards, 0.0f), radiance * std::numbers::pi_v<float> * radius * radius, 1.0f,
-                                &light});
-        } else {
-            const glm::vec3 position(worldToModel * glm::vec4(*lightPosition(light), 1.0f));
-            const float distance = glm::length(position - centre);
-            const float coneCosine =
-                distance > radius ? std::sqrt(std::max(0.0f, 1.0f - (radius / distance) * (radius / distance))) : -1.0f;
-            const float solidAngle = 2.0f * std::numbers::pi_v<float> * (1.0f - coneCosine);
-            emitters.push_back({glm::vec4(position, 1.0f), radiance / (meanScale * meanScale) * solidAngle, coneCosine,
-                                &light});
-        }
-    }
+    const std::vector<Emitter> emitters = emittersOf(in, centre, radius);
     m_powerUnit = 0.0f;
     for (const Emitter& e : emitters) m_powerUnit += largestChannel(e.power);
     float cumulative = 0.0f;
@@ -222,12 +232,14 @@ void FluenceCache::resolve() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
     m_fluence.bindImage(0, GL_WRITE_ONLY);
     m_flux.bindImage(1, GL_WRITE_ONLY);
+    m_fluxLengths.bindImage(2, GL_WRITE_ONLY);
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
                       static_cast<GLuint>((m_cells.z + 3) / 4));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 }  // namespace sss::detail

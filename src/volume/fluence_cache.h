@@ -1,10 +1,10 @@
 #pragma once
 // The multiple-scattering cache (VolumeRenderOptions::multipleScatteringCache): a grid over the
 // volume's box holding, per cell, the fluence of the light that has scattered at least once
-// (rgb) and the flux vector of its mean channel, in model space. The ray caster adds what a
-// sample scatters of it towards the eye, sigma_s (phi + 3 g F . w) / (4 pi), to the light
-// volume's single scattering: the radiance field taken as linear in direction (first-order
-// spherical harmonics), convolved with the Henyey-Greenstein phase function.
+// (rgb) and its flux vector per channel (the first angular moment), in model space. The ray
+// caster adds what a sample scatters of it towards the eye to the light volume's single
+// scattering: the radiance taken as a Henyey-Greenstein lobe about the flux with the same first
+// moment, convolved with the phase function (docs/multiple-scattering.md).
 //
 // It is built by photons from the lights (shaders/volume/fluence_photons.comp): the path
 // tracer's medium, delta tracking and scattering, with the collision estimator of each cell's
@@ -59,6 +59,8 @@ public:
     const gl::Texture& fluence() const { return m_fluence; }
     /// Per cell: xyz flux vector of the mean channel times the weight, model space (RGBA32F).
     const gl::Texture& flux() const { return m_flux; }
+    /// Per cell: rgb length of each channel's flux vector times the weight (RGBA32F).
+    const gl::Texture& fluxLengths() const { return m_fluxLengths; }
     /// Photons traced since the last restart (those that missed the box included).
     std::uint64_t photons() const { return m_photons; }
     glm::ivec3 cells() const { return m_cells; }
@@ -77,11 +79,11 @@ private:
     gl::Program m_densityProgram;
     gl::Program m_resolveProgram;
     glm::ivec3 m_cells{0};
-    gl::Buffer m_sums;            // 9 slots per cell, 64-bit fixed point (fluence_photons.comp)
+    gl::Buffer m_sums;            // 12 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
     gl::Buffer m_photonStates;
     gl::Buffer m_status;
-    gl::Texture m_fluence, m_flux;
+    gl::Texture m_fluence, m_flux, m_fluxLengths;
     std::uint64_t m_photons = 0;
     float m_cellVolume = 1.0f;    // model units^3
     float m_powerUnit = 0.0f;     // power a photon of weight 1 carries (see setUniforms)

@@ -57,6 +57,7 @@ struct RayCastInputs {
     /// The multiple-scattering cache's fluence and flux (volume/fluence_cache.h), if it is on.
     const gl::Texture* cacheFluence = nullptr;
     const gl::Texture* cacheFlux = nullptr;
+    const gl::Texture* cacheFluxLengths = nullptr;
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)

@@ -473,6 +473,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
                     .cacheFluence = scatteringCache ? &r.fluenceCache->fluence() : nullptr,
                     .cacheFlux = scatteringCache ? &r.fluenceCache->flux() : nullptr,
+                    .cacheFluxLengths = scatteringCache ? &r.fluenceCache->fluxLengths() : nullptr,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,
