@@ -193,10 +193,10 @@ struct VolumeRenderOptions {
     bool multipleScatteringCache = false;
     /// Cells of the cache along the box's longest side, the other sides in proportion, at most
     /// one per voxel and at most 32 voxels wide, 1..1024. Finer cells follow the fluence into
-    /// dense matter better (bonsai: 30, 22, 16 % relRMSE against the path tracer at 32, 64, 128)
-    /// and cost memory: 12 x 8 bytes per cell for the sums and 48 for the textures, 300 MiB at
-    /// 128^3 (default: 128).
-    int cacheResolution = 128;
+    /// dense matter better once refined (bonsai: 21 % relRMSE against the path tracer at 64,
+    /// 16 % at 128) but are noisier while the cache fills (first frame 32 % against 60 %) and
+    /// cost memory: 144 bytes per cell, 38 MiB at 64^3, 300 MiB at 128^3 (default: 64).
+    int cacheResolution = 64;
     /// Photons each render() adds while the cache refines, 1..2^24 (default: 65536).
     int cachePhotonsPerFrame = 1 << 16;
     /// Photons after which the cache stops refining and frames trace none, 1..2^30

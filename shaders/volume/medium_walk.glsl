@@ -10,7 +10,6 @@ uniform vec3 boxMax;
 uniform vec3 cellSize;        // one brick, model units
 uniform float voxelLength;    // the opacity reference length D
 uniform float phaseG;
-uniform float minimumMajorant;  // occupied bricks are walked at no less than this (0: their own)
 
 const float kPi = 3.14159265;
 const float kMaxOpticalDepthPerVoxel = 30.0;
@@ -136,9 +135,6 @@ void enterCell() {
     vec3 crossing = (boundary - origin) * safeInverse(walkDirection);
     tNext = mix(crossing, vec3(kFar), equal(walkDirection, vec3(0.0)));
     majorant = texelFetch(majorants, cell, 0).r;
-    // Any bound at or above sigma_t keeps delta tracking exact; a raised one only adds null
-    // collisions (the fluence cache's deposits need some in thin medium).
-    if (majorant > 0.0) majorant = max(majorant, minimumMajorant);
 }
 
 void startWalk(vec3 o, vec3 d, float t0, float t1) {
