@@ -363,6 +363,15 @@ struct TimedImage {
     double medianMs = 0.0;
 };
 
+// One frame of `renderer` into the cleared `target`, waited for: its milliseconds.
+double timedFrameMs(sss::VolumeScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target) {
+    target.clear({0, 0, 0, 0});
+    const auto t0 = std::chrono::steady_clock::now();
+    renderer.render(camera, target);
+    sss::finishGpuWork();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
 TimedImage renderVolumeTimed(const sss::Volume& volume, const sss::TransferFunction& tf, const sss::DirectionalLight& light,
                              const sss::VolumeRenderOptions& options, const sss::Camera& camera, int width, int height,
                              bool rebuild) {
@@ -376,11 +385,7 @@ TimedImage renderVolumeTimed(const sss::Volume& volume, const sss::TransferFunct
     std::vector<double> times;
     for (int r = 0; r < 3; ++r) {
         if (rebuild) renderer.setLights({r % 2 == 0 ? nudged(light) : light});
-        target.clear({0, 0, 0, 0});
-        const auto t0 = std::chrono::steady_clock::now();
-        renderer.render(camera, target);
-        sss::finishGpuWork();
-        times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        times.push_back(timedFrameMs(renderer, camera, target));
     }
     std::sort(times.begin(), times.end());
     if (rebuild) {
@@ -395,11 +400,7 @@ TimedImage renderVolumeTimed(const sss::Volume& volume, const sss::TransferFunct
 double fixedFrameMs(sss::VolumeScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target) {
     std::vector<double> times;
     for (int r = 0; r < 3; ++r) {
-        target.clear({0, 0, 0, 0});
-        const auto t0 = std::chrono::steady_clock::now();
-        renderer.render(camera, target);
-        sss::finishGpuWork();
-        times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        times.push_back(timedFrameMs(renderer, camera, target));
     }
     std::sort(times.begin(), times.end());
     return times[1];
@@ -431,11 +432,7 @@ CacheRun runScatteringCache(const sss::Volume& volume, const sss::TransferFuncti
     renderer.setLights({light});
     const auto budget = static_cast<std::uint64_t>(options.cachePhotons);
     for (bool first = true; first || renderer.cachedPhotons() < budget; first = false) {
-        target.clear({0, 0, 0, 0});
-        const auto t0 = std::chrono::steady_clock::now();
-        renderer.render(camera, target);
-        sss::finishGpuWork();
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const double ms = timedFrameMs(renderer, camera, target);
         run.totalMs += ms;
         run.image = target.readColor();
         const double error = sss::computeErrorMetrics(run.image, truth).relRmse;

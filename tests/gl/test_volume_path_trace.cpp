@@ -24,6 +24,7 @@
 #include <vector>
 
 using namespace sss;
+using sss::test::meanRatio;
 using sss::test::orbitCamera;
 
 namespace {
@@ -38,7 +39,7 @@ const Volume& testVolume() {
     return volume;
 }
 TransferFunction testTf(glm::vec3 albedo = {0.95f, 0.85f, 0.7f}) {
-    return TransferFunction({{0.0f, albedo, 0.0f}, {0.2f, albedo, 0.0f}, {0.5f, albedo, 0.25f}, {1.0f, albedo, 0.6f}});
+    return sss::test::highAlbedoBlobsTransferFunction(albedo);
 }
 const std::vector<Light> kLights{DirectionalLight{.direction = {-1.0f, -0.7f, -0.4f}, .intensity = 10.0f}};
 Camera testCamera() { return orbitCamera(testVolume().worldBounds(), 30.0f, 20.0f); }
@@ -90,16 +91,6 @@ double relRmse(const Image& test, const VolumePathTracerResult& truth) {
     return computeErrorMetrics(test, truth.image).relRmse;
 }
 
-double meanRatio(const Image& test, const Image& reference) {
-    double a = 0.0, b = 0.0;
-    for (int y = 0; y < test.height(); ++y)
-        for (int x = 0; x < test.width(); ++x)
-            for (int c = 0; c < 3; ++c) {
-                a += test.at(x, y)[c];
-                b += reference.at(x, y)[c];
-            }
-    return a / b;
-}
 
 }  // namespace
 

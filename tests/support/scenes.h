@@ -2,6 +2,7 @@
 // Small scene helpers shared by the GL tests.
 #include <sss/bounds.h>
 #include <sss/camera.h>
+#include <sss/image.h>
 #include <sss/transfer_function.h>
 
 namespace sss::test {
@@ -24,6 +25,24 @@ inline TransferFunction blobsTransferFunction(float opacityScale = 1.0f) {
                              {0.2f, {0.9f, 0.4f, 0.1f}, 0.0f},
                              {0.5f, {1.0f, 0.8f, 0.3f}, 0.15f * opacityScale},
                              {1.0f, {0.4f, 0.7f, 1.0f}, 0.6f * opacityScale}});
+}
+
+/// A bright, high-albedo transfer function for makeBlobsVolume(): multiple scattering carries
+/// about as much light as single scattering with it (the path tracer's and the cache's tests).
+inline TransferFunction highAlbedoBlobsTransferFunction(glm::vec3 albedo = {0.95f, 0.85f, 0.7f}) {
+    return TransferFunction({{0.0f, albedo, 0.0f}, {0.2f, albedo, 0.0f}, {0.5f, albedo, 0.25f}, {1.0f, albedo, 0.6f}});
+}
+
+/// Sum of `test`'s rgb over the sum of `reference`'s.
+inline double meanRatio(const Image& test, const Image& reference) {
+    double a = 0.0, b = 0.0;
+    for (int y = 0; y < test.height(); ++y)
+        for (int x = 0; x < test.width(); ++x)
+            for (int c = 0; c < 3; ++c) {
+                a += test.at(x, y)[c];
+                b += reference.at(x, y)[c];
+            }
+    return a / b;
 }
 
 }  // namespace sss::test
