@@ -5,6 +5,9 @@
 #include "sss/api.h"
 #include "sss/bssrdf.h"
 
+#include <glm/vec3.hpp>
+
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,6 +46,50 @@ ScatteringMaterial materialPreset(std::string_view name);
 
 /// The canonical names of all presets (lower case, letters and digits only), in table order.
 std::vector<std::string> materialPresetNames();
+
+class Image8;
+
+/// A translucent material whose colour varies over a mesh's surface, in the parametrisation of
+/// production renderers (Christensen and Burley 2015): the reflectance per texel, i.e. the colour
+/// the surface shows under even light, and a mean free path per channel. Each texel's
+/// coefficients are those of materialFromReflectance() for its reflectance, so a flat, evenly lit
+/// textured slab shows the texture's colour. The mesh needs texture coordinates.
+/// How points with different coefficients combine (docs/textured-materials.md): the light that
+/// reaches a point x_o is gathered with x_o's own profile, normalised by x_o's reflectance, and
+/// scaled by the reflectance of the texel under each pixel, so the texture keeps its full
+/// resolution wherever the radiosity is cached (maps or vertices).
+struct TexturedScattering {
+    /// Reduced mean free path 1 / sigma_t' per channel, in mm, each finite and > 0 (default:
+    /// potato's, as ScatteringMaterial's default).
+    glm::dvec3 meanFreePath{1.0 / 0.6824, 1.0 / 0.709, 1.0 / 0.67};
+    /// Relative index of refraction, in [0.4, 2.5] (default: 1.3).
+    double eta = 1.3;
+    /// Reflectance per texel: an sRGB-encoded base colour (decoded to linear before use; alpha is
+    /// ignored). Null: the mesh's Mesh::baseColour().
+    std::shared_ptr<const Image8> reflectance;
+    /// Optional factor on the mean free path per texel: the red channel, linear, value / 255,
+    /// floored at 1 / 255 (so meanFreePath is the longest path and the texture thins it). Null: 1.
+    /// Its texture coordinates are the reflectance's.
+    std::shared_ptr<const Image8> meanFreePathScale;
+    std::string name = "textured";  ///< label for messages and UIs
+
+    /// Checks meanFreePath and eta. @throws Error InvalidArgument naming the field.
+    void validate() const;
+};
+
+/// A preset's look with its colour left to a texture: its reduced mean free path
+/// 1 / (sigma_s' + sigma_a) per channel, its eta and its name.
+TexturedScattering texturedScattering(const ScatteringMaterial& material);
+
+/// The homogeneous material (g = 0, reduced coefficients) whose profile reflects `reflectance`
+/// per channel (the total diffuse reflectance under a collimated beam at normal incidence,
+/// profileDiffuseReflectance(), which for the calibrated profile is the random walk's) with the
+/// reduced mean free path `meanFreePath` (mm). Reflectances beyond what the profile reaches
+/// (reduced albedo 0.99995) or below its floor (reduced albedo 1e-4) are clamped there.
+/// @throws Error InvalidArgument for a reflectance that is not finite, a mean free path that is
+///         not finite and > 0, or an eta outside [0.4, 2.5].
+ScatteringMaterial materialFromReflectance(const glm::dvec3& reflectance, const glm::dvec3& meanFreePath, double eta,
+                                           ScatteringProfile profile = ScatteringProfile::Calibrated);
 
 }  // namespace sss
 

@@ -17,6 +17,7 @@
 #include "sss/bssrdf.h"
 #include "sss/camera.h"
 #include "sss/light.h"
+#include "sss/materials.h"
 #include "sss/mesh.h"
 #include "sss/render_target.h"
 #include "sss/stats.h"
@@ -147,6 +148,11 @@ public:
     void setMaterial(const BlinnPhongMaterial& material);
     /// The translucent material of the Scattering mode (validated; default: potato).
     void setScatteringMaterial(const ScatteringMaterial& material);
+    /// A textured translucent material instead (validated). Its reflectance texture, or else the
+    /// mesh's Mesh::baseColour(), gives each point its coefficients; the mesh needs texture
+    /// coordinates. setMesh() and render() throw InvalidArgument when it has none, or when there
+    /// is no texture. Setting a ScatteringMaterial again returns to a uniform material.
+    void setScatteringMaterial(const TexturedScattering& material);
     /// True once the scattering maps hold `accumulationFrames` frames for the current scene.
     bool converged() const;
     /// At most 8 lights; each is validated.

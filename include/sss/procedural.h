@@ -38,7 +38,9 @@ Mesh makeTorus(float majorRadius = 0.7f, float minorRadius = 0.3f, int majorSegm
 Mesh makeFolds(int segments = 160, int rings = 128);
 
 /// Axis-aligned box of the given size centred at the origin: 24 vertices (4 per face, flat
-/// normals), 12 triangles. Default 1.6 x 1.0 x 0.2, a slab for translucency tests.
+/// normals), 12 triangles. Default 1.6 x 1.0 x 0.2, a slab for translucency tests. Texture
+/// coordinates project the box along z: (0, 0) at its -x, -y edge and (1, 1) at +x, +y, so the top
+/// face (+z) shows a texture once, upright, seen from above.
 /// @throws Error InvalidArgument unless every size component is finite and > 0.
 Mesh makeSlab(glm::vec3 size = glm::vec3(1.6f, 1.0f, 0.2f));
 

@@ -7,19 +7,29 @@
 //   PER_VERTEX 0|1      : 1: the vertices' radiosity only, no map lookups (MeshCombine::PerVertex
 //                         and VertexEstimate)
 //   SURFACE_SHADOWS 0|1 : whether other meshes or volumes shadow this one (common/surface_shadows.glsl)
+//   TEXTURED_MATERIAL 0|1: a textured material (mesh/textured_material.glsl): the cached radiosity
+//                         is normalised and takes the pixel's texel; single scattering, the near
+//                         field and the environment follow the pixel's material
 #ifndef PER_VERTEX
 #define PER_VERTEX 0
+#endif
+#ifndef TEXTURED_MATERIAL
+#define TEXTURED_MATERIAL 0
 #endif
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
 #include "common/surface_shadows.glsl"
 #include "mesh/near_field.glsl"
+#if TEXTURED_MATERIAL
+#include "mesh/textured_material.glsl"
+#endif
 
 in vec3 modelPosition;
 in vec3 modelNormal;
 in vec3 worldPosition;
 in vec3 worldNormal;
+in vec2 texcoord;
 
 #if !PER_VERTEX
 #include "mesh/map_lookup.glsl"
@@ -44,16 +54,25 @@ void main() {
     if (maps.weight > 0.0) radiosity = maps.radiosity;
 #endif
 
+#if TEXTURED_MATERIAL
+    SurfaceMaterial material = materialAt(dipole, texcoord, textureQueryLod(materialReflectance, texcoord).y);
+    DirpoleParams profile = material.params;
+    radiosity *= material.gathered;
+    vec3 referenceScale = material.gathered / max(referenceGathered, vec3(1e-6));
+#else
+    DirpoleParams profile = dipole;
+    vec3 referenceScale = vec3(1.0);
+#endif
     vec3 nWorld = normalize(worldNormal);
     if (!gl_FrontFacing) nWorld = -nWorld;
     vec3 wo = towardsViewer(worldPosition);
     float exitT = dirpoleFresnelT(eta, dot(wo, nWorld));
     // The maps hold the integral of T_in S_d E over the lit surface (S_d is per steradian), so the
     // radiance leaving towards the eye is that times the exit transmittance.
-    vec3 color = exitT * radiosity + environment;
+    vec3 color = exitT * radiosity + environment * referenceScale;
     // One pass over the lights for the per-pixel terms: each light's direction, radiance and
     // shadows are found once.
-    bool single = dipole.singleScattering > 0.0, specular = specularStrength > 0.0;
+    bool single = profile.singleScattering > 0.0, specular = specularStrength > 0.0;
     if (single || specular || nearFieldOn != 0) {
         for (int i = 0; i < lightCount; ++i) {
             vec3 radiance;
@@ -63,10 +82,11 @@ void main() {
             radiance *= nDotL * volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
             if (single) {
                 float visible = selfVisibility(i, worldPosition, nWorld, l);
-                if (visible > 0.0) color += visible * radiance * dirpoleSingleScattering(dipole, nWorld, l, wo);
+                if (visible > 0.0) color += visible * radiance * dirpoleSingleScattering(profile, nWorld, l, wo);
             }
             if (nearFieldOn != 0)
-                color += exitT * radiance * nearFieldVisibility(i, worldPosition, nWorld, l) * nearFieldAt(nDotL);
+                color += exitT * radiance * nearFieldVisibility(i, worldPosition, nWorld, l) * nearFieldAt(nDotL) *
+                         referenceScale;
             if (specular) {
                 vec3 h = normalize(l + wo);
                 // The surface reflects what it does not transmit: 1 - T at the viewing angle.

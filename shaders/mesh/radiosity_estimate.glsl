@@ -15,11 +15,17 @@
 #ifndef VERTEX_SEQUENCE
 #define VERTEX_SEQUENCE 0
 #endif
+#ifndef TEXTURED_MATERIAL
+#define TEXTURED_MATERIAL 0
+#endif
 #include "mesh/light_buffer_lookup.glsl"
 #include "common/dirpole.glsl"
 #include "common/surface_shadows.glsl"
 
 uniform sampler2DArray lightNormals;
+#if TEXTURED_MATERIAL
+uniform sampler2DArray lightEntryWeights;  // a textured material's entry weight per light-buffer texel
+#endif
 uniform DirpoleParams dipole;
 uniform float diskRadius;                 // R, scene units
 uniform float nearRadius;                 // estimateRadiositySplit's split, scene units
@@ -36,10 +42,11 @@ uint pcg(inout uint state) {
 }
 float random01(inout uint state) { return float(pcg(state) >> 8) * (1.0 / 16777216.0); }
 
-// xo, no: world-space point and unit normal; state: the caller's random stream. The estimate
-// comes in two parts: the light entering within nearRadius of x_o on the disk (inner) and the
-// rest (outer).
-void estimateRadiositySplit(vec3 xo, vec3 no, inout uint state, out vec3 inner, out vec3 outer) {
+// p: the profile at x_o (`dipole`, or a textured material's at the point: the exit point's
+// coefficients rule a pair, docs/textured-materials.md); xo, no: world-space point and unit
+// normal; state: the caller's random stream. The estimate comes in two parts: the light entering
+// within nearRadius of x_o on the disk (inner) and the rest (outer).
+void estimateRadiositySplit(DirpoleParams profile, vec3 xo, vec3 no, inout uint state, out vec3 inner, out vec3 outer) {
     inner = vec3(0.0);
     outer = vec3(0.0);
     const float twoPi = 6.28318531;
@@ -95,9 +102,13 @@ void estimateRadiositySplit(vec3 xo, vec3 no, inout uint state, out vec3 inner, 
             }
             vec4 xiTexel;
             vec3 ni;
+            vec3 entry = vec3(1.0);  // the entry point's weight (textured materials)
             if (oneSurface) {
                 xiTexel = texture(lightPositions, layer);
                 ni = normalize(texture(lightNormals, layer).xyz);
+#if TEXTURED_MATERIAL
+                entry = texture(lightEntryWeights, layer).rgb;
+#endif
             } else {
                 // An edge, or a neighbour texel is empty: the nearest texel. Dropping the sample
                 // would darken every point near a silhouette as seen from the light.
@@ -106,6 +117,9 @@ void estimateRadiositySplit(vec3 xo, vec3 no, inout uint state, out vec3 inner, 
                 xiTexel = texelFetch(lightPositions, nearest, 0);
                 if (xiTexel.w < 0.5) continue;  // no surface there
                 ni = normalize(texelFetch(lightNormals, nearest, 0).xyz);
+#if TEXTURED_MATERIAL
+                entry = texelFetch(lightEntryWeights, nearest, 0).rgb;
+#endif
             }
             vec3 xi = xiTexel.xyz;
             vec3 irradiance;  // per unit disk area
@@ -127,8 +141,8 @@ void estimateRadiositySplit(vec3 xo, vec3 no, inout uint state, out vec3 inner, 
             // Volumes and other meshes between the light and x_i (one tap: the samples spread
             // over the disk filter the shadow's edge).
             irradiance *= volumeTransmittance(l, xi, wi) * meshShadow(l, xi, dot(ni, wi) < 0.0 ? -ni : ni, wi, 0);
-            float entry = dirpoleFresnelT(dipole.eta, dot(wi, ni));
-            vec3 value = dirpoleSd(dipole, xi, ni, wi, xo, no) * (entry / pdf) * irradiance;
+            float entryT = dirpoleFresnelT(profile.eta, dot(wi, ni));
+            vec3 value = dirpoleSd(profile, xi, ni, wi, xo, no) * (entryT / pdf) * irradiance * entry;
             if (r < nearRadius) inner += value;
             else outer += value;
         }
@@ -137,8 +151,8 @@ void estimateRadiositySplit(vec3 xo, vec3 no, inout uint state, out vec3 inner, 
     outer /= float(samplesPerLight);
 }
 
-vec3 estimateRadiosity(vec3 xo, vec3 no, inout uint state) {
+vec3 estimateRadiosity(DirpoleParams profile, vec3 xo, vec3 no, inout uint state) {
     vec3 inner, outer;
-    estimateRadiositySplit(xo, no, state, inner, outer);
+    estimateRadiositySplit(profile, xo, no, state, inner, outer);
     return inner + outer;
 }

@@ -6,14 +6,17 @@ uniform mat4 cameraViewProjection[CAMERA_COUNT];  // model space -> clip space o
 in vec3 vsModelPosition[];
 in vec3 vsWorldPosition[];
 in vec3 vsWorldNormal[];
+in vec2 vsTexcoord[];
 out vec3 worldPosition;
 out vec3 worldNormal;
+out vec2 texcoord;
 invariant gl_Position;  // the depth pre-pass and the accumulating passes must rasterise alike
 void main() {
     for (int v = 0; v < 3; ++v) {
         gl_Layer = gl_InvocationID;
         worldPosition = vsWorldPosition[v];
         worldNormal = vsWorldNormal[v];
+        texcoord = vsTexcoord[v];
         gl_Position = cameraViewProjection[gl_InvocationID] * vec4(vsModelPosition[v], 1.0);
         EmitVertex();
     }

@@ -11,13 +11,23 @@
 // difference lives within a few diffusion lengths of the vertex; on triangles much wider than
 // that, interpolation spreads it over the whole triangle, so the weight falls with the
 // triangles' width in diffusion lengths (src/mesh/near_field.h).
+// With TEXTURED_MATERIAL each vertex gathers with its own texel's profile and stores the
+// radiosity divided by what that profile gathers under even light; the near field, tabulated for
+// the untextured reference material, is scaled to the vertex's (textured_material.glsl).
 layout(local_size_x = 64) in;
 
 #define VERTEX_SEQUENCE 1
+#ifndef TEXTURED_MATERIAL
+#define TEXTURED_MATERIAL 0
+#endif
 #include "mesh/radiosity_estimate.glsl"
 #include "mesh/near_field.glsl"
+#if TEXTURED_MATERIAL
+#include "mesh/textured_material.glsl"
+#endif
 
-layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };  // model space: position, normal
+// Model space, 8 floats per vertex (src/mesh/gpu_mesh.cpp): position, normal, texture coordinate.
+layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };
 layout(std430, binding = 1) buffer Sums { vec4 sums[]; };  // per vertex: inner, outer; rgb summed over frames, a: frames
 layout(std430, binding = 2) writeonly buffer Radiosity { vec4 radiosityOut[]; };
 uniform int vertexCount;
@@ -28,19 +38,27 @@ uniform vec3 nearFieldCorrection;  // per channel, in [0, 1]
 void main() {
     int i = int(gl_GlobalInvocationID.x);
     if (i >= vertexCount) return;
-    vec3 p = vec3(vertexData[6 * i], vertexData[6 * i + 1], vertexData[6 * i + 2]);
-    vec3 n = normalMatrix * vec3(vertexData[6 * i + 3], vertexData[6 * i + 4], vertexData[6 * i + 5]);
+    vec3 p = vec3(vertexData[8 * i], vertexData[8 * i + 1], vertexData[8 * i + 2]);
+    vec3 n = normalMatrix * vec3(vertexData[8 * i + 3], vertexData[8 * i + 4], vertexData[8 * i + 5]);
     float length2 = dot(n, n);
     n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
     uint state = uint(i) * 9277u + 0x9e3779b9u;  // the same per frame: the sequence continues
     pcg(state);
     vec3 x = (model * vec4(p, 1.0)).xyz;
     vec3 inner, outer;
-    estimateRadiositySplit(x, n, state, inner, outer);
+#if TEXTURED_MATERIAL
+    SurfaceMaterial material = materialAt(dipole, vec2(vertexData[8 * i + 6], vertexData[8 * i + 7]), 0.0);
+    estimateRadiositySplit(material.params, x, n, state, inner, outer);
+    vec3 nearFieldScale = material.gathered / max(referenceGathered, vec3(1e-6));
+    vec3 normaliser = max(material.gathered * material.entryWeight, vec3(1e-9));
+#else
+    estimateRadiositySplit(dipole, x, n, state, inner, outer);
+    vec3 nearFieldScale = vec3(1.0), normaliser = vec3(1.0);
+#endif
     vec4 innerSum = (frameSeed == 0u ? vec4(0.0) : sums[2 * i]) + vec4(inner, 1.0);
     vec4 outerSum = (frameSeed == 0u ? vec4(0.0) : sums[2 * i + 1]) + vec4(outer, 1.0);
     sums[2 * i] = innerSum;
     sums[2 * i + 1] = outerSum;
-    vec3 difference = innerSum.rgb / innerSum.a - nearFieldRadiosity(x, n);
-    radiosityOut[i] = vec4(outerSum.rgb / outerSum.a + nearFieldCorrection * difference, 1.0);
+    vec3 difference = innerSum.rgb / innerSum.a - nearFieldScale * nearFieldRadiosity(x, n);
+    radiosityOut[i] = vec4((outerSum.rgb / outerSum.a + nearFieldCorrection * difference) / normaliser, 1.0);
 }

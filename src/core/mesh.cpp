@@ -85,7 +85,7 @@ using detail::smoothNormals;
 using detail::unitNormal;
 
 Mesh Mesh::fromArrays(std::vector<glm::vec3> positions, std::vector<uint32_t> indices,
-                      std::vector<glm::vec3> normals, std::string_view name) {
+                      std::vector<glm::vec3> normals, std::string_view name, std::vector<glm::vec2> texcoords) {
     const std::string prefix = std::string(name) + ": ";
     auto fail = [&](const std::string& what) { throw Error(ErrorKind::InvalidArgument, prefix + what); };
 
@@ -120,8 +120,18 @@ Mesh Mesh::fromArrays(std::vector<glm::vec3> positions, std::vector<uint32_t> in
             normals[i] = unitNormal(normals[i]);
         }
     }
+    if (!texcoords.empty()) {
+        if (texcoords.size() != positions.size())
+            fail(std::to_string(texcoords.size()) + " texture coordinates given for " +
+                 std::to_string(positions.size()) + " positions; the counts must match");
+        for (std::size_t i = 0; i < texcoords.size(); ++i)
+            if (!std::isfinite(texcoords[i].x) || !std::isfinite(texcoords[i].y))
+                fail("texture coordinate " + std::to_string(i) + " is non-finite (" +
+                     detail::formatNumber(texcoords[i].x) + ", " + detail::formatNumber(texcoords[i].y) + ")");
+    }
     mesh.m_positions = std::move(positions);
     mesh.m_normals = std::move(normals);
+    mesh.m_texcoords = std::move(texcoords);
     mesh.m_indices = std::move(indices);
     mesh.m_name = std::string(name);
     return mesh;
@@ -153,11 +163,22 @@ Mesh Mesh::transformed(const glm::mat4& m) const {
         out.m_normals.push_back(isUsableNormal(t) ? unitNormal(t) : n);
     }
     out.m_indices = m_indices;
+    out.m_texcoords = m_texcoords;
+    out.m_baseColour = m_baseColour;
     // A mirror turns counter-clockwise triangles clockwise; swap two corners to undo it.
     if (det < 0.0f)
         for (std::size_t t = 0; t + 2 < out.m_indices.size(); t += 3)
             std::swap(out.m_indices[t + 1], out.m_indices[t + 2]);
     out.m_bounds = boundsOf(out.m_positions);
+    return out;
+}
+
+Mesh Mesh::withBaseColour(std::shared_ptr<const Image8> texture) const {
+    if (texture && m_texcoords.empty())
+        throw Error(ErrorKind::InvalidArgument,
+                    m_name + ": a base-colour texture needs texture coordinates, and the mesh has none");
+    Mesh out = *this;
+    out.m_baseColour = std::move(texture);
     return out;
 }
 

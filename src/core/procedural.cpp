@@ -186,6 +186,7 @@ Mesh makeSlab(glm::vec3 size) {
         {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}},
     };
     std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec2> texcoords;
     std::vector<uint32_t> indices;
     for (const Face& f : faces) {
         const uint32_t base = static_cast<uint32_t>(positions.size());
@@ -193,10 +194,11 @@ Mesh makeSlab(glm::vec3 size) {
         for (glm::vec3 corner : {c - du - dv, c + du - dv, c + du + dv, c - du + dv}) {
             positions.push_back(corner);
             normals.push_back(f.n);
+            texcoords.push_back(glm::vec2(corner.x / size.x, corner.y / size.y) + 0.5f);
         }
         indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     }
-    return Mesh::fromArrays(std::move(positions), std::move(indices), std::move(normals), "slab");
+    return Mesh::fromArrays(std::move(positions), std::move(indices), std::move(normals), "slab", std::move(texcoords));
 }
 
 CornellBox makeCornellBox(const Bounds& content) {

@@ -2,6 +2,8 @@
 // OpenEXR through the OpenEXR library when libsss is built with SSS_WITH_OPENEXR.
 #include "sss/image.h"
 
+#include "io/image_decoding.h"
+
 #include "sss/error.h"
 
 #if SSS_WITH_OPENEXR
@@ -11,11 +13,8 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #endif
-#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
-#include <cstring>
-#include <memory>
 #include <string>
 
 namespace sss {
@@ -100,24 +99,7 @@ void Image8::savePng(const std::filesystem::path& path) const {
         throw Error(ErrorKind::Io, file + ": cannot write PNG (not writable, or the disk is full)");
 }
 
-Image8 Image8::loadPng(const std::filesystem::path& path) {
-    const std::string file = path.string();
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error(ErrorKind::Io, file + ": file does not exist");
-    if (std::filesystem::is_directory(path, ec)) throw Error(ErrorKind::Io, file + ": is a directory, not a PNG");
-    int w = 0, h = 0, channels = 0;
-    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load(file.c_str(), &w, &h, &channels, 4), stbi_image_free);
-    if (!pixels) {
-        const char* reason = stbi_failure_reason();
-        throw Error(ErrorKind::Parse, file + ": cannot decode image: " + (reason ? reason : "unknown stb_image error"));
-    }
-    if (w > kMaxImageSide || h > kMaxImageSide)
-        throw Error(ErrorKind::InvalidArgument, file + ": image is " + std::to_string(w) + "x" + std::to_string(h) +
-                                                    ", larger than the " + std::to_string(kMaxImageSide) +
-                                                    " pixel limit");
-    Image8 out(w, h);
-    std::memcpy(out.m_data.data(), pixels.get(), out.m_data.size());
-    return out;
-}
+// PNG, JPEG, TGA, BMP, ...: any format stb_image decodes (src/io/image_decoding.cpp).
+Image8 Image8::loadPng(const std::filesystem::path& path) { return detail::readImage8(path); }
 
 }  // namespace sss

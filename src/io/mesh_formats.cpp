@@ -1,6 +1,7 @@
 #include "io/mesh_formats.h"
 
 #include "core/mesh_checks.h"
+#include "io/image_decoding.h"
 
 #include "util/format.h"
 
@@ -18,6 +19,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include <algorithm>
@@ -28,6 +30,8 @@
 #include <cstring>
 #include <exception>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -95,18 +99,46 @@ glm::dmat4 toGlm(const aiMatrix4x4& m) {
 }
 
 
-// A position's exact bits, for joining equal positions (smoothing).
-struct PositionBits {
-    std::array<uint32_t, 3> bits{};
-    bool operator==(const PositionBits&) const = default;
-};
-struct PositionBitsHash {
-    std::size_t operator()(const PositionBits& p) const {
+// A position's exact bits, and a position's with its texture coordinate's, for joining equal
+// corners (smoothing).
+using PositionBits = std::array<uint32_t, 3>;
+using VertexBits = std::array<uint32_t, 5>;
+struct BitsHash {
+    template <std::size_t N>
+    std::size_t operator()(const std::array<uint32_t, N>& bits) const {
         uint64_t h = 0xcbf29ce484222325ull;
-        for (uint32_t b : p.bits) h = (h ^ b) * 0x100000001b3ull;
+        for (uint32_t b : bits) h = (h ^ b) * 0x100000001b3ull;
         return static_cast<std::size_t>(h ^ (h >> 29));
     }
 };
+
+template <std::size_t N>
+std::array<uint32_t, N> bitsOf(const float (&values)[N]) {
+    std::array<uint32_t, N> bits{};
+    for (std::size_t i = 0; i < N; ++i) {
+        const float v = values[i] + 0.0f;  // -0 becomes +0
+        std::memcpy(&bits[i], &v, sizeof v);
+    }
+    return bits;
+}
+
+bool hasTriangles(const aiMesh& mesh) {
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f)
+        if (mesh.mFaces[f].mNumIndices == 3) return true;
+    return false;
+}
+
+// The file a material names as its base colour: glTF's baseColorTexture (BASE_COLOR; Assimp
+// also lists it as DIFFUSE), else a DIFFUSE texture (PLY's "comment TextureFile"). Empty if none.
+std::string baseColourTextureOf(const aiMaterial& material) {
+    for (const aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}) {
+        aiString path;
+        if (material.GetTextureCount(type) > 0 && material.GetTexture(type, 0, &path) == AI_SUCCESS &&
+            path.length > 0)
+            return path.C_Str();
+    }
+    return "";
+}
 
 struct Instance {
     unsigned mesh;
@@ -523,6 +555,20 @@ MeshFormat chooseMeshFormat(const std::filesystem::path& path, std::string_view 
     return *byContent;
 }
 
+std::vector<glm::vec3> smoothNormalsPerPosition(const std::vector<glm::vec3>& positions,
+                                                const std::vector<uint32_t>& indices,
+                                                const std::vector<uint32_t>& position, std::size_t positionCount,
+                                                glm::vec3 centre) {
+    std::vector<glm::vec3> shared(positionCount, centre);  // positions no vertex uses: never read
+    for (std::size_t i = 0; i < positions.size(); ++i) shared[position[i]] = positions[i];
+    std::vector<uint32_t> sharedIndices(indices.size());
+    for (std::size_t k = 0; k < indices.size(); ++k) sharedIndices[k] = position[indices[k]];
+    const std::vector<glm::vec3> normals = smoothNormals(shared, sharedIndices, centre);
+    std::vector<glm::vec3> out(positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) out[i] = normals[position[i]];
+    return out;
+}
+
 #if SSS_WITH_ASSIMP
 
 namespace {
@@ -534,20 +580,22 @@ public:
     AssimpReader(const std::filesystem::path& path, std::string_view bytes, MeshFormat format)
         : m_path(path), m_file(path.string()), m_name(meshFormatName(format)), m_bytes(bytes), m_format(format) {}
 
-    Mesh read() {
+    LoadedMesh read() {
         if (skipSpace(m_bytes).empty()) fail("has no triangles (the file is empty)");
         checkStructure();
         readScene();
         checkMeshes();
         postProcess();
         const std::vector<Instance> instances = instancesOf(*m_scene, m_file);
-        const bool smooth = needsSmoothNormals(instances);
-        for (const Instance& instance : instances) merge(instance, smooth);
-        return finish();
+        m_smooth = needsSmoothNormals(instances);
+        m_keepTexcoords = allHaveTexcoords(instances);
+        for (const Instance& instance : instances) merge(instance);
+        return {finish(), baseColour(instances)};
     }
 
 private:
     [[noreturn]] void fail(const std::string& what) const { throw Error(ErrorKind::Parse, m_file + ": " + what); }
+    void warn(const std::string& what) const { log(LogLevel::Warning, m_file + ": " + what); }
     std::string where(unsigned m) const {
         return m_scene->mNumMeshes > 1 ? "mesh " + std::to_string(m) + " " : std::string();
     }
@@ -590,6 +638,8 @@ private:
             if ((mesh->mNumVertices > 0 && !mesh->mVertices) || (mesh->mNumFaces > 0 && !mesh->mFaces))
                 fail(where(m) + "has no vertex or face data");
             for (unsigned v = 0; v < mesh->mNumVertices; ++v) checkVertex(m, v, mesh->mVertices[v]);
+            if (mesh->mTextureCoords[0])
+                for (unsigned v = 0; v < mesh->mNumVertices; ++v) checkTexcoord(m, v, mesh->mTextureCoords[0][v]);
             for (unsigned f = 0; f < mesh->mNumFaces; ++f) checkFace(m, f, mesh->mFaces[f], mesh->mNumVertices);
         }
     }
@@ -602,6 +652,12 @@ private:
         if (!isInRange(d))
             fail(where(m) + "vertex " + std::to_string(v) + " has a coordinate " + formatVec(glm::vec3(p.x, p.y, p.z)) +
                  " outside the supported range [-1e18, 1e18]");
+    }
+
+    void checkTexcoord(unsigned m, unsigned v, const aiVector3D& uv) const {
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+            fail(where(m) + "vertex " + std::to_string(v) + " has a non-finite texture coordinate (" +
+                 formatNumber(uv.x) + ", " + formatNumber(uv.y) + ")");
     }
 
     void checkFace(unsigned m, unsigned f, const aiFace& face, unsigned vertexCount) const {
@@ -658,20 +714,40 @@ private:
         return smooth;
     }
 
-    // When smoothing, corners at the same position share one vertex across meshes, so there are
-    // no seams in the normals.
-    uint32_t weld(glm::vec3 p) {
-        const glm::vec3 q = p + glm::vec3(0.0f);  // -0 becomes +0
-        static_assert(sizeof q == sizeof(PositionBits::bits));
-        PositionBits key;
-        std::memcpy(key.bits.data(), &q, sizeof key.bits);
+    // Texture coordinates (the first UV channel) are kept when every placed mesh with triangles
+    // has them; a mesh has them on every vertex or on none.
+    bool allHaveTexcoords(const std::vector<Instance>& instances) const {
+        std::size_t meshes = 0, withTexcoords = 0;
+        for (const Instance& instance : instances) {
+            const aiMesh* mesh = m_scene->mMeshes[instance.mesh];
+            if (!mesh || !mesh->mFaces || !hasTriangles(*mesh)) continue;
+            ++meshes;
+            if (mesh->mTextureCoords[0]) ++withTexcoords;
+        }
+        if (withTexcoords > 0 && withTexcoords < meshes)
+            warn(std::to_string(withTexcoords) + " of its " + std::to_string(meshes) +
+                 " placed meshes have texture coordinates; they are kept only when every mesh has them, so the "
+                 "mesh has none");
+        return meshes > 0 && withTexcoords == meshes;
+    }
+
+    // When smoothing, corners at the same position (and texture coordinate) share one vertex
+    // across meshes, so there are no seams in the normals; m_position numbers each vertex's
+    // position, so that vertices split by a texture seam get one normal.
+    uint32_t weld(glm::vec3 p, glm::vec2 uv) {
+        const PositionBits position = bitsOf({p.x, p.y, p.z});
+        const VertexBits key = bitsOf({p.x, p.y, p.z, uv.x, uv.y});
         auto [it, inserted] = m_welded.try_emplace(key, static_cast<uint32_t>(m_positions.size()));
-        if (inserted) m_positions.push_back(q);
+        if (!inserted) return it->second;
+        m_positions.push_back(p + glm::vec3(0.0f));  // -0 becomes +0
+        if (m_keepTexcoords) m_texcoords.push_back(uv);
+        m_position.push_back(m_positionIds.try_emplace(position, static_cast<uint32_t>(m_positionIds.size())).first->second);
         return it->second;
     }
 
     // One placed mesh into the merged arrays, in world space (its node's transform applied).
-    void merge(const Instance& instance, bool smooth) {
+    void merge(const Instance& instance) {
+        const bool smooth = m_smooth;
         const aiMesh* mesh = m_scene->mMeshes[instance.mesh];
         if (!mesh || !mesh->mFaces || !mesh->mVertices) return;
         const glm::dmat3 linear(instance.transform);
@@ -693,13 +769,16 @@ private:
                      "\": non-finite or outside the supported range [-1e18, 1e18]");
             if (m_positions.size() >= std::numeric_limits<uint32_t>::max())
                 fail("has more vertices than 32-bit indices can address");
-            if (smooth) return weld(glm::vec3(p));
+            const glm::vec2 uv = m_keepTexcoords ? glm::vec2(mesh->mTextureCoords[0][v].x, mesh->mTextureCoords[0][v].y)
+                                                 : glm::vec2(0.0f);
+            if (smooth) return weld(glm::vec3(p), uv);
             const aiVector3D& an = mesh->mNormals[v];
             const glm::dvec3 n = normalMatrix * glm::dvec3(an.x, an.y, an.z);
             const double largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
             remap[v] = static_cast<uint32_t>(m_positions.size());
             m_positions.emplace_back(p);
             m_normals.emplace_back(n / largest);  // scaled so that float keeps it usable
+            if (m_keepTexcoords) m_texcoords.push_back(uv);
             return remap[v];
         };
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
@@ -724,11 +803,74 @@ private:
         if (m_indices.empty())
             fail(m_pointsAndLines > 0 ? "has no triangles, only " + std::to_string(m_pointsAndLines) + " points and lines"
                                       : "has no triangles");
+        if (m_smooth)
+            m_normals = smoothNormalsPerPosition(m_positions, m_indices, m_position, m_positionIds.size(),
+                                                 boundsOf(m_positions).center());
         try {
-            return Mesh::fromArrays(std::move(m_positions), std::move(m_indices), std::move(m_normals), m_file);
+            return Mesh::fromArrays(std::move(m_positions), std::move(m_indices), std::move(m_normals), m_file,
+                                    std::move(m_texcoords));
         } catch (const Error& e) {
             throw Error(ErrorKind::Parse, e.what());  // the message already starts with the file
         }
+    }
+
+    // The base-colour texture of the materials the placed meshes use. A Mesh has one texture:
+    // when they use several, the one on the most triangles is taken (the first on a tie).
+    std::shared_ptr<const Image8> baseColour(const std::vector<Instance>& instances) const {
+        std::vector<std::pair<std::string, std::size_t>> uses;  // texture, triangles
+        for (const Instance& instance : instances) {
+            const std::string texture = textureOfMesh(instance.mesh);
+            if (texture.empty()) continue;
+            auto it = std::find_if(uses.begin(), uses.end(), [&](const auto& use) { return use.first == texture; });
+            if (it == uses.end()) it = uses.insert(uses.end(), {texture, 0});
+            it->second += triangleCount(*m_scene->mMeshes[instance.mesh]);
+        }
+        if (uses.empty()) return nullptr;
+        auto best = uses.begin();
+        for (auto it = uses.begin(); it != uses.end(); ++it)
+            if (it->second > best->second) best = it;
+        const std::string context = "base-colour texture \"" + best->first + "\"";
+        if (uses.size() > 1)
+            warn("its meshes use " + std::to_string(uses.size()) + " base-colour textures, but a mesh has one; only " +
+                 context + " (on " + std::to_string(best->second) + " triangles) is used");
+        if (!m_keepTexcoords) {
+            warn(context + " is not used: the mesh has no texture coordinates");
+            return nullptr;
+        }
+        return loadTexture(best->first, m_file + ": " + context);
+    }
+
+    std::string textureOfMesh(unsigned m) const {
+        const aiMesh* mesh = m_scene->mMeshes[m];
+        if (!mesh || !mesh->mFaces || !hasTriangles(*mesh) || !m_scene->mMaterials ||
+            mesh->mMaterialIndex >= m_scene->mNumMaterials)
+            return "";
+        const aiMaterial* material = m_scene->mMaterials[mesh->mMaterialIndex];
+        return material ? baseColourTextureOf(*material) : "";
+    }
+
+    static std::size_t triangleCount(const aiMesh& mesh) {
+        std::size_t n = 0;
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) n += mesh.mFaces[f].mNumIndices == 3 ? 1 : 0;
+        return n;
+    }
+
+    // "*N" names the scene's embedded texture N (a GLB buffer view or a data: URI, as the image
+    // file's bytes); any other name is a file relative to the mesh file's directory.
+    std::shared_ptr<const Image8> loadTexture(const std::string& name, const std::string& context) const {
+        if (name.front() != '*') return loadTextureOrWarn(m_path.parent_path() / name, context);
+        const std::optional<uint64_t> index = parseCount(std::string_view(name).substr(1));
+        const aiTexture* texture =
+            index && *index < m_scene->mNumTextures && m_scene->mTextures ? m_scene->mTextures[*index] : nullptr;
+        std::string problem;
+        if (!texture || !texture->pcData) problem = "the file has no such embedded texture";
+        else if (texture->mHeight != 0) problem = "it is stored as raw pixels, which libsss does not read";
+        if (!problem.empty()) {
+            log(LogLevel::Warning, context + ": " + problem + "; the mesh loads without a texture");
+            return nullptr;
+        }
+        const std::string_view bytes(reinterpret_cast<const char*>(texture->pcData), texture->mWidth);
+        return decodeTextureOrWarn(bytes, m_file + " (embedded texture " + name + ")", context);
     }
 
     const std::filesystem::path& m_path;
@@ -737,21 +879,25 @@ private:
     MeshFormat m_format;
     Assimp::Importer m_importer;
     const aiScene* m_scene = nullptr;
+    bool m_smooth = false, m_keepTexcoords = false;
     std::vector<glm::vec3> m_positions, m_normals;
+    std::vector<glm::vec2> m_texcoords;
     std::vector<uint32_t> m_indices;
-    std::unordered_map<PositionBits, uint32_t, PositionBitsHash> m_welded;
+    std::vector<uint32_t> m_position;  // when smoothing: each vertex's position, numbered by m_positionIds
+    std::unordered_map<VertexBits, uint32_t, BitsHash> m_welded;
+    std::unordered_map<PositionBits, uint32_t, BitsHash> m_positionIds;
     std::size_t m_pointsAndLines = 0, m_skippedInstances = 0;
 };
 
 }  // namespace
 
-Mesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view bytes, MeshFormat format) {
+LoadedMesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view bytes, MeshFormat format) {
     return AssimpReader(path, bytes, format).read();
 }
 
 #else
 
-Mesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view, MeshFormat format) {
+LoadedMesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view, MeshFormat format) {
     throw Error(ErrorKind::Unsupported, path.string() + ": " + meshFormatName(format) +
                                             " files need libsss built with SSS_WITH_ASSIMP=ON (libassimp-dev)");
 }

@@ -3,9 +3,15 @@
 // the Assimp path for PLY, STL, glTF 2.0 and OFF. Used by Mesh::load (src/io/mesh_load.cpp).
 #include "sss/mesh.h"
 
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 namespace sss::detail {
 
@@ -28,10 +34,27 @@ std::optional<MeshFormat> sniffMeshFormat(std::string_view bytes, bool weakToo);
 /// content shows, else OBJ.
 MeshFormat chooseMeshFormat(const std::filesystem::path& path, std::string_view bytes);
 
+/// A mesh as a reader makes it, and the base-colour texture its materials name (null if none),
+/// which Mesh::load attaches.
+struct LoadedMesh {
+    Mesh mesh;
+    std::shared_ptr<const Image8> baseColour;
+};
+
 /// Loads a PLY, STL, glTF or GLB, or OFF file through Assimp. bytes is the whole file; it is
 /// parsed from memory when the extension does not name `format` (Assimp would pick its reader
-/// by the extension), else from the path (so glTF files can reference buffers beside them).
+/// by the extension), else from the path (so glTF files can reference buffers and images beside
+/// them). A texture that cannot be read is left out with a warning (src/io/image_decoding.h).
 /// @throws Error Parse, messages starting with the path as given.
-Mesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view bytes, MeshFormat format);
+LoadedMesh loadMeshWithAssimp(const std::filesystem::path& path, std::string_view bytes, MeshFormat format);
+
+/// Smooth area-weighted normals (as detail::smoothNormals) shared by the vertices at one
+/// position: position[i] numbers vertex i's position (< positionCount), and every vertex of a
+/// position gets the normal summed over the triangles around all of them. So the vertices that
+/// a texture seam splits still shade as one smooth surface.
+std::vector<glm::vec3> smoothNormalsPerPosition(const std::vector<glm::vec3>& positions,
+                                                const std::vector<uint32_t>& indices,
+                                                const std::vector<uint32_t>& position, std::size_t positionCount,
+                                                glm::vec3 centre);
 
 }  // namespace sss::detail

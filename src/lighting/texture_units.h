@@ -13,6 +13,11 @@ inline constexpr int kPassInputs = 0;
 inline constexpr int kSurfaceMeshShadowDepth = 6;
 inline constexpr int kSurfaceMeshShadowIds = 7;
 inline constexpr int kVolumeShadows = 16;  // 16..31: volumeShadowLight[kMaxVolumeShadowPairs]
+// Textured translucent materials (shaders/mesh/textured_material.glsl), in the mesh passes only:
+// the volume ray caster's units below are free there.
+inline constexpr int kMaterialReflectance = 8;
+inline constexpr int kMaterialPathScale = 9;
+inline constexpr int kMaterialTable = 10;
 
 // Volume ray cast (shaders/volume/ray_cast.frag) and the eye pass's lit-colour compute.
 inline constexpr int kLightVolumes = 4;   // 4..11: lightVolumes[MAX_LIGHTS]

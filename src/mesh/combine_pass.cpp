@@ -11,20 +11,22 @@
 
 namespace sss::detail {
 
-const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows) const {
-    std::optional<gl::Program>& slot = m_programs[(perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
+const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, bool textured) const {
+    std::optional<gl::Program>& slot = m_programs[(textured ? 4 : 0) + (perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
     if (!slot)
         slot = gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
                                  {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)},
                                   {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
                                   {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)},
                                   {"PER_VERTEX", perVertex ? "1" : "0"},
-                                  {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"}});
+                                  {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"},
+                                  {"TEXTURED_MATERIAL", textured ? "1" : "0"},
+                                  {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)}});
     return *slot;
 }
 
 void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
-    const gl::Program& p = program(s.perVertex, castsSurfaceShadows(in.shadows, in.lights.size()));
+    const gl::Program& p = program(s.perVertex, castsSurfaceShadows(in.shadows, in.lights.size()), s.material != nullptr);
     p.set("model", in.model);
     p.set("viewProjection", in.camera.projection(in.aspect) * in.camera.view());
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
@@ -39,6 +41,7 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     p.set("environment", s.environment);
     setDipoleUniforms(p, "dipole", s.dipole);
     setNearFieldUniforms(p, s.nearField);
+    if (s.material) s.material->bind(p, s.millimetresPerUnit);
     p.set("lightTexelWorld", in.lightBuffer.texelWorld(in.mesh, in.model));
     p.set("lightPositions", units::kPassInputs + 2);
     for (size_t i = 0; i < in.lightBuffer.viewProjections().size(); ++i)

@@ -8,6 +8,7 @@
 #include "mesh/gpu_mesh.h"
 #include "mesh/light_buffer_pass.h"
 #include "mesh/near_field.h"
+#include "mesh/textured_material.h"
 #include "sss/bssrdf.h"
 #include "mesh/scattering_map_pass.h"
 #include "mesh/vertex_radiosity_pass.h"
@@ -29,6 +30,9 @@ struct CombineSettings {
     DipoleConstants dipole;       ///< the profile; its single-scattering term is added per pixel
     NearFieldTable nearField;     ///< added per pixel: what the vertex estimate left out (radius 0: none)
     bool perVertex = false;       ///< no map lookups, the vertices' radiosity (MeshCombine::PerVertex, VertexEstimate)
+    /// A textured material: the cached radiosity is normalised, each pixel takes its own texel.
+    const TexturedMaterialGpu* material = nullptr;
+    double millimetresPerUnit = 1000.0;  ///< scales the textured material's mean free path
 };
 
 struct CombineInputs {
@@ -51,9 +55,9 @@ public:
 private:
     /// The program compiled for this frame's needs, linked the first time they occur: without
     /// map lookups for the per-vertex combines, without surface shadows where nothing casts them.
-    const gl::Program& program(bool perVertex, bool surfaceShadows) const;
+    const gl::Program& program(bool perVertex, bool surfaceShadows, bool textured) const;
 
-    mutable std::array<std::optional<gl::Program>, 4> m_programs;
+    mutable std::array<std::optional<gl::Program>, 8> m_programs;
 };
 
 }  // namespace sss::detail

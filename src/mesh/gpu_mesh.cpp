@@ -6,21 +6,26 @@ namespace sss::detail {
 
 GpuMesh GpuMesh::upload(const Mesh& mesh) {
     std::vector<float> interleaved;
-    interleaved.reserve(mesh.vertexCount() * 6);
+    interleaved.reserve(mesh.vertexCount() * kFloatsPerVertex);
+    const bool textured = !mesh.texcoords().empty();
     for (size_t i = 0; i < mesh.vertexCount(); ++i) {
         const glm::vec3& p = mesh.positions()[i];
         const glm::vec3& n = mesh.normals()[i];
-        interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+        const glm::vec2 t = textured ? mesh.texcoords()[i] : glm::vec2(0.0f);
+        interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y});
     }
     GpuMesh gpu;
     gpu.vertices = gl::Buffer::create(interleaved.size() * sizeof(float), interleaved.data(), 0, "mesh vertices");
     gpu.indices = gl::Buffer::create(mesh.indices().size() * sizeof(uint32_t), mesh.indices().data(), 0, "mesh indices");
     gpu.vertexArray = gl::VertexArray::create();
-    gpu.vertexArray.setAttribute(0, gpu.vertices, 3, 0, 6 * sizeof(float));
-    gpu.vertexArray.setAttribute(1, gpu.vertices, 3, 3 * sizeof(float), 6 * sizeof(float));
+    const GLsizei stride = kFloatsPerVertex * sizeof(float);
+    gpu.vertexArray.setAttribute(0, gpu.vertices, 3, 0, stride);
+    gpu.vertexArray.setAttribute(1, gpu.vertices, 3, 3 * sizeof(float), stride);
+    gpu.vertexArray.setAttribute(2, gpu.vertices, 2, 6 * sizeof(float), stride);
     gpu.vertexArray.setIndexBuffer(gpu.indices);
     gpu.indexCount = static_cast<GLsizei>(mesh.indices().size());
     gpu.bounds = mesh.bounds();
+    gpu.hasTexcoords = textured;
     return gpu;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
-// A Mesh uploaded to the GPU: interleaved position+normal vertex buffer, index buffer, VAO
-// (attribute 0 = position, 1 = normal). Shared by every mesh pass.
+// A Mesh uploaded to the GPU: interleaved position, normal and texture-coordinate vertex buffer
+// (zero texture coordinates when the mesh has none), index buffer, VAO (attribute 0 = position,
+// 1 = normal, 2 = texture coordinate). Shared by every mesh pass; the compute passes read the
+// vertex buffer as storage, kFloatsPerVertex floats per vertex.
 #include "gl/buffer.h"
 #include "gl/program.h"
 #include "gl/vertex_array.h"
@@ -10,11 +12,14 @@
 namespace sss::detail {
 
 struct GpuMesh {
+    static constexpr int kFloatsPerVertex = 8;
+
     gl::Buffer vertices;
     gl::Buffer indices;
     gl::VertexArray vertexArray;
     GLsizei indexCount = 0;
     Bounds bounds;
+    bool hasTexcoords = false;
 
     static GpuMesh upload(const Mesh& mesh);
     void draw() const;

@@ -51,32 +51,53 @@ glm::mat4 lightViewProjection(const Light& light, glm::vec3 centre, float radius
     return glm::perspective(2.0f * std::min(halfAngle, glm::radians(75.0f)), 1.0f, nearPlane, distance + radius) * view;
 }
 
-LightBufferPass::LightBufferPass()
-    : m_program(gl::Program::link({{GL_VERTEX_SHADER, "mesh/light_buffer.vert"},
-                                   {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}})) {}
+namespace {
+
+gl::Program linkLightBufferProgram(bool textured) {
+    return gl::Program::link({{GL_VERTEX_SHADER, "mesh/light_buffer.vert"}, {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}},
+                             {{"TEXTURED_MATERIAL", textured ? "1" : "0"},
+                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)}});
+}
+
+}  // namespace
+
+LightBufferPass::LightBufferPass() : m_program(linkLightBufferProgram(false)) {}
 
 void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std::vector<Light>& lights,
-                          int resolution) {
+                          int resolution, const TexturedMaterialGpu* material) {
     const int layers = std::max<int>(1, static_cast<int>(lights.size()));
-    if (!m_positions || m_positions.size() != glm::ivec3(resolution, resolution, layers)) {
+    const bool textured = material != nullptr;
+    if (!m_positions || m_positions.size() != glm::ivec3(resolution, resolution, layers) ||
+        static_cast<bool>(m_entryWeights) != textured) {
         m_positions = gl::Texture::create2DArray(GL_RGBA32F, resolution, resolution, layers, "light buffer positions");
         // Bilinear, so samples land on the surface between texel centres rather than snapping to
         // them; where the four texels are not all covered (w < 1) the sampler skips the sample.
         m_normals = gl::Texture::create2DArray(GL_RGBA16F, resolution, resolution, layers, "light buffer normals");
         m_depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, resolution, resolution, layers, "light buffer depth");
+        m_entryWeights = textured ? gl::Texture::create2DArray(GL_RGBA16F, resolution, resolution, layers,
+                                                               "light buffer entry weights")
+                                  : gl::Texture();
         m_layers.clear();
         for (int layer = 0; layer < layers; ++layer) {
             gl::Framebuffer& framebuffer = m_layers.emplace_back(gl::Framebuffer::create());
             framebuffer.attachLayer(GL_COLOR_ATTACHMENT0, m_positions, layer);
             framebuffer.attachLayer(GL_COLOR_ATTACHMENT1, m_normals, layer);
             framebuffer.attachLayer(GL_DEPTH_ATTACHMENT, m_depth, layer);
-            framebuffer.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+            if (textured) {
+                framebuffer.attachLayer(GL_COLOR_ATTACHMENT2, m_entryWeights, layer);
+                framebuffer.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
+            } else {
+                framebuffer.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+            }
             framebuffer.checkComplete("light buffer");
         }
     }
     const auto [centre, radius] = worldSphere(mesh.bounds, model);
-    m_program.set("model", model);
-    m_program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
+    if (textured && !m_texturedProgram) m_texturedProgram = linkLightBufferProgram(true);
+    const gl::Program& program = textured ? *m_texturedProgram : m_program;
+    if (textured) material->bind(program, 1.0);  // the entry weights need the reflectance only
+    program.set("model", model);
+    program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
     const float zero[4] = {0, 0, 0, 0};
     const float one = 1.0f;
     m_viewProjections.clear();
@@ -88,9 +109,9 @@ void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std
         glClearNamedFramebufferfv(framebuffer.id(), GL_DEPTH, 0, &one);
         if (i >= lights.size()) continue;  // no light: the layer stays empty
         m_viewProjections.push_back(lightViewProjection(lights[i], centre, radius));
-        m_program.set("lightViewProjection", m_viewProjections.back());
+        program.set("lightViewProjection", m_viewProjections.back());
         framebuffer.bind();
-        mesh.drawOpaque(m_program);
+        mesh.drawOpaque(program);
     }
 }
 

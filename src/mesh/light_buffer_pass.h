@@ -7,10 +7,12 @@
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "mesh/gpu_mesh.h"
+#include "mesh/textured_material.h"
 #include "sss/light.h"
 
 #include <glm/mat4x4.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace sss::detail {
@@ -21,17 +23,23 @@ glm::mat4 lightViewProjection(const Light& light, glm::vec3 centre, float radius
 class LightBufferPass {
 public:
     LightBufferPass();
-    void run(const GpuMesh& mesh, const glm::mat4& model, const std::vector<Light>& lights, int resolution);
+    /// `material`: a textured material, whose entry weights then fill entryWeights().
+    void run(const GpuMesh& mesh, const glm::mat4& model, const std::vector<Light>& lights, int resolution,
+             const TexturedMaterialGpu* material = nullptr);
 
     const gl::Texture& positions() const { return m_positions; }  ///< xyz world, w = 1 where covered
     const gl::Texture& normals() const { return m_normals; }
+    /// A textured material's entry weight per texel (shaders/mesh/textured_material.glsl); empty
+    /// after a run without one.
+    const gl::Texture& entryWeights() const { return m_entryWeights; }
     const std::vector<glm::mat4>& viewProjections() const { return m_viewProjections; }
     /// A texel's size at `mesh` placed by `model`, world units (the views frame its bounding sphere).
     float texelWorld(const GpuMesh& mesh, const glm::mat4& model) const;
 
 private:
     gl::Program m_program;
-    gl::Texture m_positions, m_normals, m_depth;
+    std::optional<gl::Program> m_texturedProgram;  // TEXTURED_MATERIAL 1, linked on first use
+    gl::Texture m_positions, m_normals, m_depth, m_entryWeights;
     std::vector<gl::Framebuffer> m_layers;  // one per light: its layer of the three textures
     std::vector<glm::mat4> m_viewProjections;
 };

@@ -3,10 +3,14 @@
 // full-concentration extrapolation). Both give reduced scattering sigma_s', so g = 0.
 #include "sss/materials.h"
 
+#include "mesh/reflectance_table.h"
+#include "util/format.h"
+
 #include "sss/error.h"
 
 #include <array>
 #include <cctype>
+#include <cmath>
 
 namespace sss {
 namespace {
@@ -105,6 +109,57 @@ std::vector<std::string> materialPresetNames() {
     std::vector<std::string> names;
     for (const Preset& p : kPresets) names.emplace_back(p.name);
     return names;
+}
+
+namespace {
+
+bool positiveFinite(const glm::dvec3& v) {
+    return std::isfinite(v.x + v.y + v.z) && v.x > 0.0 && v.y > 0.0 && v.z > 0.0;
+}
+
+void checkEta(const char* where, double eta) {
+    if (!(eta >= 0.4 && eta <= 2.5))
+        throw Error(ErrorKind::InvalidArgument, where, "eta", "must be in [0.4, 2.5], got " + detail::formatNumber(eta));
+}
+
+}  // namespace
+
+void TexturedScattering::validate() const {
+    if (!positiveFinite(meanFreePath))
+        throw Error(ErrorKind::InvalidArgument, "TexturedScattering", "meanFreePath",
+                    "must be finite and > 0 in every channel, got " + detail::formatVec(glm::vec3(meanFreePath)));
+    checkEta("TexturedScattering", eta);
+}
+
+TexturedScattering texturedScattering(const ScatteringMaterial& material) {
+    material.validate();
+    TexturedScattering t;
+    t.meanFreePath = 1.0 / (material.sigmaS * (1.0 - material.g) + material.sigmaA);
+    t.eta = material.eta;
+    t.name = material.name;
+    return t;
+}
+
+ScatteringMaterial materialFromReflectance(const glm::dvec3& reflectance, const glm::dvec3& meanFreePath, double eta,
+                                           ScatteringProfile profile) {
+    if (!std::isfinite(reflectance.x + reflectance.y + reflectance.z))
+        throw Error(ErrorKind::InvalidArgument, "materialFromReflectance", "reflectance",
+                    "must be finite, got " + detail::formatVec(glm::vec3(reflectance)));
+    if (!positiveFinite(meanFreePath))
+        throw Error(ErrorKind::InvalidArgument, "materialFromReflectance", "meanFreePath",
+                    "must be finite and > 0 in every channel, got " + detail::formatVec(glm::vec3(meanFreePath)));
+    checkEta("materialFromReflectance", eta);
+    const detail::ReflectanceTable& table = detail::reflectanceTable(eta, profile);
+    ScatteringMaterial m;
+    for (int c = 0; c < 3; ++c) {
+        const double albedo = detail::invertReflectance(table, reflectance[c]).reducedAlbedo;
+        m.sigmaS[c] = albedo / meanFreePath[c];
+        m.sigmaA[c] = (1.0 - albedo) / meanFreePath[c];
+    }
+    m.g = 0.0;
+    m.eta = eta;
+    m.name = "reflectance";
+    return m;
 }
 
 }  // namespace sss

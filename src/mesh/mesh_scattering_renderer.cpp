@@ -12,6 +12,7 @@
 #include "mesh/near_field.h"
 #include "mesh/scattering_map_pass.h"
 #include "mesh/renderer_access.h"
+#include "mesh/textured_material.h"
 #include "mesh/vertex_estimate_pass.h"
 #include "sss/error.h"
 #include "sss/option_table.h"
@@ -34,6 +35,7 @@ struct LightBufferInputs {
     glm::mat4 model{1.0f};
     std::vector<Light> lights;
     int resolution = 0;
+    std::uint64_t texturedMaterial = 0;  // the material's generation when textured (entry weights)
     bool operator==(const LightBufferInputs&) const = default;
 };
 
@@ -85,6 +87,10 @@ struct MeshScatteringRenderer::Impl {
     MeshRenderOptions options;
     BlinnPhongMaterial material;
     ScatteringMaterial scatteringMaterial;
+    std::optional<TexturedScattering> texturedMaterial;     // replaces scatteringMaterial when set
+    std::optional<detail::TexturedMaterialGpu> texturedGpu;  // its textures, once a mesh is set
+    std::shared_ptr<const Image8> meshBaseColour;
+    bool meshHasTexcoords = false;
     std::uint64_t materialGeneration = 1;
     std::vector<Light> lights{DirectionalLight{}};
     glm::mat4 model{1.0f};
@@ -115,9 +121,33 @@ struct MeshScatteringRenderer::Impl {
     std::optional<ProfileInputs> profileInputs;  // what dipole and sampling were derived for
     glm::dvec3 environmentReflectance{0.0};
 
+    // The material the profile, the sampling and the Automatic combine are derived for: a
+    // textured material's widest texel, else the uniform material.
+    const ScatteringMaterial& profileMaterial() const {
+        return texturedGpu ? texturedGpu->widestMaterial() : scatteringMaterial;
+    }
+
+    // Uploads the textured material for the current mesh and profile (if it changed).
+    void updateTexturedMaterial() {
+        if (!texturedMaterial || !mesh) return;
+        if (texturedGpu && texturedGpu->profile() == options.profile) return;
+        if (!meshHasTexcoords)
+            throw Error(ErrorKind::InvalidArgument,
+                        "MeshScatteringRenderer: the textured material \"" + texturedMaterial->name +
+                            "\" needs texture coordinates, and the mesh has none");
+        const std::shared_ptr<const Image8>& image =
+            texturedMaterial->reflectance ? texturedMaterial->reflectance : meshBaseColour;
+        if (!image)
+            throw Error(ErrorKind::InvalidArgument, "MeshScatteringRenderer: the textured material \"" +
+                                                        texturedMaterial->name +
+                                                        "\" has no reflectance texture and the mesh no base colour");
+        texturedGpu.emplace(*texturedMaterial, *image, options.profile);
+        ++materialGeneration;
+    }
+
     // The profile's constants and the disk sampling for the current inputs.
     void deriveProfile() {
-        dipole = deriveDipoleConstants(scatteringMaterial, options.millimetresPerUnit, options.profile);
+        dipole = deriveDipoleConstants(profileMaterial(), options.millimetresPerUnit, options.profile);
         // The widest channel (smallest sigma_tr) sets the spread; sigma_tr = 0 (no absorption)
         // falls back to the reduced extinction, the next shortest length scale.
         double sigma = std::min({dipole.sigmaTr.x, dipole.sigmaTr.y, dipole.sigmaTr.z});
@@ -178,7 +208,7 @@ struct MeshScatteringRenderer::Impl {
 
     double edgeToDiffusionLength() const {
         if (!mesh) return 0.0;
-        return detail::edgeToDiffusionLength(surfaceEdgeLength * detail::largestScale(model), scatteringMaterial,
+        return detail::edgeToDiffusionLength(surfaceEdgeLength * detail::largestScale(model), profileMaterial(),
                                              options.millimetresPerUnit);
     }
 
@@ -189,7 +219,7 @@ struct MeshScatteringRenderer::Impl {
     }
 
     ScatteringMapInputs currentMapInputs() const {
-        return {{meshGeneration, model, lights, options.lightMapResolution},
+        return {{meshGeneration, model, lights, options.lightMapResolution, texturedGpu ? materialGeneration : 0},
                 materialGeneration,
                 options.cameras,
                 options.samples,
@@ -218,7 +248,9 @@ struct MeshScatteringRenderer::Impl {
         const ScatteringMapInputs inputs = currentMapInputs();
         if (lightBufferInputs != inputs.lightBuffer) {
             if (!lightBuffer) lightBuffer.emplace();
-            timed("light-buffer", [&] { lightBuffer->run(*mesh, model, lights, options.lightMapResolution); });
+            timed("light-buffer", [&] {
+                lightBuffer->run(*mesh, model, lights, options.lightMapResolution, texturedGpu ? &*texturedGpu : nullptr);
+            });
             lightBufferInputs = inputs.lightBuffer;
         }
         if (scatteringMapInputs != inputs) {
@@ -235,9 +267,16 @@ struct MeshScatteringRenderer::Impl {
         }
         if (radiosityFrames() >= options.accumulationFrames) return;
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
-        const detail::RadiosityEstimateInputs estimate{lights,  lightBuffer->viewProjections(), lightBuffer->positions(),
-                                                       lightBuffer->normals(), dipole, sampling,
-                                                       shadows ? &*shadows : nullptr};
+        const detail::RadiosityEstimateInputs estimate{lights,
+                                                       lightBuffer->viewProjections(),
+                                                       lightBuffer->positions(),
+                                                       lightBuffer->normals(),
+                                                       dipole,
+                                                       sampling,
+                                                       shadows ? &*shadows : nullptr,
+                                                       texturedGpu ? &*texturedGpu : nullptr,
+                                                       &lightBuffer->entryWeights(),
+                                                       options.millimetresPerUnit};
         if (inputs.vertexEstimate)
             timed("vertex-estimate", [&] {
                 vertexEstimate->accumulate(*mesh, model, estimate, nearField, lightBuffer->texelWorld(*mesh, model));
@@ -267,6 +306,10 @@ void MeshScatteringRenderer::setMesh(const Mesh& mesh, const glm::mat4& model) {
     m_impl->surfaceEdgeLength = detail::surfaceEdgeLength(mesh);
     ++m_impl->meshGeneration;
     m_impl->model = model;
+    m_impl->meshBaseColour = mesh.baseColour();
+    m_impl->meshHasTexcoords = !mesh.texcoords().empty();
+    m_impl->texturedGpu.reset();
+    m_impl->updateTexturedMaterial();
 }
 
 void MeshScatteringRenderer::setModelTransform(const glm::mat4& model) { m_impl->model = model; }
@@ -279,7 +322,17 @@ void MeshScatteringRenderer::setMaterial(const BlinnPhongMaterial& material) {
 void MeshScatteringRenderer::setScatteringMaterial(const ScatteringMaterial& material) {
     material.validate();
     m_impl->scatteringMaterial = material;
+    m_impl->texturedMaterial.reset();
+    m_impl->texturedGpu.reset();
     ++m_impl->materialGeneration;
+}
+
+void MeshScatteringRenderer::setScatteringMaterial(const TexturedScattering& material) {
+    material.validate();
+    m_impl->texturedMaterial = material;
+    m_impl->texturedGpu.reset();
+    ++m_impl->materialGeneration;
+    m_impl->updateTexturedMaterial();
 }
 
 bool MeshScatteringRenderer::converged() const { return m_impl->mapsConverged(); }
@@ -312,6 +365,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         });
         return;
     }
+    r.updateTexturedMaterial();
     r.updateScattering();
     if (!r.combine) r.combine.emplace();
     const MeshCombine combine = r.activeCombine();
@@ -321,7 +375,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     const float texels = static_cast<float>(r.options.mapResolution);
     const float radius = std::max(r.mesh->bounds.radius(), 1e-6f) * 1.01f;
     detail::CombineSettings settings;
-    settings.eta = static_cast<float>(r.scatteringMaterial.eta);
+    settings.eta = static_cast<float>(r.profileMaterial().eta);
     settings.lookup.depthBias = r.options.depthBias * 2.0f / (3.0f * texels);
     settings.lookup.seamShrink = r.options.seamShrink * 2.0f * radius / texels;
     settings.specularStrength = r.options.specular;
@@ -330,6 +384,8 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.dipole = r.dipole;
     if (vertexEstimate) settings.nearField = r.nearField;
     settings.perVertex = combine != MeshCombine::PerPixel;
+    settings.material = r.texturedGpu ? &*r.texturedGpu : nullptr;
+    settings.millimetresPerUnit = r.options.millimetresPerUnit;
     // The vertices' radiosity follows the maps: once per accumulated frame.
     if (!vertexEstimate && !r.vertexRadiosity) r.vertexRadiosity.emplace(r.adjacency);
     if (!vertexEstimate &&

@@ -21,6 +21,11 @@ void setRadiosityEstimateUniforms(const gl::Program& p, const RadiosityEstimateI
     p.set("samplesPerLight", in.sampling.samplesPerLight);
     p.set("nearRadius", in.sampling.nearRadius);
     p.set("frameSeed", frameSeed);
+    if (in.material) {
+        in.material->bind(p, in.millimetresPerUnit);
+        p.set("lightEntryWeights", 2);
+        in.lightEntryWeights->bind(2);
+    }
     in.lightPositions.bind(0);
     in.lightNormals.bind(1);
 }

@@ -5,6 +5,7 @@
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "lighting/shadows.h"
+#include "mesh/textured_material.h"
 #include "sss/bssrdf.h"
 #include "sss/light.h"
 
@@ -31,6 +32,11 @@ struct RadiosityEstimateInputs {
     const DipoleConstants& dipole;
     const ScatteringSampling& sampling;
     const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes
+    /// A textured material: each point gathers with its own profile (programs compiled with
+    /// TEXTURED_MATERIAL 1); `dipole` is then its widest material, which chose the sampling.
+    const TexturedMaterialGpu* material = nullptr;
+    const gl::Texture* lightEntryWeights = nullptr;  ///< LightBufferPass::entryWeights, with `material`
+    double millimetresPerUnit = 1000.0;  ///< scales the textured material's mean free path
 };
 
 /// Sets the estimator's uniforms on `program` and binds the light buffer to texture units 0 and 1.

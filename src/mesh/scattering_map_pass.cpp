@@ -18,11 +18,14 @@ float radicalInverse(int index, int base) {
     return result;
 }
 
-gl::Program linkMapProgram(const char* fragment, int cameras) {
+gl::Program linkMapProgram(const char* fragment, int cameras, bool textured = false) {
     return gl::Program::link({{GL_VERTEX_SHADER, "mesh/scattering_map.vert"},
                               {GL_GEOMETRY_SHADER, "mesh/scattering_map.geom"},
                               {GL_FRAGMENT_SHADER, fragment}},
-                             {{"CAMERA_COUNT", std::to_string(cameras)}, {"MAX_LIGHTS", std::to_string(kMaxLights)}});
+                             {{"CAMERA_COUNT", std::to_string(cameras)},
+                              {"MAX_LIGHTS", std::to_string(kMaxLights)},
+                              {"TEXTURED_MATERIAL", textured ? "1" : "0"},
+                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)}});
 }
 
 }  // namespace
@@ -70,7 +73,10 @@ void ScatteringMapPass::reset(int resolution) {
 void ScatteringMapPass::accumulate(const ScatteringMapPassInputs& in) {
     const glm::mat4& model = in.model;
     const glm::mat3 normalMatrix = glm::mat3(glm::transpose(glm::inverse(model)));
-    for (const gl::Program* p : {&m_depthProgram, &m_program}) {
+    if (in.estimate.material && !m_texturedProgram)
+        m_texturedProgram = linkMapProgram("mesh/scattering_map.frag", m_cameras, true);
+    const gl::Program& program = in.estimate.material ? *m_texturedProgram : m_program;
+    for (const gl::Program* p : {static_cast<const gl::Program*>(&m_depthProgram), &program}) {
         p->set("model", model);
         p->set("normalMatrix", normalMatrix);
         for (int k = 0; k < m_cameras; ++k)
@@ -96,12 +102,12 @@ void ScatteringMapPass::accumulate(const ScatteringMapPassInputs& in) {
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
 
-    setRadiosityEstimateUniforms(m_program, in.estimate, static_cast<unsigned>(m_frames));
+    setRadiosityEstimateUniforms(program, in.estimate, static_cast<unsigned>(m_frames));
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    m_program.use();
+    program.use();
     in.mesh.draw();
     glDisable(GL_BLEND);
     glDepthFunc(GL_LESS);

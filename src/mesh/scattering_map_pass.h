@@ -13,6 +13,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace sss::detail {
@@ -53,6 +54,7 @@ private:
     int m_cameras;
     gl::Program m_depthProgram;  // same geometry, trivial fragment shader: the depth pre-pass
     gl::Program m_program;
+    std::optional<gl::Program> m_texturedProgram;  // TEXTURED_MATERIAL 1, linked on first use
     gl::Texture m_maps, m_depth;
     gl::Framebuffer m_framebuffer;
     int m_frames = 0;

@@ -12,6 +12,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstddef>
+#include <optional>
 
 namespace sss::detail {
 
@@ -32,6 +33,7 @@ public:
 
 private:
     gl::Program m_program;
+    std::optional<gl::Program> m_texturedProgram;  // TEXTURED_MATERIAL 1, linked on first use
     gl::Buffer m_sums, m_radiosity;
     std::size_t m_vertexCount = 0;
     int m_frames = 0;

@@ -1,16 +1,24 @@
-// Mesh::load for the formats read through Assimp (PLY, STL, glTF 2.0, OFF) and the choice of
-// reader by extension and content. Every file is written here, into a temp directory.
+// Mesh::load for the formats read through Assimp (PLY, STL, glTF 2.0, OFF), the choice of
+// reader by extension and content, and the texture coordinates and base-colour textures of every
+// reader (OBJ + MTL included). Every file is written here, into a temp directory.
+#include "sss/image.h"
 #include "sss/log.h"
 #include "sss/mesh.h"
 
 #include "test_helpers.h"
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -334,4 +342,340 @@ TEST_CASE("Mesh::load rejects corrupted PLY, STL, glTF and OFF files naming the 
     std::string longGlb = glb(tetraGltfJson("{\"mesh\":0}", "0", ""), tetraGltfBuffer());
     longGlb.resize(longGlb.size() - 8);
     rejects("cut.glb", longGlb, "(truncated or corrupt)");
+}
+
+// ---- texture coordinates and base-colour textures -------------------------------------------
+
+namespace {
+
+// 4 x 2 texels, every one a different colour, so that a flipped or mirrored lookup reads a
+// wrong one. Row 0 is the top row, as Image8 stores it.
+sss::Image8 asymmetricTexture() {
+    sss::Image8 image(4, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x)
+            image.at(x, y) = glm::u8vec4(10 + 60 * x, 20 + 150 * y, 230 - 40 * x - 70 * y, 255);
+    return image;
+}
+
+// A texel's centre in Mesh's convention: (0, 0) the bottom-left corner of the image.
+glm::vec2 meshUv(const sss::Image8& image, int x, int y) {
+    return {(x + 0.5f) / static_cast<float>(image.width()), 1.0f - (y + 0.5f) / static_cast<float>(image.height())};
+}
+
+// The same texel in glTF's convention: (0, 0) the top-left corner.
+glm::vec2 gltfUv(const sss::Image8& image, int x, int y) {
+    return {(x + 0.5f) / static_cast<float>(image.width()), (y + 0.5f) / static_cast<float>(image.height())};
+}
+
+// What a renderer reads at uv through Mesh's convention: pixel (u W, (1 - v) H) of the image.
+glm::u8vec4 texelAt(const sss::Image8& image, glm::vec2 uv) {
+    const int x = std::clamp(static_cast<int>(std::floor(uv.x * static_cast<float>(image.width()))), 0, image.width() - 1);
+    const int y = std::clamp(static_cast<int>(std::floor((1.0f - uv.y) * static_cast<float>(image.height()))), 0,
+                             image.height() - 1);
+    return image.at(x, y);
+}
+
+bool sameImage(const sss::Image8& a, const sss::Image8& b) {
+    return a.width() == b.width() && a.height() == b.height() && a.data() == b.data();
+}
+
+std::string readFile(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::string objUv(glm::vec2 uv) { return "vt " + std::to_string(uv.x) + " " + std::to_string(uv.y) + "\n"; }
+
+// A vertex of a loaded mesh: where it is and which texel its texture coordinate reads.
+struct TexturedCorner {
+    glm::vec3 position;
+    glm::ivec2 texel;
+};
+
+// Every expected corner is a vertex of m, and every vertex one of them: positions and the texel
+// its texture coordinate reads through Mesh's convention.
+void checkCorners(const Mesh& m, const sss::Image8& image, const std::vector<TexturedCorner>& expected) {
+    REQUIRE(m.texcoords().size() == m.vertexCount());
+    REQUIRE(m.baseColour());
+    CHECK(m.vertexCount() == expected.size());
+    for (std::size_t i = 0; i < m.vertexCount(); ++i) {
+        const glm::u8vec4 read = texelAt(*m.baseColour(), m.texcoords()[i]);
+        const bool found = std::any_of(expected.begin(), expected.end(), [&](const TexturedCorner& c) {
+            return near(m.positions()[i], c.position) && read == image.at(c.texel.x, c.texel.y);
+        });
+        INFO("vertex " << i << " at (" << m.positions()[i].x << ", " << m.positions()[i].y << ", "
+                       << m.positions()[i].z << ") uv (" << m.texcoords()[i].x << ", " << m.texcoords()[i].y << ")");
+        CHECK(found);
+    }
+}
+
+// A folded quad: triangles (1 2 3) and (1 3 4), with position 1 on a UV seam (vt 1 in the first
+// triangle, vt 4 in the second). Texels: vt 1 (0, 1), vt 2 (3, 1), vt 3 (3, 0), vt 4 (1, 0),
+// vt 5 (2, 1).
+std::string seamObj(const sss::Image8& image, bool normals) {
+    std::string obj = "mtllib quad.mtl\nv 0 0 0\nv 1 0 1\nv 1 1 0\nv 0 1 0\n";
+    for (glm::ivec2 t : {glm::ivec2(0, 1), glm::ivec2(3, 1), glm::ivec2(3, 0), glm::ivec2(1, 0), glm::ivec2(2, 1)})
+        obj += objUv(meshUv(image, t.x, t.y));
+    if (normals) return obj + "vn 0 0 1\nusemtl skin\nf 1/1/1 2/2/1 3/3/1\nf 1/4/1 3/3/1 4/5/1\n";
+    return obj + "usemtl skin\nf 1/1 2/2 3/3\nf 1/4 3/3 4/5\n";
+}
+
+const std::vector<TexturedCorner> kSeamCorners = {
+    {{0, 0, 0}, {0, 1}}, {{1, 0, 1}, {3, 1}}, {{1, 1, 0}, {3, 0}}, {{0, 0, 0}, {1, 0}}, {{0, 1, 0}, {2, 1}}};
+
+}  // namespace
+
+TEST_CASE("Mesh::load keeps OBJ texture coordinates and the map_Kd texture of the MTL", "[mesh-formats]") {
+    sss::test::TempDir dir;
+    const sss::Image8 image = asymmetricTexture();
+    std::filesystem::create_directories(dir.path() / "maps");
+    image.savePng(dir.path() / "maps" / "skin.png");
+    // Texture options before the name (tinyobjloader parses them; only the name is used), the
+    // path relative to the MTL's directory.
+    dir.write("quad.mtl", "newmtl skin\nKd 1 1 1\nmap_Kd -s 1 1 1 -bm 0.5 maps/skin.png\n");
+
+    SECTION("with normals: one vertex per (position, normal, texcoord); the seam splits position 1") {
+        WarningLog log;
+        const Mesh m = Mesh::load(dir.write("quad.obj", seamObj(image, true)));
+        CHECK(m.triangleCount() == 2);
+        checkCorners(m, image, kSeamCorners);
+        CHECK(sameImage(*m.baseColour(), image));
+        CHECK(log.warnings.empty());
+    }
+    SECTION("without normals: smooth normals shared across the seam") {
+        const Mesh m = Mesh::load(dir.write("quad.obj", seamObj(image, false)));
+        checkCorners(m, image, kSeamCorners);
+        std::vector<glm::vec3> atOrigin;
+        for (std::size_t i = 0; i < m.vertexCount(); ++i)
+            if (near(m.positions()[i], glm::vec3(0.0f))) atOrigin.push_back(m.normals()[i]);
+        REQUIRE(atOrigin.size() == 2);
+        CHECK(near(atOrigin[0], atOrigin[1]));
+        // The sum over both triangles, not either triangle's own normal.
+        const glm::vec3 a = glm::cross(glm::vec3(1, 0, 1), glm::vec3(1, 1, 0));
+        const glm::vec3 b = glm::cross(glm::vec3(1, 1, 0), glm::vec3(0, 1, 0));
+        CHECK(near(atOrigin[0], glm::normalize(a + b), 1e-4f));
+    }
+    SECTION("a relative path from another working directory") {
+        const std::filesystem::path previous = std::filesystem::current_path();
+        dir.write("quad.obj", seamObj(image, true));
+        std::filesystem::current_path(dir.path().parent_path());
+        const std::filesystem::path relative = dir.path().filename() / "quad.obj";
+        std::shared_ptr<const sss::Image8> texture;
+        CHECK_NOTHROW(texture = Mesh::load(relative).baseColour());
+        std::filesystem::current_path(previous);
+        REQUIRE(texture);
+        CHECK(sameImage(*texture, image));
+    }
+}
+
+TEST_CASE("Mesh::load keeps an OBJ's geometry when its texture cannot be used, with a warning", "[mesh-formats]") {
+    sss::test::TempDir dir;
+    const sss::Image8 image = asymmetricTexture();
+    WarningLog log;
+    SECTION("map_Kd names a missing file") {
+        dir.write("quad.mtl", "newmtl skin\nmap_Kd missing.png\n");
+        const auto obj = dir.write("quad.obj", seamObj(image, true));
+        const Mesh m = Mesh::load(obj);
+        CHECK(m.vertexCount() == 5);
+        CHECK(m.texcoords().size() == 5);
+        CHECK_FALSE(m.baseColour());
+        REQUIRE(log.warnings.size() == 1);
+        CHECK_THAT(log.warnings[0], Contains(obj.string()) && Contains((dir.path() / "quad.mtl").string()) &&
+                                        Contains((dir.path() / "missing.png").string()) &&
+                                        Contains("does not exist") && Contains("without a texture"));
+    }
+    SECTION("map_Kd names a file that is not an image") {
+        dir.write("skin.png", "not a PNG at all");
+        dir.write("quad.mtl", "newmtl skin\nmap_Kd skin.png\n");
+        const Mesh m = Mesh::load(dir.write("quad.obj", seamObj(image, true)));
+        CHECK_FALSE(m.baseColour());
+        REQUIRE(log.warnings.size() == 1);
+        CHECK_THAT(log.warnings[0], Contains("skin.png") && Contains("cannot decode image"));
+    }
+    SECTION("the MTL file is missing") {
+        const auto obj = dir.write("quad.obj", seamObj(image, true));
+        const Mesh m = Mesh::load(obj);
+        CHECK(m.texcoords().size() == 5);
+        CHECK_FALSE(m.baseColour());
+        REQUIRE(log.warnings.size() == 1);
+        CHECK_THAT(log.warnings[0], Contains(obj.string()) && Contains("quad.mtl") && Contains("mtllib"));
+    }
+    SECTION("only some face corners have texture coordinates") {
+        image.savePng(dir.path() / "skin.png");
+        dir.write("quad.mtl", "newmtl skin\nmap_Kd skin.png\n");
+        std::string obj = seamObj(image, true);
+        obj.replace(obj.find("f 1/4/1"), 7, "f 1//1");
+        const auto path = dir.write("partial.obj", obj);
+        const Mesh m = Mesh::load(path);
+        CHECK(m.texcoords().empty());
+        CHECK_FALSE(m.baseColour());
+        CHECK(m.vertexCount() == 4);  // no seam without texture coordinates
+        REQUIRE(log.warnings.size() == 2);
+        CHECK_THAT(log.warnings[0], Contains(path.string()) && Contains("5 of its 6 face corners"));
+        CHECK_THAT(log.warnings[1], Contains("skin.png") && Contains("no texture coordinates"));
+    }
+}
+
+TEST_CASE("Mesh::load takes the texture on the most OBJ faces when materials name several", "[mesh-formats]") {
+    sss::test::TempDir dir;
+    const sss::Image8 image = asymmetricTexture();
+    image.savePng(dir.path() / "b.png");
+    image.flippedVertically().savePng(dir.path() / "a.png");
+    dir.write("two.mtl", "newmtl a\nmap_Kd a.png\nnewmtl b\nmap_Kd b.png\nnewmtl plain\nKd 1 0 0\n");
+    const std::string obj = "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
+                            "usemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 1/1 3/3 4/2\nf 2/1 3/2 4/3\n"
+                            "usemtl plain\nf 1/1 2/2 4/3\n";
+    WarningLog log;
+    const Mesh m = Mesh::load(dir.write("two.obj", obj));
+    REQUIRE(m.baseColour());
+    CHECK(sameImage(*m.baseColour(), image));
+    REQUIRE(log.warnings.size() == 1);
+    CHECK_THAT(log.warnings[0], Contains("2 textures") && Contains("b.png") && Contains("on 2 faces"));
+}
+
+TEST_CASE("Mesh::load rejects bad OBJ texture coordinates naming the file and line", "[mesh-formats]") {
+    sss::test::TempDir dir;
+    auto rejects = [&](const std::string& name, const std::string& contents, const std::string& problem) {
+        const auto path = dir.write(name, contents);
+        INFO(name);
+        REQUIRE_SSS_ERROR(Mesh::load(path), ErrorKind::Parse, Contains(path.string()) && Contains(problem));
+    };
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    rejects("nan.obj", tri + "vt 0 0\nvt nan 0.5\nf 1/1 2/2 3/1\n",
+            "texture coordinate 2 (line 5) has a non-finite or non-numeric value \"nan\"");
+    rejects("inf.obj", tri + "vt 0 inf\nf 1/1 2/1 3/1\n", "texture coordinate 1 (line 4)");
+    rejects("huge.obj", tri + "vt 0 1e39\nf 1/1 2/1 3/1\n", "texture coordinate 1 (line 4) has the value 1e39");
+    rejects("range.obj", tri + "vt 0 0\nf 1/1 2/3 3/1\n",
+            "face 1 references texture coordinate 3, but the file has 1 texture coordinates");
+    rejects("wrap.obj", tri + "vt 0 0\nf 1/1 2/4294967297 3/1\n", "face 1 references texture coordinate 4294967297");
+}
+
+namespace {
+
+// A glTF quad with a UV seam at the origin: vertices 0 and 3 share a position but not a texel.
+// Texels (image x, y from the top): 0 (0, 0), 1 (3, 0), 2 (3, 1), 3 (1, 1), 4 (2, 0).
+const glm::vec3 kGltfQuad[5] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {0, 1, 0}};
+const glm::ivec2 kGltfTexels[5] = {{0, 0}, {3, 0}, {3, 1}, {1, 1}, {2, 0}};
+
+// Positions (60 bytes), UVs in glTF's convention (40), indices 0 1 2, 3 2 4 (12).
+std::string gltfQuadBuffer(const sss::Image8& image) {
+    Bytes b;
+    for (const glm::vec3& p : kGltfQuad)
+        for (int a = 0; a < 3; ++a) b.f32(p[a]);
+    for (const glm::ivec2& t : kGltfTexels) {
+        const glm::vec2 uv = gltfUv(image, t.x, t.y);
+        b.f32(uv.x);
+        b.f32(uv.y);
+    }
+    for (uint16_t i : {0, 1, 2, 3, 2, 4}) b.u16(i);
+    return b.data;
+}
+
+// The quad with a base-colour texture; `image` is the glTF image object, extraViews more buffer
+// views (the image's, in a GLB), bufferLength the buffer's size.
+std::string gltfQuadJson(const std::string& bufferUri, std::size_t bufferLength, const std::string& image,
+                         const std::string& extraViews = "") {
+    const std::string uri = bufferUri.empty() ? "" : "\"uri\":\"" + bufferUri + "\",";
+    return "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+           "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},\"indices\":2,"
+           "\"material\":0}]}],"
+           "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+           "\"textures\":[{\"source\":0}],\"images\":[" + image + "],"
+           "\"buffers\":[{" + uri + "\"byteLength\":" + std::to_string(bufferLength) + "}],"
+           "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":60},"
+           "{\"buffer\":0,\"byteOffset\":60,\"byteLength\":40},"
+           "{\"buffer\":0,\"byteOffset\":100,\"byteLength\":12}" + extraViews + "],"
+           "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":5,\"type\":\"VEC3\","
+           "\"min\":[0,0,0],\"max\":[1,1,0]},"
+           "{\"bufferView\":1,\"componentType\":5126,\"count\":5,\"type\":\"VEC2\"},"
+           "{\"bufferView\":2,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}]}";
+}
+
+std::vector<TexturedCorner> gltfQuadCorners() {
+    std::vector<TexturedCorner> corners;
+    for (int i = 0; i < 5; ++i) corners.push_back({kGltfQuad[i], kGltfTexels[i]});
+    return corners;
+}
+
+// Both vertices at the origin (split by the seam) have the quad's normal.
+void checkGltfQuad(const Mesh& m, const sss::Image8& image) {
+    CHECK(m.triangleCount() == 2);
+    checkCorners(m, image, gltfQuadCorners());
+    CHECK(sameImage(*m.baseColour(), image));
+    for (const glm::vec3& n : m.normals()) CHECK(near(n, glm::vec3(0, 0, 1)));
+}
+
+}  // namespace
+
+TEST_CASE("Mesh::load reads glTF texture coordinates (top-left origin) into Mesh's convention", "[mesh-formats]") {
+    sss::test::TempDir dir;
+    const sss::Image8 image = asymmetricTexture();
+    image.savePng(dir.path() / "skin.png");
+    const std::string png = readFile(dir.path() / "skin.png");
+    const std::string buffer = gltfQuadBuffer(image);
+    REQUIRE(buffer.size() == 112);
+    const std::string base64Buffer = "data:application/octet-stream;base64," + base64(buffer);
+    WarningLog log;
+
+    SECTION(".gltf with an external PNG and a base64 buffer") {
+        checkGltfQuad(Mesh::load(dir.write("quad.gltf", gltfQuadJson(base64Buffer, 112, "{\"uri\":\"skin.png\"}"))),
+                      image);
+        CHECK(log.warnings.empty());
+    }
+    SECTION(".gltf with the PNG as a data: URI") {
+        const std::string uri = "{\"uri\":\"data:image/png;base64," + base64(png) + "\"}";
+        checkGltfQuad(Mesh::load(dir.write("quad.gltf", gltfQuadJson(base64Buffer, 112, uri))), image);
+        CHECK(log.warnings.empty());
+    }
+    SECTION(".glb with the PNG in a buffer view") {
+        const std::string view = ",{\"buffer\":0,\"byteOffset\":112,\"byteLength\":" + std::to_string(png.size()) + "}";
+        const std::string json =
+            gltfQuadJson("", 112 + png.size(), "{\"bufferView\":3,\"mimeType\":\"image/png\"}", view);
+        checkGltfQuad(Mesh::load(dir.write("quad.glb", glb(json, buffer + png))), image);
+        CHECK(log.warnings.empty());
+    }
+    SECTION("a missing image: the mesh loads without it, with a warning") {
+        const auto path = dir.write("quad.gltf", gltfQuadJson(base64Buffer, 112, "{\"uri\":\"gone.png\"}"));
+        const Mesh m = Mesh::load(path);
+        CHECK(m.texcoords().size() == 5);
+        CHECK_FALSE(m.baseColour());
+        REQUIRE(log.warnings.size() == 1);
+        CHECK_THAT(log.warnings[0], Contains(path.string()) && Contains((dir.path() / "gone.png").string()) &&
+                                        Contains("does not exist"));
+    }
+}
+
+TEST_CASE("Mesh::load reads PLY texture coordinates as the file has them", "[mesh-formats]") {
+    sss::test::TempDir dir;
+    auto ply = [](const std::string& u, const std::string& v) {
+        return "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float " + u + "\nproperty float " + v + "\n"
+               "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+               "0 0 0 0.25 0.125\n1 0 0 0.75 0.125\n0 1 0 0.25 0.875\n3 0 1 2\n";
+    };
+    const std::vector<std::pair<std::string, std::string>> names = {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}};
+    for (const auto& [u, v] : names) {
+        INFO(u << ", " << v);
+        const Mesh m = Mesh::load(dir.write("uv_" + u + ".ply", ply(u, v)));
+        REQUIRE(m.texcoords().size() == 3);
+        for (std::size_t i = 0; i < 3; ++i) {
+            const glm::vec3 p = m.positions()[i];
+            const glm::vec2 expected = p.x > 0.5f ? glm::vec2(0.75f, 0.125f)
+                                                  : p.y > 0.5f ? glm::vec2(0.25f, 0.875f) : glm::vec2(0.25f, 0.125f);
+            CHECK(m.texcoords()[i] == expected);
+        }
+        CHECK_FALSE(m.baseColour());
+    }
+    // No texture coordinates, no texcoords().
+    CHECK(Mesh::load(dir.write("tetra.ply", kTetraPlyAscii)).texcoords().empty());
+
+    // MeshLab names the texture in a comment; Assimp reads it as the diffuse texture.
+    const sss::Image8 image = asymmetricTexture();
+    image.savePng(dir.path() / "skin.png");
+    std::string textured = ply("u", "v");
+    textured.replace(textured.find("element vertex"), 0, "comment TextureFile skin.png\n");
+    const Mesh m = Mesh::load(dir.write("textured.ply", textured));
+    REQUIRE(m.baseColour());
+    CHECK(sameImage(*m.baseColour(), image));
 }

@@ -1,0 +1,136 @@
+#include "mesh/textured_material.h"
+
+#include "lighting/texture_units.h"
+#include "mesh/reflectance_table.h"
+#include "sss/error.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <vector>
+
+namespace sss::detail {
+namespace {
+
+constexpr int kTableColumns = 4;  // texels per row: see textured_material.glsl's materialRow
+
+TexturedMaterialSummary summarise(const Image8& reflectance, const Image8* pathScale) {
+    TexturedMaterialSummary s;
+    std::array<double, 256> linear{};
+    for (int v = 0; v < 256; ++v) linear[static_cast<size_t>(v)] = srgbToLinear(static_cast<std::uint8_t>(v));
+    const auto& texels = reflectance.data();
+    for (std::size_t i = 0; i < texels.size(); i += 4)
+        for (int c = 0; c < 3; ++c) {
+            const double r = linear[texels[i + static_cast<size_t>(c)]];
+            s.meanReflectance[c] += r;
+            s.maxReflectance[c] = std::max(s.maxReflectance[c], r);
+        }
+    s.meanReflectance /= static_cast<double>(texels.size() / 4);
+    if (pathScale) {
+        int smallest = 255;
+        for (std::size_t i = 0; i < pathScale->data().size(); i += 4) smallest = std::min<int>(smallest, pathScale->data()[i]);
+        s.minPathScale = std::max(smallest, 1) / 255.0;
+    }
+    return s;
+}
+
+// Row i: the profile's factors at reflectance (i / (rows - 1))^2, the same for every channel.
+std::vector<float> tabulate(double eta, ScatteringProfile profile) {
+    const ReflectanceTable& table = reflectanceTable(eta, profile);
+    std::vector<float> rows;
+    rows.reserve(static_cast<size_t>(kTexturedTableRows * kTableColumns * 4));
+    for (int i = 0; i < kTexturedTableRows; ++i) {
+        const double root = i / double(kTexturedTableRows - 1);
+        const ReflectanceInversion at = invertReflectance(table, root * root);
+        const bool calibrated = profile == ScatteringProfile::Calibrated;
+        std::array<float, 16> row{};
+        for (int m = 0; m < kProfileIncidenceNodes; ++m)
+            row[static_cast<size_t>(m)] =
+                calibrated ? static_cast<float>(profileCalibrationScale(at.reducedAlbedo, eta, profileIncidenceNode(m))) : 1.0f;
+        for (int d = 0; d < kProfileThicknessNodes; ++d)
+            row[static_cast<size_t>(kProfileIncidenceNodes + d)] =
+                calibrated ? static_cast<float>(profileTransmissionScale(at.reducedAlbedo, eta, profileThicknessNode(d))) : 1.0f;
+        row[13] = static_cast<float>(at.reducedAlbedo);
+        row[14] = static_cast<float>(at.gathered);
+        rows.insert(rows.end(), row.begin(), row.end());
+    }
+    return rows;
+}
+
+// Decoded here rather than by an sRGB texture format: llvmpipe's decode is 2 % low at the darkest
+// values (sRGB 30), where the reflectance decides the whole colour.
+gl::Texture uploadSrgb(const Image8& image, const char* label) {
+    std::array<float, 256> linear{};
+    for (int v = 0; v < 256; ++v) linear[static_cast<size_t>(v)] = static_cast<float>(srgbToLinear(static_cast<std::uint8_t>(v)));
+    // GL's rows start at the bottom: flipped, texture coordinate v = 0 is the image's last row.
+    const Image8 flipped = image.flippedVertically();
+    std::vector<float> texels;
+    texels.reserve(flipped.data().size());
+    for (std::size_t i = 0; i < flipped.data().size(); i += 4)
+        texels.insert(texels.end(), {linear[flipped.data()[i]], linear[flipped.data()[i + 1]], linear[flipped.data()[i + 2]], 1.0f});
+    const int levels = std::bit_width(static_cast<unsigned>(std::max(image.width(), image.height())));
+    gl::Texture t = gl::Texture::create2D(GL_RGBA16F, image.width(), image.height(), label, levels);
+    t.upload(GL_RGBA, GL_FLOAT, texels.data());
+    glGenerateTextureMipmap(t.id());
+    t.setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+    t.setWrap(GL_REPEAT);
+    return t;
+}
+
+gl::Texture uploadPathScale(const Image8* image) {
+    if (!image) {
+        gl::Texture t = gl::Texture::create2D(GL_R8, 1, 1, "material path scale (none)");
+        const std::uint8_t one = 255;
+        t.upload(GL_RED, GL_UNSIGNED_BYTE, &one);
+        return t;
+    }
+    const Image8 flipped = image->flippedVertically();
+    std::vector<std::uint8_t> red;
+    red.reserve(flipped.data().size() / 4);
+    for (std::size_t i = 0; i < flipped.data().size(); i += 4) red.push_back(flipped.data()[i]);
+    const int levels = std::bit_width(static_cast<unsigned>(std::max(image->width(), image->height())));
+    gl::Texture t = gl::Texture::create2D(GL_R8, image->width(), image->height(), "material path scale", levels);
+    t.upload(GL_RED, GL_UNSIGNED_BYTE, red.data());
+    glGenerateTextureMipmap(t.id());
+    t.setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+    t.setWrap(GL_REPEAT);
+    return t;
+}
+
+}  // namespace
+
+double srgbToLinear(std::uint8_t value) {
+    const double c = value / 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+TexturedMaterialGpu::TexturedMaterialGpu(const TexturedScattering& material, const Image8& reflectance,
+                                         ScatteringProfile profile)
+    : m_material(material), m_profile(profile) {
+    material.validate();
+    m_summary = summarise(reflectance, material.meanFreePathScale.get());
+    const ReflectanceTable& table = reflectanceTable(material.eta, profile);
+    for (int c = 0; c < 3; ++c) m_referenceGathered[c] = invertReflectance(table, m_summary.maxReflectance[c]).gathered;
+    m_widest = materialFromReflectance(m_summary.maxReflectance, material.meanFreePath, material.eta, profile);
+    m_widest.name = material.name;
+    m_reflectance = uploadSrgb(reflectance, "material reflectance");
+    m_pathScale = uploadPathScale(material.meanFreePathScale.get());
+    const std::vector<float> rows = tabulate(material.eta, profile);
+    m_table = gl::Texture::create2D(GL_RGBA32F, kTableColumns, kTexturedTableRows, "material table");
+    m_table.upload(GL_RGBA, GL_FLOAT, rows.data());
+    m_table.setFilter(GL_LINEAR, GL_LINEAR);
+}
+
+void TexturedMaterialGpu::bind(const gl::Program& p, double millimetresPerUnit) const {
+    p.set("materialReflectance", units::kMaterialReflectance);
+    p.set("materialPathScale", units::kMaterialPathScale);
+    p.set("materialTable", units::kMaterialTable);
+    p.set("materialSigmaT", glm::vec3(millimetresPerUnit / m_material.meanFreePath));
+    p.set("referenceGathered", glm::vec3(m_referenceGathered));
+    m_reflectance.bind(units::kMaterialReflectance);
+    m_pathScale.bind(units::kMaterialPathScale);
+    m_table.bind(units::kMaterialTable);
+}
+
+}  // namespace sss::detail
