@@ -73,6 +73,7 @@ struct Args {
     glm::vec3 meshOffset{0.0f}, volumeOffset{0.0f};
     int repeat = 1, turntable = 0;
     bool listTf = false, listMaterials = false;
+    bool noTexture = false;  // --no-texture
     std::string exportTf;
 };
 
@@ -161,6 +162,7 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
                                                                      : sss::MeshShading::BlinnPhong;
         if (scene.options.cornellBox && !given(app, "--environment")) mesh.options.environment = glm::vec3(0.05f);
         mesh.material = sss::materialPreset(material);
+        mesh.texture = !a.noTexture;
         mesh.baseline = a.baseline;
         scene.meshes.push_back(std::move(mesh));
     };
@@ -493,6 +495,9 @@ void Render::reportScattering() {
         if (m.options.shading != sss::MeshShading::Scattering) continue;
         const sss::MeshScatteringRenderer& renderer = m_compositor.mesh(i);
         char why[64] = "";
+        if (m.texture && m_assets.meshes[i].baseColour())
+            std::printf("scattering: the reflectance comes from the mesh's %dx%d base-colour texture\n",
+                        m_assets.meshes[i].baseColour()->width(), m_assets.meshes[i].baseColour()->height());
         if (m.options.combine == sss::MeshCombine::Automatic)
             std::snprintf(why, sizeof why, " (auto: edges %.3g diffusion lengths)", renderer.edgeToDiffusionLength());
         if (renderer.activeCombine() == sss::MeshCombine::VertexEstimate)
@@ -579,6 +584,10 @@ int main(int argc, char** argv) {
             ->group("placement");
         app.add_flag("--cornell-box", a.hybrid.cornellBox, "put the scene in a Cornell box")->group("placement");
         addMeshOptions(app, a.mesh, a.material);
+        app.add_flag("--no-texture", a.noTexture,
+                     "ignore the mesh's base-colour texture (OBJ map_Kd, glTF baseColorTexture); with one, --mode sss "
+                     "takes the reflectance from it and only the mean free path and eta from --material")
+            ->group("mesh scattering");
         addBaselineOptions(app, a.baseline);
         addVolumeOptions(app, a.volume);
         addCameraOptions(app, a.camera);

@@ -68,6 +68,7 @@
 #include "sss/camera.h"
 #include "sss/image.h"
 #include "sss/light.h"
+#include "sss/materials.h"
 #include "sss/mesh.h"
 
 #include <glm/mat4x4.hpp>
@@ -134,6 +135,17 @@ struct MeshReferenceResult {
 ///         the MeshReferenceOptions field), an invalid material or light, a model matrix that is
 ///         not finite or singular, or a mesh with zero surface area.
 MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model, const ScatteringMaterial& material,
+                                        const std::vector<Light>& lights, const Camera& camera, int width, int height,
+                                        const MeshReferenceOptions& options = {});
+
+/// The same for a textured material (sss/materials.h): its reflectance texture, or else the
+/// mesh's base colour, gives each point its coefficients by materialFromReflectance(), sampled
+/// bilinearly (repeating) at the point's interpolated texture coordinates. A pair of points
+/// follows the exit point's profile, times (R(x_i) / R(x_o))^0.5 per channel (R floored at 1e-3):
+/// the rule the GPU renderer implements (docs/textured-materials.md). Single scattering is x_o's.
+/// @throws Error InvalidArgument as above, and when there is no texture or the mesh has no
+///         texture coordinates.
+MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model, const TexturedScattering& material,
                                         const std::vector<Light>& lights, const Camera& camera, int width, int height,
                                         const MeshReferenceOptions& options = {});
 

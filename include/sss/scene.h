@@ -65,6 +65,10 @@ struct SceneMesh {
     SceneTransform transform;
     MeshRenderOptions options;         ///< options.shading picks Blinn-Phong or scattering
     ScatteringMaterial material = materialPreset("potato");  ///< for MeshShading::Scattering
+    /// Whether the mesh's base-colour texture (Mesh::baseColour(), e.g. an OBJ's map_Kd), when
+    /// it has one, gives the reflectance: `material` then lends its mean free path and eta only
+    /// (texturedScattering()). Scene files: "texture": false turns it off (default: true).
+    bool texture = true;
     BlinnPhongMaterial baseline;       ///< for MeshShading::BlinnPhong
 };
 

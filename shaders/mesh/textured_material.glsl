@@ -13,7 +13,10 @@
 // x_o's profile times (R(x_i) / R(x_o))^ENTRY_REFLECTANCE_EXPONENT; 0 is the exit point's
 // material alone, 1 weights each entry point by its own reflectance.
 #ifndef ENTRY_REFLECTANCE_EXPONENT
-#define ENTRY_REFLECTANCE_EXPONENT 0.5
+#define ENTRY_REFLECTANCE_EXPONENT 0.5  // detail::kEntryReflectanceExponent
+#endif
+#ifndef MIN_ENTRY_REFLECTANCE
+#define MIN_ENTRY_REFLECTANCE 1e-3  // detail::kMinEntryReflectance
 #endif
 #ifndef TEXTURED_TABLE_ROWS
 #define TEXTURED_TABLE_ROWS 256  // kTexturedTableRows
@@ -34,7 +37,7 @@ struct SurfaceMaterial {
 };
 
 vec3 entryWeightOf(vec3 reflectance) {
-    return pow(max(reflectance, vec3(1e-3)), vec3(ENTRY_REFLECTANCE_EXPONENT));
+    return pow(max(reflectance, vec3(MIN_ENTRY_REFLECTANCE)), vec3(ENTRY_REFLECTANCE_EXPONENT));
 }
 
 vec3 entryWeight(vec2 uv, float lod) { return entryWeightOf(textureLod(materialReflectance, uv, lod).rgb); }

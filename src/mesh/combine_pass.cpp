@@ -21,7 +21,9 @@ const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, boo
                                   {"PER_VERTEX", perVertex ? "1" : "0"},
                                   {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"},
                                   {"TEXTURED_MATERIAL", textured ? "1" : "0"},
-                                  {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)}});
+                                  {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
+                              {"ENTRY_REFLECTANCE_EXPONENT", std::to_string(kEntryReflectanceExponent)},
+                              {"MIN_ENTRY_REFLECTANCE", std::to_string(kMinEntryReflectance)}});
     return *slot;
 }
 

@@ -56,7 +56,9 @@ namespace {
 gl::Program linkLightBufferProgram(bool textured) {
     return gl::Program::link({{GL_VERTEX_SHADER, "mesh/light_buffer.vert"}, {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}},
                              {{"TEXTURED_MATERIAL", textured ? "1" : "0"},
-                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)}});
+                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
+                              {"ENTRY_REFLECTANCE_EXPONENT", std::to_string(kEntryReflectanceExponent)},
+                              {"MIN_ENTRY_REFLECTANCE", std::to_string(kMinEntryReflectance)}});
 }
 
 }  // namespace

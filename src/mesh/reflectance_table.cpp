@@ -59,6 +59,35 @@ const ReflectanceTable& reflectanceTable(double eta, ScatteringProfile profile) 
     return it->second;
 }
 
+double srgbToLinear(std::uint8_t value) {
+    const double c = value / 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+TextureSampler::TextureSampler(const Image8& image, bool srgb) : m_width(image.width()), m_height(image.height()) {
+    m_texels.reserve(static_cast<std::size_t>(m_width) * static_cast<std::size_t>(m_height));
+    for (int y = m_height - 1; y >= 0; --y)
+        for (int x = 0; x < m_width; ++x) {
+            const glm::u8vec4 t = image.at(x, y);
+            m_texels.push_back(srgb ? glm::dvec3(srgbToLinear(t.r), srgbToLinear(t.g), srgbToLinear(t.b))
+                                    : glm::dvec3(t.r, t.g, t.b) / 255.0);
+        }
+}
+
+glm::dvec3 TextureSampler::operator()(glm::dvec2 uv) const {
+    const double x = uv.x * m_width - 0.5, y = uv.y * m_height - 0.5;
+    const double fx = std::floor(x), fy = std::floor(y);
+    const double tx = x - fx, ty = y - fy;
+    auto wrap = [](double v, int n) {
+        const long long i = static_cast<long long>(v) % n;
+        return static_cast<std::size_t>(i < 0 ? i + n : i);
+    };
+    const std::size_t x0 = wrap(fx, m_width), x1 = wrap(fx + 1.0, m_width);
+    const std::size_t y0 = wrap(fy, m_height), y1 = wrap(fy + 1.0, m_height);
+    const auto at = [&](std::size_t i, std::size_t j) { return m_texels[j * static_cast<std::size_t>(m_width) + i]; };
+    return (1.0 - ty) * ((1.0 - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1.0 - tx) * at(x0, y1) + tx * at(x1, y1));
+}
+
 ReflectanceInversion invertReflectance(const ReflectanceTable& t, double reflectance) {
     const auto& r = t.reflectance;
     const std::size_t n = r.size();

@@ -25,7 +25,9 @@ gl::Program linkMapProgram(const char* fragment, int cameras, bool textured = fa
                              {{"CAMERA_COUNT", std::to_string(cameras)},
                               {"MAX_LIGHTS", std::to_string(kMaxLights)},
                               {"TEXTURED_MATERIAL", textured ? "1" : "0"},
-                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)}});
+                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
+                              {"ENTRY_REFLECTANCE_EXPONENT", std::to_string(kEntryReflectanceExponent)},
+                              {"MIN_ENTRY_REFLECTANCE", std::to_string(kMinEntryReflectance)}});
 }
 
 }  // namespace

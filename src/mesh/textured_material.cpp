@@ -100,11 +100,6 @@ gl::Texture uploadPathScale(const Image8* image) {
 
 }  // namespace
 
-double srgbToLinear(std::uint8_t value) {
-    const double c = value / 255.0;
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
 TexturedMaterialGpu::TexturedMaterialGpu(const TexturedScattering& material, const Image8& reflectance,
                                          ScatteringProfile profile)
     : m_material(material), m_profile(profile) {

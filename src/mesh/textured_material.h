@@ -6,6 +6,7 @@
 // setTexturedMaterialUniforms.
 #include "gl/program.h"
 #include "gl/texture.h"
+#include "mesh/reflectance_table.h"
 #include "sss/bssrdf.h"
 #include "sss/image.h"
 #include "sss/materials.h"
@@ -52,8 +53,5 @@ private:
     ScatteringMaterial m_widest;
     gl::Texture m_reflectance, m_pathScale, m_table;
 };
-
-/// The linear reflectance of an sRGB-encoded 8-bit value (the decode GL_SRGB8_ALPHA8 applies).
-double srgbToLinear(std::uint8_t value);
 
 }  // namespace sss::detail

@@ -18,7 +18,9 @@ gl::Program linkEstimateProgram(bool textured) {
                               {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
                               {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)},
                               {"TEXTURED_MATERIAL", textured ? "1" : "0"},
-                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)}});
+                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
+                              {"ENTRY_REFLECTANCE_EXPONENT", std::to_string(kEntryReflectanceExponent)},
+                              {"MIN_ENTRY_REFLECTANCE", std::to_string(kMinEntryReflectance)}});
 }
 
 }  // namespace

@@ -2,10 +2,12 @@
 // directional dipole over the lit surface with shadow rays, in double (see sss/mesh_reference.h).
 #include "sss/mesh_reference.h"
 
+#include "mesh/reflectance_table.h"
 #include "reference/bvh.h"
 #include "reference/cpu_lights.h"
 #include "util/parallel.h"
 #include "sss/error.h"
+#include "sss/materials.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -94,6 +96,48 @@ struct TriInfo {
     double radius = 0.0;   // largest distance from the centroid to a vertex
     double longest = 0.0;  // longest edge
     double light = 0.0;    // light factor (how much the lights see the vertex normals)
+    glm::dvec2 uv0{0.0}, uv1{0.0}, uv2{0.0};  // texture coordinates (textured materials)
+};
+
+// A textured material's coefficients per surface point (sss::TexturedScattering), by the rule the
+// GPU renderer follows (mesh/reflectance_table.h): x_o's own profile, each entry point weighted by
+// (R(x_i) / R(x_o))^kEntryReflectanceExponent.
+class TexturedSurface {
+public:
+    TexturedSurface(const TexturedScattering& material, const Image8& reflectance, ScatteringProfile profile,
+                    double millimetresPerUnit)
+        : m_material(material), m_profile(profile), m_millimetresPerUnit(millimetresPerUnit),
+          m_reflectance(reflectance, true) {
+        if (material.meanFreePathScale) m_pathScale.emplace(*material.meanFreePathScale, false);
+    }
+
+    glm::dvec3 reflectance(glm::dvec2 uv) const { return m_reflectance(uv); }
+
+    DipoleConstants constantsAt(glm::dvec2 uv) const {
+        const double scale = m_pathScale ? std::max((*m_pathScale)(uv).x, 1.0 / 255.0) : 1.0;
+        const ScatteringMaterial m =
+            materialFromReflectance(reflectance(uv), m_material.meanFreePath * scale, m_material.eta, m_profile);
+        return deriveDipoleConstants(m, m_millimetresPerUnit, m_profile);
+    }
+
+    static glm::dvec3 entryWeight(const glm::dvec3& reflectance) {
+        return glm::pow(glm::max(reflectance, glm::dvec3(detail::kMinEntryReflectance)),
+                        glm::dvec3(detail::kEntryReflectanceExponent));
+    }
+
+private:
+    TexturedScattering m_material;
+    ScatteringProfile m_profile;
+    double m_millimetresPerUnit;
+    detail::TextureSampler m_reflectance;
+    std::optional<detail::TextureSampler> m_pathScale;
+};
+
+// What the integrand needs of the exit point: its profile and, textured, its entry weight.
+struct ExitPoint {
+    glm::dvec3 x, n;
+    const DipoleConstants& constants;
+    glm::dvec3 entryWeight{1.0};
 };
 
 // The planar normal-incidence S_d profile, each channel normalised to unit integral, summed:
@@ -181,10 +225,12 @@ struct PixelResult {
 
 class Renderer {
 public:
+    // `textured`: a textured material instead; `material` is then the one the sampling kernel is
+    // shaped for.
     Renderer(const Mesh& mesh, const glm::mat4& model, const ScatteringMaterial& material,
              const std::vector<Light>& lights, const Camera& camera, int width, int height,
-             const MeshReferenceOptions& options)
-        : m_options(options), m_width(width), m_height(height) {
+             const MeshReferenceOptions& options, std::optional<TexturedSurface> textured = std::nullopt)
+        : m_options(options), m_width(width), m_height(height), m_textured(std::move(textured)) {
         const glm::dmat4 m(model);
         const glm::dmat3 m3(m);
         for (int c = 0; c < 4; ++c)
@@ -224,6 +270,11 @@ public:
             tri.n0 = normals[idx[3 * t]];
             tri.n1 = normals[idx[3 * t + 1]];
             tri.n2 = normals[idx[3 * t + 2]];
+            if (!mesh.texcoords().empty()) {
+                tri.uv0 = glm::dvec2(mesh.texcoords()[idx[3 * t]]);
+                tri.uv1 = glm::dvec2(mesh.texcoords()[idx[3 * t + 1]]);
+                tri.uv2 = glm::dvec2(mesh.texcoords()[idx[3 * t + 2]]);
+            }
             const glm::dvec3 cr = glm::cross(tri.e1, tri.e2);
             const double len = glm::length(cr);
             tri.area = 0.5 * len;
@@ -389,7 +440,15 @@ private:
         const glm::dvec3 xo = hitTri.p0 + hit->u * hitTri.e1 + hit->v * hitTri.e2;
         const glm::dvec3 wo = -glm::normalize(ray.direction);
         const glm::dvec3 no = shadingNormal(hitTri, hit->u, hit->v, wo);
-        const double exitT = fresnelTransmittance(m_constants.eta, glm::dot(no, wo));
+        std::optional<DipoleConstants> local;
+        glm::dvec3 entryWeight(1.0);
+        if (m_textured) {
+            const glm::dvec2 uv = texcoordAt(hitTri, hit->u, hit->v);
+            local = m_textured->constantsAt(uv);
+            entryWeight = TexturedSurface::entryWeight(m_textured->reflectance(uv));
+        }
+        const ExitPoint exit{xo, no, local ? *local : m_constants, entryWeight};
+        const double exitT = fresnelTransmittance(exit.constants.eta, glm::dot(no, wo));
         if (!(exitT > 0.0) || m_lights.empty()) return result;
 
         // Triangle pdf for this x_o: the kernel integrated over the triangle by the midpoint rule
@@ -429,7 +488,7 @@ private:
         const double target = m_options.targetRelativeError;
         const double absolute = m_options.absoluteError / exitT;  // errors are scaled by exitT at the end
         while (n < m_options.maxSamples) {
-            const glm::dvec3 f = sample(xo, no, cdf, rng, scratch);
+            const glm::dvec3 f = sample(exit, cdf, rng, scratch);
             sumF += f;
             sumF2 += f * f;
             ++n;
@@ -454,13 +513,18 @@ private:
             result.standardError[c] = exitT * se;
             if (se > std::max(target * std::abs(mean), absolute)) result.converged = false;
         }
-        result.mean += singleScattering(xo, no, wo, hitTri);
+        result.mean += singleScattering(exit, wo, hitTri);
         return result;
     }
 
     // One sample of sum over lights of T_i S_d E cos V, divided by its pdf.
-    glm::dvec3 sample(const glm::dvec3& xo, const glm::dvec3& no, const std::vector<double>& cdf, Rng& rng,
-                      Scratch& scratch) const {
+    glm::dvec2 texcoordAt(const TriInfo& tri, double u, double v) const {
+        return (1.0 - u - v) * tri.uv0 + u * tri.uv1 + v * tri.uv2;
+    }
+
+    glm::dvec3 sample(const ExitPoint& exit, const std::vector<double>& cdf, Rng& rng, Scratch& scratch) const {
+        const glm::dvec3& xo = exit.x;
+        const glm::dvec3& no = exit.n;
         const size_t t = sampleCdf(cdf, rng.uniform());
         const double pt = cdf[t] - (t > 0 ? cdf[t - 1] : 0.0);
         const TriInfo& tri = m_tris[t];
@@ -492,24 +556,27 @@ private:
             const glm::dvec3 ni = shadingNormal(tri, bary.x, bary.y, wi);
             const double cosI = glm::dot(ni, wi);
             if (!(cosI > 0.0)) continue;
-            const double entryT = fresnelTransmittance(m_constants.eta, cosI);
+            const double entryT = fresnelTransmittance(exit.constants.eta, cosI);
             if (!(entryT > 0.0)) continue;
-            const glm::dvec3 sd = evaluateSd(m_constants, xi, ni, wi, xo, no);
+            const glm::dvec3 sd = evaluateSd(exit.constants, xi, ni, wi, xo, no);
             if (sd.x <= 0.0 && sd.y <= 0.0 && sd.z <= 0.0) continue;
             // Shadow ray from just off the side of the triangle that faces the light.
             const double side = glm::dot(tri.ng, wi) < 0.0 ? -1.0 : 1.0;
             if (!reachesLight(xi + (side * m_offset) * tri.ng, l, wi)) continue;
             f += sd * irradiance * (entryT * cosI);
         }
+        if (m_textured && (f.x > 0.0 || f.y > 0.0 || f.z > 0.0))
+            f *= TexturedSurface::entryWeight(m_textured->reflectance(texcoordAt(tri, bary.x, bary.y))) / exit.entryWeight;
         return f / pdf;
     }
 
     // The profile's single scattering at x_o (exact, no variance): per light its irradiance on
     // the surface, if a shadow ray reaches the light, times evaluateSingleScattering().
-    glm::dvec3 singleScattering(const glm::dvec3& xo, const glm::dvec3& no, const glm::dvec3& wo,
-                                const TriInfo& tri) const {
+    glm::dvec3 singleScattering(const ExitPoint& exit, const glm::dvec3& wo, const TriInfo& tri) const {
+        const glm::dvec3& xo = exit.x;
+        const glm::dvec3& no = exit.n;
         glm::dvec3 sum(0.0);
-        if (!(m_constants.singleScattering > 0.0)) return sum;
+        if (!(exit.constants.singleScattering > 0.0)) return sum;
         for (const detail::CpuLight& l : m_lights) {
             glm::dvec3 wi, irradiance;
             if (!detail::lightAt(l, xo, wi, irradiance)) continue;
@@ -517,7 +584,7 @@ private:
             if (!(cosI > 0.0)) continue;
             const double side = glm::dot(tri.ng, wi) < 0.0 ? -1.0 : 1.0;
             if (!reachesLight(xo + (side * m_offset) * tri.ng, l, wi)) continue;
-            sum += irradiance * cosI * evaluateSingleScattering(m_constants, no, wi, wo);
+            sum += irradiance * cosI * evaluateSingleScattering(exit.constants, no, wi, wo);
         }
         return sum;
     }
@@ -546,6 +613,7 @@ private:
     std::optional<detail::TriangleBvh> m_bvh;
     std::optional<Kernel> m_kernel;
     std::vector<std::vector<std::array<glm::dvec2, 3>>> m_cells;
+    std::optional<TexturedSurface> m_textured;
     glm::dmat4 m_inverseViewProjection{1.0};
 };
 
@@ -560,6 +628,33 @@ MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model
     validateOptions(options);
     if (mesh.triangleCount() == 0) invalid("the mesh \"" + mesh.name() + "\" has no triangles");
     Renderer renderer(mesh, model, material, lights, camera, width, height, options);
+    return renderer.run();
+}
+
+MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model, const TexturedScattering& material,
+                                        const std::vector<Light>& lights, const Camera& camera, int width, int height,
+                                        const MeshReferenceOptions& options) {
+    if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
+        invalid("image size must be in [1, " + std::to_string(kMaxImageSide) + "] on each side, got " +
+                std::to_string(width) + " x " + std::to_string(height));
+    validateOptions(options);
+    material.validate();
+    if (mesh.triangleCount() == 0) invalid("the mesh \"" + mesh.name() + "\" has no triangles");
+    const Image8* reflectance = material.reflectance ? material.reflectance.get() : mesh.baseColour().get();
+    if (!reflectance)
+        invalid("the textured material \"" + material.name + "\" has no reflectance texture and the mesh \"" +
+                mesh.name() + "\" no base colour");
+    if (mesh.texcoords().empty()) invalid("the mesh \"" + mesh.name() + "\" has no texture coordinates");
+    // The sampling kernel is shaped for the texture's mean colour.
+    const detail::TextureSampler sampler(*reflectance, true);
+    glm::dvec3 mean(0.0);
+    for (int y = 0; y < reflectance->height(); ++y)
+        for (int x = 0; x < reflectance->width(); ++x)
+            mean += sampler({(x + 0.5) / reflectance->width(), (y + 0.5) / reflectance->height()});
+    mean /= double(reflectance->width()) * reflectance->height();
+    const ScatteringMaterial typical = materialFromReflectance(mean, material.meanFreePath, material.eta, options.profile);
+    Renderer renderer(mesh, model, typical, lights, camera, width, height, options,
+                      TexturedSurface(material, *reflectance, options.profile, options.millimetresPerUnit));
     return renderer.run();
 }
 

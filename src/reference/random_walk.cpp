@@ -86,6 +86,57 @@ struct Dir {
 
 Dir scatter(const Dir& d, double g, Rng& rng) { return detail::scatterHenyeyGreenstein(d, g, rng); }
 
+// A path meets a smooth boundary from inside at cosine cosI to its normal: true if it leaves
+// (refracted, at cosOut to the normal outside), false if it is reflected, with the exact
+// unpolarised Fresnel probability (always under total internal reflection). One draw.
+bool leavesThroughBoundary(double eta, double cosI, Rng& rng, double& cosOut) {
+    const double f = fresnel(eta, cosI, cosOut);
+    return !(f >= 1.0 || rng.uniform() < f);
+}
+
+enum class Collision { Absorbed, Truncated, Scattered };
+
+// A real collision in a medium of single-scattering albedo `albedo` and HG parameter g: absorbed
+// with probability 1 - albedo; else truncated if the path has already scattered maxEvents times;
+// else it scatters (++events, a new direction d).
+Collision collide(double albedo, double g, std::int64_t maxEvents, std::int64_t& events, Dir& d, Rng& rng) {
+    if (rng.uniform() >= albedo) return Collision::Absorbed;
+    if (events == maxEvents) return Collision::Truncated;
+    ++events;
+    d = scatter(d, g, rng);
+    return Collision::Scattered;
+}
+
+// Runs `paths` paths per channel: chunks of kChunkPaths paths in a fixed order, the chunk's own
+// stream Rng(seed, channel, chunk), spread over `threads`; path(channel, rng, tally) runs one path
+// into tally[channel] of a per-thread copy of the (zero) `counts`, added into `counts` at the end
+// (Counts::add, integer sums: the result does not depend on the thread count).
+template <typename Counts, typename PathFn>
+void runChannelChunks(std::int64_t paths, int threads, std::uint64_t seed, std::vector<Counts>& counts, PathFn path) {
+    const std::vector<Counts> zero = counts;
+    const std::int64_t chunks = (paths + kChunkPaths - 1) / kChunkPaths;
+    const int channels = static_cast<int>(counts.size());
+    detail::parallelFor(
+        threads, channels * chunks, [&] { return zero; },
+        [&](std::vector<Counts>& local, std::int64_t u) {
+            const int channel = static_cast<int>(u % channels);
+            const std::int64_t chunk = u / channels;
+            Rng rng(seed, static_cast<std::uint64_t>(channel), static_cast<std::uint64_t>(chunk));
+            const std::int64_t n = std::min(kChunkPaths, paths - chunk * kChunkPaths);
+            for (std::int64_t p = 0; p < n; ++p) path(channel, rng, local[channel]);
+        },
+        [&](const std::vector<Counts>& local) {
+            for (size_t c = 0; c < counts.size(); ++c) counts[c].add(local[c]);
+        });
+}
+
+// weight * (count / paths) / normalisation and its binomial standard error.
+Estimate binomialEstimate(std::int64_t count, std::int64_t paths, double weight, double normalisation) {
+    const double n = static_cast<double>(paths);
+    const double p = static_cast<double>(count) / n;
+    return Estimate{weight * p / normalisation, weight * std::sqrt(p * (1.0 - p) / n) / normalisation};
+}
+
 // Integer tallies of one channel (order-independent sums: thread-count independent results).
 struct Counts {
     std::int64_t single = 0, multiple = 0, absorbed = 0, truncated = 0, events = 0;
@@ -141,8 +192,7 @@ struct Walk {
                 py += t * d.y;
                 pz = 0.0;
                 double cosT;
-                const double f = fresnel(eta, d.z, cosT);
-                if (f >= 1.0 || rng.uniform() < f) {
+                if (!leavesThroughBoundary(eta, d.z, rng, cosT)) {
                     d.z = -d.z;  // internal (possibly total) reflection
                     continue;
                 }
@@ -159,8 +209,7 @@ struct Walk {
                 py += t * d.y;
                 pz = -thickness;
                 double cosT;
-                const double f = fresnel(eta, -d.z, cosT);
-                if (f >= 1.0 || rng.uniform() < f) {
+                if (!leavesThroughBoundary(eta, -d.z, rng, cosT)) {
                     d.z = -d.z;
                     continue;
                 }
@@ -176,16 +225,15 @@ struct Walk {
             px += s * d.x;
             py += s * d.y;
             pz += s * d.z;
-            if (rng.uniform() >= m.albedo) {
+            const Collision k = collide(m.albedo, g, maxEvents, events, d, rng);
+            if (k == Collision::Absorbed) {
                 ++c.absorbed;
                 break;
             }
-            if (events == maxEvents) {
+            if (k == Collision::Truncated) {
                 ++c.truncated;
                 break;
             }
-            ++events;
-            d = scatter(d, g, rng);
         }
         c.events += events;
     }
@@ -250,27 +298,13 @@ SlabRandomWalkResult simulateSlab(const ScatteringMaterial& material, double inc
     }
 
     std::vector<Counts> counts(3, Counts(options.angleBins, options.profileBins));
-    if (w0 > 0.0) {  // else total reflection at entry (eta < 1, beyond the critical angle)
-        const std::int64_t chunks = (options.paths + kChunkPaths - 1) / kChunkPaths;
-        const std::int64_t units = 3 * chunks;
-        detail::parallelFor(
-            options.threads, units, [&] { return std::vector<Counts>(3, Counts(options.angleBins, options.profileBins)); },
-            [&](std::vector<Counts>& local, std::int64_t u) {
-                const int channel = static_cast<int>(u % 3);
-                const std::int64_t chunk = u / 3;
-                Rng rng(options.seed, static_cast<std::uint64_t>(channel), static_cast<std::uint64_t>(chunk));
-                const std::int64_t n = std::min(kChunkPaths, options.paths - chunk * kChunkPaths);
-                for (std::int64_t p = 0; p < n; ++p) walk.path(media[channel], rng, local[channel]);
-            },
-            [&](const std::vector<Counts>& local) {
-                for (int c = 0; c < 3; ++c) counts[c].add(local[c]);
-            });
-    }
+    if (w0 > 0.0)  // else total reflection at entry (eta < 1, beyond the critical angle)
+        runChannelChunks(options.paths, options.threads, options.seed, counts,
+                         [&](int channel, Rng& rng, Counts& c) { walk.path(media[channel], rng, c); });
 
     const double n = static_cast<double>(options.paths);
     auto estimate = [&](std::int64_t count, double normalisation) {
-        const double p = static_cast<double>(count) / n;
-        return Estimate{w0 * p / normalisation, w0 * std::sqrt(p * (1.0 - p) / n) / normalisation};
+        return binomialEstimate(count, options.paths, w0, normalisation);
     };
     const double pi = std::numbers::pi;
     const double sinC = std::sin(radians(options.coneHalfAngleDeg));
@@ -303,6 +337,192 @@ SlabRandomWalkResult simulateSlab(const ScatteringMaterial& material, double inc
         }
         r.truncatedPaths = k.truncated;
         r.meanEvents = static_cast<double>(k.events) / n;
+    }
+    return result;
+}
+
+// ---- two materials side by side ---------------------------------------------------------------
+
+namespace {
+
+// Salt of the split walk's stream family: it draws from Rng(mix64(seed ^ salt), channel, chunk),
+// streams apart from simulateSlab()'s Rng(seed, channel, chunk) for the same seed.
+constexpr std::uint64_t kSplitStreams = 0x5b1f'7a3c'd2e4'9061ull;
+
+void validateSplitOptions(const SplitSlabOptions& o) {
+    const auto bad = [](const char* field, const std::string& reason) {
+        throw Error(ErrorKind::InvalidArgument, "SplitSlabOptions", field, reason, "simulateSplitSlab");
+    };
+    if (o.paths < 1) bad("paths", "must be >= 1, got " + num(o.paths));
+    if (o.threads < 0) bad("threads", "must be >= 0, got " + num(o.threads));
+    if (o.maxEvents < 1) bad("maxEvents", "must be >= 1, got " + num(o.maxEvents));
+    if (!std::isfinite(o.entryHalfWidth) || o.entryHalfWidth <= 0.0)
+        bad("entryHalfWidth", "must be finite and > 0, got " + num(o.entryHalfWidth));
+    if (!std::isfinite(o.tallyHalfWidth) || o.tallyHalfWidth <= 0.0 || o.tallyHalfWidth > o.entryHalfWidth)
+        bad("tallyHalfWidth", "must be finite, > 0 and <= entryHalfWidth (" + num(o.entryHalfWidth) + "), got " +
+                                  num(o.tallyHalfWidth));
+    if (o.bins < 1 || o.bins > 1000000) bad("bins", "must be in [1, 1000000], got " + num(o.bins));
+}
+
+// Validates one of the two materials; the message says which.
+void validateSide(const ScatteringMaterial& m, const char* side) {
+    try {
+        m.validate();
+    } catch (const Error& e) {
+        const std::string context = std::string("simulateSplitSlab: ") + side + " material \"" + m.name + "\"";
+        if (!e.field().empty()) throw Error(e.kind(), "ScatteringMaterial", e.field(), e.reason(), context);
+        throw Error(e.kind(), context + ": " + e.what());
+    }
+}
+
+// Integer tallies of one channel.
+struct SplitCounts {
+    std::int64_t leaving = 0, absorbed = 0, truncated = 0, events = 0;  // leaving: anywhere on z = 0
+    std::vector<std::int64_t> bins;
+
+    explicit SplitCounts(int n) : bins(n, 0) {}
+    void add(const SplitCounts& o) {
+        leaving += o.leaving;
+        absorbed += o.absorbed;
+        truncated += o.truncated;
+        events += o.events;
+        for (size_t i = 0; i < bins.size(); ++i) bins[i] += o.bins[i];
+    }
+};
+
+struct SplitWalk {
+    std::array<double, 2> g{};  // left, right
+    double eta = 1.0;
+    std::int64_t maxEvents = 0;
+    double entryHalfWidth = 1.0;
+    double tallyHalfWidth = 1.0;
+    int bins = 1;
+
+    // One path of one channel; m[0] is the left material (x < 0), m[1] the right (x >= 0).
+    void path(const std::array<ChannelMedium, 2>& m, Rng& rng, SplitCounts& c) const {
+        const double inf = std::numeric_limits<double>::infinity();
+        // Entry on the strip at normal incidence (y is irrelevant: translation invariance).
+        double px = entryHalfWidth * (2.0 * rng.uniform() - 1.0), pz = 0.0;
+        int side = px < 0.0 ? 0 : 1;  // kept with the position: a crossing sets px = 0 exactly
+        Dir d{0.0, 0.0, -1.0};
+        std::int64_t events = 0;
+        for (;;) {
+            // A free flight: optical depth tau spent at the local sigma_t, across x = 0 if need be.
+            double tau = -std::log(rng.openUniform());
+            bool atTop = false;
+            for (;;) {
+                const double sigmaT = m[side].sigmaT;
+                const double s = tau / sigmaT;
+                const double tTop = d.z > 0.0 ? -pz / d.z : inf;
+                const bool towardsPlane = side == 0 ? d.x > 0.0 : d.x < 0.0;
+                const double tPlane = towardsPlane ? std::max(0.0, -px / d.x) : inf;
+                if (tPlane < s && tPlane < tTop) {
+                    pz += tPlane * d.z;
+                    px = 0.0;
+                    tau = std::max(0.0, tau - tPlane * sigmaT);
+                    side ^= 1;
+                    continue;
+                }
+                if (tTop <= s) {
+                    px += tTop * d.x;
+                    pz = 0.0;
+                    atTop = true;
+                } else {
+                    px += s * d.x;
+                    pz += s * d.z;
+                }
+                break;
+            }
+            if (atTop) {
+                double cosOut;
+                if (!leavesThroughBoundary(eta, d.z, rng, cosOut)) {
+                    d.z = -d.z;  // internal (possibly total) reflection, then a new flight
+                    continue;
+                }
+                assert(events >= 1);  // at normal incidence nothing comes back up unscattered
+                ++c.leaving;
+                if (px >= -tallyHalfWidth && px <= tallyHalfWidth) {
+                    const int b = static_cast<int>((px + tallyHalfWidth) / (2.0 * tallyHalfWidth) * bins);
+                    ++c.bins[std::clamp(b, 0, bins - 1)];
+                }
+                break;
+            }
+            const Collision k = collide(m[side].albedo, g[side], maxEvents, events, d, rng);
+            if (k == Collision::Absorbed) {
+                ++c.absorbed;
+                break;
+            }
+            if (k == Collision::Truncated) {
+                ++c.truncated;
+                break;
+            }
+        }
+        c.events += events;
+    }
+};
+
+}  // namespace
+
+SplitSlabResult simulateSplitSlab(const ScatteringMaterial& left, const ScatteringMaterial& right,
+                                  const SplitSlabOptions& options) {
+    validateSide(left, "left");
+    validateSide(right, "right");
+    if (left.eta != right.eta)
+        invalid("simulateSplitSlab", "the two materials must have the same eta (the interface x = 0 is index-matched), "
+                                     "got left \"" + left.name + "\" eta " + num(left.eta) + " and right \"" +
+                                     right.name + "\" eta " + num(right.eta));
+    validateSplitOptions(options);
+
+    SplitSlabResult result;
+    result.paths = options.paths;
+    result.entryHalfWidth = options.entryHalfWidth;
+    result.tallyHalfWidth = options.tallyHalfWidth;
+    // Edges and centres odd-symmetric about x = 0 to the last bit (0 exactly where one falls there).
+    const double halfT = options.tallyHalfWidth;
+    const int bins = options.bins;
+    const double width = 2.0 * halfT / bins;
+    for (int i = 0; i <= bins; ++i) result.binEdges.push_back(halfT * (2.0 * i - bins) / bins);
+    for (int i = 0; i < bins; ++i) result.binCentres.push_back(halfT * (2.0 * i + 1.0 - bins) / bins);
+
+    // Entry at normal incidence: the exact specular reflection, the rest goes straight down.
+    double cosT;
+    result.specular = fresnel(1.0 / left.eta, 1.0, cosT);
+    const double w0 = 1.0 - result.specular;
+
+    SplitWalk walk;
+    walk.g = {left.g, right.g};
+    walk.eta = left.eta;
+    walk.maxEvents = options.maxEvents;
+    walk.entryHalfWidth = options.entryHalfWidth;
+    walk.tallyHalfWidth = halfT;
+    walk.bins = options.bins;
+
+    std::array<std::array<ChannelMedium, 2>, 3> media;
+    for (int c = 0; c < 3; ++c) {
+        int s = 0;
+        for (const ScatteringMaterial* m : {&left, &right}) {
+            media[c][s].sigmaT = m->sigmaA[c] + m->sigmaS[c];
+            media[c][s].albedo = m->sigmaS[c] / media[c][s].sigmaT;
+            ++s;
+        }
+    }
+
+    std::vector<SplitCounts> counts(3, SplitCounts(options.bins));
+    runChannelChunks(options.paths, options.threads, detail::mix64(options.seed ^ kSplitStreams), counts,
+                     [&](int channel, Rng& rng, SplitCounts& c) { walk.path(media[channel], rng, c); });
+
+    // A path carries the power 2 W w0 / paths per unit length in y; a bin's area per unit length
+    // in y is its width: radiosity = w0 (k / paths) / (width / 2 W).
+    const double binShare = width / (2.0 * options.entryHalfWidth);
+    for (int c = 0; c < 3; ++c) {
+        const SplitCounts& k = counts[c];
+        for (int i = 0; i < options.bins; ++i)
+            result.radiosity[c].push_back(binomialEstimate(k.bins[i], options.paths, w0, binShare));
+        result.diffuse[c] = binomialEstimate(k.leaving, options.paths, w0, 1.0);
+        result.absorbed[c] = binomialEstimate(k.absorbed, options.paths, w0, 1.0);
+        result.truncated[c] = binomialEstimate(k.truncated, options.paths, w0, 1.0);
+        result.truncatedPaths[c] = k.truncated;
+        result.meanEvents[c] = static_cast<double>(k.events) / static_cast<double>(options.paths);
     }
     return result;
 }

@@ -327,6 +327,7 @@ SceneMesh readMesh(const json& j, const std::string& path, const std::string& fi
     if (const json* t = reader.find("transform")) readFields(*t, reader.path("transform"), file, mesh.transform);
     if (const json* o = reader.find("options")) readFields(*o, reader.path("options"), file, mesh.options);
     if (const json* m = reader.find("material")) mesh.material = readMaterial(*m, reader.path("material"), file);
+    reader("texture", mesh.texture);
     if (const json* b = reader.find("baseline")) readFields(*b, reader.path("baseline"), file, mesh.baseline);
     reader.finish();
     validateAt(file, reader.path("options"), [&] { validate(mesh.options); });
@@ -664,6 +665,7 @@ std::string sceneToJson(const SceneDescription& scene) {
         if (json t = writeFields(m.transform); !t.empty()) j["transform"] = t;
         if (json o = writeFields(m.options); !o.empty()) j["options"] = o;
         j["material"] = writeMaterial(m.material);
+        if (!m.texture) j["texture"] = false;
         if (json b = writeFields(m.baseline); !b.empty()) j["baseline"] = b;
         meshes.push_back(j);
     }
@@ -809,7 +811,10 @@ void populateCompositor(HybridCompositor& compositor, const SceneDescription& sc
         if (m.isosurface && i < assets.isosurfaceMillimetresPerUnit.size())
             options.millimetresPerUnit = assets.isosurfaceMillimetresPerUnit[i];
         MeshScatteringRenderer& renderer = compositor.addMesh(assets.meshes[i], m.transform.matrix(), options);
-        renderer.setScatteringMaterial(m.material);
+        if (m.texture && assets.meshes[i].baseColour())
+            renderer.setScatteringMaterial(texturedScattering(m.material));
+        else
+            renderer.setScatteringMaterial(m.material);
         renderer.setMaterial(m.baseline);
     }
     for (std::size_t i = 0; i < scene.volumes.size(); ++i) {
