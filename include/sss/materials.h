@@ -19,7 +19,7 @@ namespace sss {
 /// How long one scene unit is, for converting the mm^-1 coefficients of ScatteringMaterial
 /// (sigma_scene = sigma_mm * millimetresPerUnit; pass it to deriveDipoleConstants()).
 /// The scale changes the look enormously: it decides how many transport lengths fit into the
-/// object. Potato's red 1/sigma_tr is 7.6 mm, nothing on a 15 cm object and a lot on a 1.5 cm one.
+/// object. Potato's red 1/sigma_tr is 14 mm, little on a 15 cm object and a lot on a 1.5 cm one.
 struct ScatteringScale {
     /// Millimetres per scene unit, finite and > 0 (default: 1000, i.e. scene units are metres).
     /// Why 1000: the Stanford scans are in metres (the bunny in data/meshes is 0.155 units tall,

@@ -55,10 +55,12 @@ void main() {
 #endif
 
 #if TEXTURED_MATERIAL
-    SurfaceMaterial material = materialAt(dipole, texcoord, textureQueryLod(materialReflectance, texcoord).y);
-    DirpoleParams profile = material.params;
-    radiosity *= material.gathered;
-    vec3 referenceScale = material.gathered / max(referenceGathered, vec3(1e-6));
+    vec3 albedo, gathered, entryWeight;
+    materialSurface(texcoord, textureQueryLod(materialReflectance, texcoord).y, albedo, gathered, entryWeight);
+    DirpoleParams profile = dipole;  // single scattering needs only the pixel's albedo
+    profile.albedo = albedo;
+    radiosity *= gathered / entryWeight;
+    vec3 referenceScale = gathered / max(referenceGathered, vec3(1e-6));
 #else
     DirpoleParams profile = dipole;
     vec3 referenceScale = vec3(1.0);

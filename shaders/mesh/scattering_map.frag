@@ -22,7 +22,7 @@ void main() {
 #if TEXTURED_MATERIAL
     SurfaceMaterial material = materialAt(dipole, texcoord, textureQueryLod(materialReflectance, texcoord).y);
     vec3 radiosity = estimateRadiosity(material.params, worldPosition, normalize(worldNormal), state);
-    outRadiosity = vec4(radiosity / max(material.gathered * material.entryWeight, vec3(1e-9)), 1.0);
+    outRadiosity = vec4(radiosity / max(material.gathered, vec3(1e-9)), 1.0);
 #else
     outRadiosity = vec4(estimateRadiosity(dipole, worldPosition, normalize(worldNormal), state), 1.0);
 #endif

@@ -5,8 +5,10 @@
 // surface of that material sends out per unit irradiance head-on (before exit Fresnel). Lengths
 // come from the mean free path: sigma_t' = 1 / (mfp * scale).
 // The passes that cache the radiosity (maps, vertices) store it divided by the point's
-// `gathered`; the combine multiplies by the `gathered` of the texel under the pixel, so the
-// texture keeps its own resolution (docs/textured-materials.md).
+// `gathered`: the irradiance weighted by the entry points' R^m, blurred by the point's normalised
+// profile, which varies smoothly whatever texel the point itself lies on. The combine multiplies
+// by the `gathered` of the texel under the pixel and divides by its R^m, so the texture keeps its
+// own resolution (docs/textured-materials.md).
 #include "common/dirpole.glsl"
 
 // The rule for a pair of points (docs/textured-materials.md): the light from x_i reaching x_o is
@@ -45,6 +47,18 @@ vec3 entryWeight(vec2 uv, float lod) { return entryWeightOf(textureLod(materialR
 vec4 materialRow(float reflectance, int column) {
     float y = (sqrt(clamp(reflectance, 0.0, 1.0)) * float(TEXTURED_TABLE_ROWS - 1) + 0.5) / float(TEXTURED_TABLE_ROWS);
     return textureLod(materialTable, vec2((float(column) + 0.5) * 0.25, y), 0.0);
+}
+
+// What the combine pass needs per pixel, without the rest of the profile: the single-scattering
+// albedo and what the point gathers under even light (one table texel per channel).
+void materialSurface(vec2 uv, float lod, out vec3 albedo, out vec3 gathered, out vec3 entryWeight) {
+    vec3 reflectance = textureLod(materialReflectance, uv, lod).rgb;
+    entryWeight = entryWeightOf(reflectance);
+    for (int c = 0; c < 3; ++c) {
+        vec4 t3 = materialRow(reflectance[c], 3);
+        albedo[c] = t3.y;
+        gathered[c] = t3.z;
+    }
 }
 
 // `base` supplies what the texture does not change (eta, the Fresnel constants, the disk's

@@ -49,8 +49,9 @@ void main() {
 #if TEXTURED_MATERIAL
     SurfaceMaterial material = materialAt(dipole, vec2(vertexData[8 * i + 6], vertexData[8 * i + 7]), 0.0);
     estimateRadiositySplit(material.params, x, n, state, inner, outer);
-    vec3 nearFieldScale = material.gathered / max(referenceGathered, vec3(1e-6));
-    vec3 normaliser = max(material.gathered * material.entryWeight, vec3(1e-9));
+    // The near field is inside `inner`, which carries the entry weights: scaled by the vertex's.
+    vec3 nearFieldScale = material.gathered * material.entryWeight / max(referenceGathered, vec3(1e-6));
+    vec3 normaliser = max(material.gathered, vec3(1e-9));
 #else
     estimateRadiositySplit(dipole, x, n, state, inner, outer);
     vec3 nearFieldScale = vec3(1.0), normaliser = vec3(1.0);
