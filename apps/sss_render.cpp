@@ -583,11 +583,7 @@ int main(int argc, char** argv) {
         addVec3(app, "--volume-offset", a.volumeOffset, "move the volume (its box is 1 unit on its longest side)")
             ->group("placement");
         app.add_flag("--cornell-box", a.hybrid.cornellBox, "put the scene in a Cornell box")->group("placement");
-        addMeshOptions(app, a.mesh, a.material);
-        app.add_flag("--no-texture", a.noTexture,
-                     "ignore the mesh's base-colour texture (OBJ map_Kd, glTF baseColorTexture); with one, --mode sss "
-                     "takes the reflectance from it and only the mean free path and eta from --material")
-            ->group("mesh scattering");
+        addMeshOptions(app, a.mesh, a.material, a.noTexture);
         addBaselineOptions(app, a.baseline);
         addVolumeOptions(app, a.volume);
         addCameraOptions(app, a.camera);

@@ -26,20 +26,25 @@ namespace {
 std::string dtypeName(const py::array& a) { return py::str(a.dtype()); }
 
 // An (N, 3) array of real numbers as glm::vec3s. `what` names the argument in messages.
-std::vector<glm::vec3> vec3Rows(const py::handle& src, const char* what) {
+// Rows of N floats (positions, normals: 3; texture coordinates: 2) from an (M, N) array.
+template <int N>
+std::vector<glm::vec<N, float>> floatRows(const py::handle& src, const char* what) {
+    const std::string shape = "(M, " + std::to_string(N) + ")";
     py::array raw = py::array::ensure(src);
-    if (!raw) invalidArgument(std::string("Mesh: ") + what + " must be an array of shape (N, 3)");
+    if (!raw) invalidArgument(std::string("Mesh: ") + what + " must be an array of shape " + shape);
     const char kind = raw.dtype().kind();
     if (kind != 'f' && kind != 'i' && kind != 'u')
         invalidArgument(std::string("Mesh: ") + what + " must hold real numbers, got dtype " + dtypeName(raw));
-    if (raw.ndim() != 2 || raw.shape(1) != 3)
-        invalidArgument(std::string("Mesh: ") + what + " must have shape (N, 3), got " +
+    if (raw.ndim() != 2 || raw.shape(1) != N)
+        invalidArgument(std::string("Mesh: ") + what + " must have shape " + shape + ", got " +
                         std::string(py::str(py::tuple(raw.attr("shape")))));
     auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(raw);
-    std::vector<glm::vec3> out(static_cast<std::size_t>(a.shape(0)));
-    if (!out.empty()) std::memcpy(out.data(), a.data(), out.size() * sizeof(glm::vec3));
+    std::vector<glm::vec<N, float>> out(static_cast<std::size_t>(a.shape(0)));
+    if (!out.empty()) std::memcpy(out.data(), a.data(), out.size() * sizeof(glm::vec<N, float>));
     return out;
 }
+
+std::vector<glm::vec3> vec3Rows(const py::handle& src, const char* what) { return floatRows<3>(src, what); }
 
 std::vector<std::uint32_t> indexRows(const py::handle& src) {
     py::array raw = py::array::ensure(src);
@@ -61,11 +66,14 @@ std::vector<std::uint32_t> indexRows(const py::handle& src) {
     return out;
 }
 
-py::array_t<float> vec3Array(const std::vector<glm::vec3>& v) {
-    py::array_t<float> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
-    if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(glm::vec3));
+template <int N>
+py::array_t<float> floatArray(const std::vector<glm::vec<N, float>>& v) {
+    py::array_t<float> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{N}});
+    if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(glm::vec<N, float>));
     return a;
 }
+
+py::array_t<float> vec3Array(const std::vector<glm::vec3>& v) { return floatArray<3>(v); }
 
 // NumPy dtype <-> VoxelType. Only the native (little-endian) layouts map directly.
 std::optional<sss::VoxelType> voxelType(const py::dtype& d) {
@@ -151,14 +159,39 @@ void bindGeometry(py::module_& m) {
 
     py::class_<sss::Mesh>(m, "Mesh", "An indexed triangle mesh with one unit normal per vertex.")
         .def(py::init([](const py::handle& vertices, const py::handle& indices, const py::handle& normals,
-                         const std::string& name) {
+                         const std::string& name, const py::handle& texcoords) {
                  std::vector<glm::vec3> n;
                  if (!normals.is_none()) n = vec3Rows(normals, "normals");
-                 return sss::Mesh::fromArrays(vec3Rows(vertices, "vertices"), indexRows(indices), std::move(n), name);
+                 std::vector<glm::vec2> t;
+                 if (!texcoords.is_none()) t = floatRows<2>(texcoords, "texcoords");
+                 return sss::Mesh::fromArrays(vec3Rows(vertices, "vertices"), indexRows(indices), std::move(n), name,
+                                              std::move(t));
              }),
              py::arg("vertices"), py::arg("indices"), py::arg("normals") = py::none(), py::arg("name") = "mesh",
+             py::arg("texcoords") = py::none(),
              "From arrays: vertices (N, 3) real numbers, indices (M, 3) integers (counter-clockwise "
-             "triangles), normals (N, 3) or None for smooth area-weighted ones.")
+             "triangles), normals (N, 3) or None for smooth area-weighted ones, texcoords (N, 2) or None "
+             "((0, 0) is a texture's bottom-left corner).")
+        .def_property_readonly("texcoords",
+                               [](const sss::Mesh& mesh) -> py::object {
+                                   if (mesh.texcoords().empty()) return py::none();
+                                   return floatArray<2>(mesh.texcoords());
+                               },
+                               "(N, 2) float32 copy of the texture coordinates, or None")
+        .def_property_readonly("base_colour",
+                               [](const sss::Mesh& mesh) -> py::object {
+                                   if (!mesh.baseColour()) return py::none();
+                                   return toNumpy8(*mesh.baseColour());
+                               },
+                               "(H, W, 4) uint8 copy of the base-colour texture (sRGB, row 0 at the top), or None")
+        .def("with_base_colour",
+             [](const sss::Mesh& mesh, const py::handle& image) {
+                 if (image.is_none()) return mesh.withBaseColour(nullptr);
+                 return mesh.withBaseColour(std::make_shared<const sss::Image8>(image8FromNumpy(py::array::ensure(image))));
+             },
+             py::arg("image"),
+             "A copy with this base-colour texture: (H, W, 3 or 4) uint8, sRGB, row 0 at the top; None removes it. "
+             "Textured translucent materials take it as the reflectance (TexturedScattering).")
         .def_static("load", &sss::Mesh::load, py::arg("path"),
                     "Loads OBJ, PLY, STL, glTF 2.0 (.gltf/.glb) or OFF (see sss::Mesh::load).")
         .def_property_readonly("vertices", [](const sss::Mesh& mesh) { return vec3Array(mesh.positions()); },
@@ -317,6 +350,41 @@ void bindMaterials(py::module_& m) {
     m.def("material_preset", &sss::materialPreset, py::arg("name"),
           "A measured material by name ('marble', 'skin1', 'wholemilk', ...; see material_preset_names()).");
     m.def("material_preset_names", &sss::materialPresetNames);
+
+    py::class_<sss::TexturedScattering>(m, "TexturedScattering",
+                                        "A translucent material whose reflectance comes from a texture (the mesh's "
+                                        "base colour unless `reflectance` is set) and whose blur from a mean free "
+                                        "path per channel (docs/textured-materials.md).")
+        .def(py::init<>())
+        .def_readwrite("mean_free_path", &sss::TexturedScattering::meanFreePath,
+                       "reduced mean free path 1 / sigma_t' per channel, mm, each > 0")
+        .def_readwrite("eta", &sss::TexturedScattering::eta, "relative index of refraction, in [0.4, 2.5]")
+        .def_readwrite("name", &sss::TexturedScattering::name, "label")
+        .def_property(
+            "reflectance",
+            [](const sss::TexturedScattering& t) -> py::object {
+                return t.reflectance ? py::object(toNumpy8(*t.reflectance)) : py::none();
+            },
+            [](sss::TexturedScattering& t, const py::handle& image) {
+                t.reflectance = image.is_none()
+                                    ? nullptr
+                                    : std::make_shared<const sss::Image8>(image8FromNumpy(py::array::ensure(image)));
+            },
+            "(H, W, 3 or 4) uint8 sRGB base colour, or None for the mesh's")
+        .def_property(
+            "mean_free_path_scale",
+            [](const sss::TexturedScattering& t) -> py::object {
+                return t.meanFreePathScale ? py::object(toNumpy8(*t.meanFreePathScale)) : py::none();
+            },
+            [](sss::TexturedScattering& t, const py::handle& image) {
+                t.meanFreePathScale = image.is_none() ? nullptr
+                                                      : std::make_shared<const sss::Image8>(
+                                                            image8FromNumpy(py::array::ensure(image)));
+            },
+            "(H, W, 3 or 4) uint8 whose red channel / 255 scales the mean free path per texel, or None")
+        .def("validate", &sss::TexturedScattering::validate);
+    m.def("textured_scattering", &sss::texturedScattering, py::arg("material"),
+          "A material's mean free path and eta, its colour left to a texture.");
 
     Struct<sss::BlinnPhongMaterial>(m, "BlinnPhongMaterial", "Surface of the Blinn-Phong mesh shading (linear RGB).")
         .field("diffuse", &sss::BlinnPhongMaterial::diffuse, "Lambert albedo")

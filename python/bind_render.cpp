@@ -253,6 +253,10 @@ void meshProperties(Cls& cls, sss::BlinnPhongMaterial& (*material)(W&), sss::Sca
                           scattering(w) = m;
                       },
                       "ScatteringMaterial of the SCATTERING shading (default: potato)")
+        .def("set_textured_material",
+             [](W& w, const sss::TexturedScattering& t) { w.get().setScatteringMaterial(t); }, py::arg("material"),
+             "A TexturedScattering instead of scattering_material (the mesh needs texcoords, and a base colour "
+             "unless the material has a reflectance texture). Setting scattering_material returns to it.")
         .def_property_readonly("converged", [](W& w) { return w.get().converged(); },
                                "True once the scattering maps hold accumulation_frames frames")
         .def_property_readonly("stats", [](W& w) { return statsDict(w.get().stats()); });
@@ -319,6 +323,11 @@ void bindOptions(py::module_& m) {
                                      {{"CALIBRATED", sss::ScatteringProfile::Calibrated},
                                       {"DIPOLE", sss::ScatteringProfile::Dipole}},
                                      "The subsurface profile of the scattering mesh shading.");
+    // Here, after ScatteringProfile: its default needs the enum bound.
+    m.def("material_from_reflectance", &sss::materialFromReflectance, py::arg("reflectance"),
+          py::arg("mean_free_path"), py::arg("eta"), py::arg("profile") = sss::ScatteringProfile::Calibrated,
+          "The homogeneous material whose profile reflects `reflectance` (normal incidence) with this mean free path.");
+
     bindEnum<sss::MeshCombine>(m, "MeshCombine",
                                {{"PER_PIXEL", sss::MeshCombine::PerPixel},
                                 {"PER_VERTEX", sss::MeshCombine::PerVertex},

@@ -153,7 +153,7 @@ void addSceneOption(CLI::App& app, std::string& scene, const std::string& help) 
     app.add_option("--scene", scene, help)->type_name("FILE.json")->group("input");
 }
 
-void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string& material) {
+void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string& material, bool& noTexture) {
     const std::string group = "mesh scattering";
     app.add_option("--material", material, "translucent material preset (see --list-materials)")
         ->type_name("NAME")
@@ -169,6 +169,11 @@ void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string&
         ->group(group);
     app.add_flag_callback("--no-specular", [&options] { options.specular = 0.0f; },
                           "no specular highlight on the translucent surface")
+        ->group(group);
+    app.add_flag("--no-texture", noTexture,
+                 "ignore the mesh's base-colour texture (OBJ map_Kd, glTF baseColorTexture); with one, the "
+                 "translucent material takes its reflectance from it and only the mean free path and eta from "
+                 "--material")
         ->group(group);
 }
 

@@ -48,7 +48,8 @@ struct LightArgs {
 void addInputOptions(CLI::App& app, InputArgs& args);  ///< --mesh --volume --scene --data-dir --dims --type --spacing --tf --tf-range
 /// --material --profile --combine --cameras --samples --map-resolution --frames --scale
 /// --no-specular --environment (the mesh's scattering options)
-void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string& material);
+/// --material, the option table's mesh fields, --map-resolution, --no-specular and --no-texture.
+void addMeshOptions(CLI::App& app, sss::MeshRenderOptions& options, std::string& material, bool& noTexture);
 /// --color --shininess (the Blinn-Phong baseline)
 void addBaselineOptions(CLI::App& app, sss::BlinnPhongMaterial& material);
 /// --step --early-termination --no-jitter --no-skipping --no-gradient-volume --light-volume-scale

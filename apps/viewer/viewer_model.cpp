@@ -49,6 +49,7 @@ ViewerModel::ViewerModel(const ViewerOptions& options)
     lightColor = options.lightColor;
     lightIntensity = options.lightIntensity;
     material = sss::materialPreset(options.material);
+    meshTexture = !options.noTexture;
     const auto names = sss::materialPresetNames();
     const auto found = std::find(names.begin(), names.end(), material.name);
     materialIndex = found == names.end() ? -1 : static_cast<int>(found - names.begin());
@@ -89,6 +90,7 @@ void ViewerModel::setSceneOptions(const sss::SceneDescription& scene) {
         meshSize = m.size;
         meshOptions = m.options;
         material = m.material;
+        meshTexture = m.texture;
         blinnPhong = m.baseline;
     }
     if (!scene.volumes.empty()) {
@@ -125,6 +127,7 @@ sss::SceneDescription ViewerModel::describeScene() const {
         m.options = renderedMeshOptions();
         m.options.finishEachPass = false;
         m.material = material;
+        m.texture = meshTexture;
         m.baseline = blinnPhong;
         scene.meshes.push_back(m);
     }
@@ -270,13 +273,20 @@ glm::mat4 ViewerModel::volumeModel() const {
     return placedVolumeTransform().matrix();
 }
 
+void ViewerModel::applyMaterials(sss::MeshScatteringRenderer& r) const {
+    if (meshTexture && mesh && mesh->baseColour())
+        r.setScatteringMaterial(sss::texturedScattering(material));
+    else
+        r.setScatteringMaterial(material);
+    r.setMaterial(blinnPhong);
+}
+
 void ViewerModel::rebuildScene() {
     compositor->clear();
     compositor->setOptions(hybrid);
     if (mesh) {
         sss::MeshScatteringRenderer& r = compositor->addMesh(*mesh, meshModel(), renderedMeshOptions());
-        r.setScatteringMaterial(material);
-        r.setMaterial(blinnPhong);
+        applyMaterials(r);
     }
     if (volume) {
         sss::VolumeScatteringRenderer& r = compositor->addVolume(*volume, volumeModel(), renderedVolumeOptions());
@@ -326,8 +336,7 @@ void ViewerModel::applyChanges() {
         if (lightsDirty) compositor->setLights({light()});
         for (std::size_t i = 0; i < compositor->meshCount() && meshDirty; ++i) {
             compositor->mesh(i).setOptions(renderedMeshOptions());
-            compositor->mesh(i).setScatteringMaterial(material);
-            compositor->mesh(i).setMaterial(blinnPhong);
+            applyMaterials(compositor->mesh(i));
         }
         for (std::size_t i = 0; i < compositor->volumeCount(); ++i) {
             if (volumeDirty) {

@@ -61,6 +61,8 @@ public:
     glm::mat4 meshModel() const;
     glm::mat4 volumeModel() const;
     void rebuildScene();
+    // The translucent (textured when the mesh has a base colour and meshTexture) and Blinn-Phong materials.
+    void applyMaterials(sss::MeshScatteringRenderer& r) const;
     void reframe();
     // Pushes the UI's settings into the renderers; a bad value shows an error instead of throwing.
     void applyChanges();
@@ -89,6 +91,7 @@ public:
     sss::MeshRenderOptions meshOptions;
     sss::BlinnPhongMaterial blinnPhong;
     sss::ScatteringMaterial material;
+    bool meshTexture = true;  // a mesh's base colour gives the reflectance (--no-texture, checkbox)
     int materialIndex = -1;
     sss::VolumeRenderOptions volumeOptions;
     bool volumeScattering = true, volumeHighlights = false, volumeBaselineGradient = true;

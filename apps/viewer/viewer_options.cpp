@@ -44,7 +44,7 @@ ViewerOptions parseArgs(int argc, char** argv) {
     examples::addInputOptions(app, o.input);
     app.add_flag("--cornell-box", o.cornellBox, "put the scene in a Cornell box")->group("placement");
     examples::addEnum(app, "--mesh-mode", o.mesh.shading, "mesh shading")->group("mesh scattering");
-    examples::addMeshOptions(app, o.mesh, o.material);
+    examples::addMeshOptions(app, o.mesh, o.material, o.noTexture);
     examples::addInt(app, "--accumulation", o.mesh.accumulationFrames, "the old spelling of --frames", "F")
         ->group("mesh scattering");
     examples::addEnum(app, "--volume-mode", o.volume.shading, "volume shading")->group("volume");

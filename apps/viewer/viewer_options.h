@@ -25,6 +25,7 @@ using examples::loadSceneVolume;
 struct ViewerOptions {
     examples::InputArgs input;             ///< --mesh --volume --scene --data-dir --dims --type --spacing --tf --tf-range
     std::string material = "marble";       ///< --material NAME
+    bool noTexture = false;                ///< --no-texture
     sss::MeshRenderOptions mesh = defaultMeshOptions();        ///< --mesh-mode, --cameras, --frames, ...
     sss::VolumeRenderOptions volume = defaultVolumeOptions();  ///< --volume-mode, --light-volume-scale, ...
     sss::DisplayTransform display;         ///< --exposure, --tonemap

@@ -218,6 +218,11 @@ void Panels::meshSection() {
         }
         ImGui::EndCombo();
     }
+    if (m_model.mesh && m_model.mesh->baseColour() && ImGui::Checkbox("texture as reflectance", &m_model.meshTexture))
+        m_model.meshDirty = true;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("the mesh's base-colour texture gives each point its reflectance;\n"
+                          "the material gives the mean free path and eta");
     sss::ScatteringMaterial edited = m_model.material;
     bool changed = dragDvec3("sigma_a (1/mm)", edited.sigmaA, 0.001f, 0.0f, 100.0f, "%.4f");
     changed |= dragDvec3("sigma_s (1/mm)", edited.sigmaS, 0.01f, 0.0f, 1000.0f, "%.3f");
