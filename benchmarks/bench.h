@@ -221,6 +221,8 @@ void runTable54(BenchmarkContext& bench);
 void runCastersTable(BenchmarkContext& bench);
 /// The ways to clear a render target, side by side (the floor under every frame's time).
 void runClearTable(BenchmarkContext& bench);
+/// Textured translucent meshes against the same mesh untextured: change and fixed frames per combine.
+void runTexturedTable(BenchmarkContext& bench);
 /// Time against viewport size and step: EA and fixed scattering on the bonsai, the mesh change
 /// and fixed frames on the bunny, with the intercept and slope of a line through each series.
 void runScalingTable(BenchmarkContext& bench);

@@ -97,16 +97,17 @@ Options parseArgs(int argc, char** argv) {
                   std::vector<std::string> tables;
                   for (const std::string& t : splitList(text)) {
                       if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5" && t != "casters" && t != "scaling" &&
-                          t != "clear")
+                          t != "clear" && t != "textured")
                           throw UsageError(name + ": unknown table \"" + t +
-                                           "\" (baseline, 5.3, 5.4, 5.5, casters, scaling, clear)");
+                                           "\" (baseline, 5.3, 5.4, 5.5, casters, scaling, clear, textured)");
                       tables.push_back(t);
                   }
                   return tables;
               },
               "thesis tables to reproduce: baseline (default), 5.3 (mesh scattering), 5.4 (volume scattering), 5.5 "
               "(hybrid scenes); casters: fragment against compute ray casting side by side; scaling: time against "
-              "viewport size and ray step, with the fixed and per-pixel costs fitted; clear: the ways to clear a target",
+              "viewport size and ray step, with the fixed and per-pixel costs fitted; clear: the ways to clear a target; "
+              "textured: a textured translucent mesh against the same mesh untextured",
               "T[,T...]");
     addEnum(app, "--ray-caster", o.rayCaster, "the ray caster of every volume row (casters: both)");
     addEnum(app, "--volume-model", o.volumeModel,
@@ -247,6 +248,7 @@ int main(int argc, char** argv) {
                 if (t == "casters") runCastersTable(bench);
                 if (t == "scaling") runScalingTable(bench);
                 if (t == "clear") runClearTable(bench);
+                if (t == "textured") runTexturedTable(bench);
             }
         }
 
