@@ -54,10 +54,10 @@ class Image8;
 /// the surface shows under even light, and a mean free path per channel. Each texel's
 /// coefficients are those of materialFromReflectance() for its reflectance, so a flat, evenly lit
 /// textured slab shows the texture's colour. The mesh needs texture coordinates.
-/// How points with different coefficients combine (docs/textured-materials.md): the light that
-/// reaches a point x_o is gathered with x_o's own profile, normalised by x_o's reflectance, and
-/// scaled by the reflectance of the texel under each pixel, so the texture keeps its full
-/// resolution wherever the radiosity is cached (maps or vertices).
+/// How points with different coefficients combine (docs/textured-materials.md): light entering
+/// at x_i and leaving at x_o follows x_o's profile, times (R(x_i) / R(x_o))^0.5 per channel. The
+/// renderers cache the part that varies smoothly and take the texel under each pixel, so the
+/// texture keeps its full resolution wherever the radiosity is cached (maps or vertices).
 struct TexturedScattering {
     /// Reduced mean free path 1 / sigma_t' per channel, in mm, each finite and > 0 (default:
     /// potato's, as ScatteringMaterial's default).

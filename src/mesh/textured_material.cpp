@@ -60,7 +60,7 @@ std::vector<float> tabulate(double eta, ScatteringProfile profile) {
 
 // Decoded here rather than by an sRGB texture format: llvmpipe's decode is 2 % low at the darkest
 // values (sRGB 30), where the reflectance decides the whole colour.
-gl::Texture uploadSrgb(const Image8& image, const char* label) {
+gl::Texture uploadReflectance(const Image8& image, const char* label) {
     std::array<float, 256> linear{};
     for (int v = 0; v < 256; ++v) linear[static_cast<size_t>(v)] = static_cast<float>(srgbToLinear(static_cast<std::uint8_t>(v)));
     // GL's rows start at the bottom: flipped, texture coordinate v = 0 is the image's last row.
@@ -109,7 +109,7 @@ TexturedMaterialGpu::TexturedMaterialGpu(const TexturedScattering& material, con
     for (int c = 0; c < 3; ++c) m_referenceGathered[c] = invertReflectance(table, m_summary.maxReflectance[c]).gathered;
     m_widest = materialFromReflectance(m_summary.maxReflectance, material.meanFreePath, material.eta, profile);
     m_widest.name = material.name;
-    m_reflectance = uploadSrgb(reflectance, "material reflectance");
+    m_reflectance = uploadReflectance(reflectance, "material reflectance");
     m_pathScale = uploadPathScale(material.meanFreePathScale.get());
     const std::vector<float> rows = tabulate(material.eta, profile);
     m_table = gl::Texture::create2D(GL_RGBA32F, kTableColumns, kTexturedTableRows, "material table");
