@@ -26,10 +26,10 @@ namespace {
 std::string dtypeName(const py::array& a) { return py::str(a.dtype()); }
 
 // An (N, 3) array of real numbers as glm::vec3s. `what` names the argument in messages.
-// Rows of N floats (positions, normals: 3; texture coordinates: 2) from an (M, N) array.
+// Rows of N floats (positions, normals: 3; texture coordinates: 2) from an array of that many columns.
 template <int N>
 std::vector<glm::vec<N, float>> floatRows(const py::handle& src, const char* what) {
-    const std::string shape = "(M, " + std::to_string(N) + ")";
+    const std::string shape = "(N, " + std::to_string(N) + ")";
     py::array raw = py::array::ensure(src);
     if (!raw) invalidArgument(std::string("Mesh: ") + what + " must be an array of shape " + shape);
     const char kind = raw.dtype().kind();
