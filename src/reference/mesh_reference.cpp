@@ -617,16 +617,21 @@ private:
     glm::dmat4 m_inverseViewProjection{1.0};
 };
 
-}  // namespace
-
-MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model, const ScatteringMaterial& material,
-                                        const std::vector<Light>& lights, const Camera& camera, int width, int height,
-                                        const MeshReferenceOptions& options) {
+// The checks both overloads make before any work.
+void checkInputs(const Mesh& mesh, int width, int height, const MeshReferenceOptions& options) {
     if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
         invalid("image size must be in [1, " + std::to_string(kMaxImageSide) + "] on each side, got " +
                 std::to_string(width) + " x " + std::to_string(height));
     validateOptions(options);
     if (mesh.triangleCount() == 0) invalid("the mesh \"" + mesh.name() + "\" has no triangles");
+}
+
+}  // namespace
+
+MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model, const ScatteringMaterial& material,
+                                        const std::vector<Light>& lights, const Camera& camera, int width, int height,
+                                        const MeshReferenceOptions& options) {
+    checkInputs(mesh, width, height, options);
     Renderer renderer(mesh, model, material, lights, camera, width, height, options);
     return renderer.run();
 }
@@ -634,12 +639,8 @@ MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model
 MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model, const TexturedScattering& material,
                                         const std::vector<Light>& lights, const Camera& camera, int width, int height,
                                         const MeshReferenceOptions& options) {
-    if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
-        invalid("image size must be in [1, " + std::to_string(kMaxImageSide) + "] on each side, got " +
-                std::to_string(width) + " x " + std::to_string(height));
-    validateOptions(options);
+    checkInputs(mesh, width, height, options);
     material.validate();
-    if (mesh.triangleCount() == 0) invalid("the mesh \"" + mesh.name() + "\" has no triangles");
     const Image8* reflectance = material.reflectance ? material.reflectance.get() : mesh.baseColour().get();
     if (!reflectance)
         invalid("the textured material \"" + material.name + "\" has no reflectance texture and the mesh \"" +
