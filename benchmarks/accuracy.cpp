@@ -7,6 +7,7 @@
 //  - gpu: the renderer (default options, calibrated profile, no specular) on a wide, thick slab
 //    seen head-on, mean of the centre pixels, divided by the irradiance cos(theta).
 #include "accuracy.h"
+#include "volume_accuracy.h"
 
 #include "bench.h"
 
@@ -306,7 +307,7 @@ AccuracyReport runMeshAccuracy(BenchmarkContext& bench, const AccuracyOptions& o
     return report;
 }
 
-namespace {
+namespace volume_accuracy {
 
 // The best single factor k minimising |k test - reference| over all pixels and channels: how far
 // a model is off in shape once its overall brightness (the paper model has no physical units)
@@ -355,14 +356,6 @@ sss::DirectionalLight volumeAccuracyLight() {
     return {.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.4f))};
 }
 
-// A GPU volume image and its median frame time: one untimed frame (compilation, light volume),
-// then three timed ones. With `rebuild` the timed frames alternate the light with its nudged
-// twin, so each one rebuilds the light volume; the image is then rendered with `light` again.
-struct TimedImage {
-    sss::Image image;
-    double medianMs = 0.0;
-};
-
 // One frame of `renderer` into the cleared `target`, waited for: its milliseconds.
 double timedFrameMs(sss::VolumeScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target) {
     target.clear({0, 0, 0, 0});
@@ -395,6 +388,12 @@ TimedImage renderVolumeTimed(const sss::Volume& volume, const sss::TransferFunct
     }
     return {target.readColor(), times[1]};
 }
+
+}  // namespace volume_accuracy
+
+namespace {
+
+using namespace volume_accuracy;
 
 // Median of three timed frames of `renderer` at a fixed view, each waited for.
 double fixedFrameMs(sss::VolumeScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target) {

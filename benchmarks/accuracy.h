@@ -38,3 +38,6 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
 /// scattering) against the CPU reference of the same model, whose shadow rays replace the light
 /// volume: bucky, bonsai, engine; GPU defaults and an exact ray.
 AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions& options);
+/// Opaque surfaces under a side light (the shell with ct-bone, the bonsai): both volume models
+/// against path-traced single scattering, with the rings' contrast beside the truth's.
+AccuracyReport runSurfaceAccuracy(BenchmarkContext& bench, const AccuracyOptions& options);

@@ -125,7 +125,7 @@ Options parseArgs(int argc, char** argv) {
               "S");
     addParsed(app, "--accuracy", o.accuracy,
               [](const std::string& name, const std::string& text) {
-                  return std::optional(oneOf(name, text, {"slab", "mesh", "volume", "light-volume"}));
+                  return std::optional(oneOf(name, text, {"slab", "mesh", "volume", "light-volume", "surfaces"}));
               },
               "accuracy against physical ground truth. A = slab: presets x channels x incidence 0/45/75 degrees, the "
               "random walk against the dipole, the calibrated profile and a GPU render (JSON records with material, "
@@ -135,8 +135,11 @@ Options parseArgs(int argc, char** argv) {
               "volume and physical single scattering against path-traced single and multiple scattering (records "
               "with scene, method, rel_rmse_single, rel_rmse_multiple, mean_ratio, ms). A = light-volume: the light "
               "volume (paper and physical models) against the CPU reference of the same model, whose shadow rays "
-              "replace it (records with scene, method, model, settings, rel_rmse, mean_ratio, ms). Markdown and a "
-              "plot as well",
+              "replace it (records with scene, method, model, settings, rel_rmse, mean_ratio, ms). A = surfaces: "
+              "opaque surfaces under a side light (the shell at 64^3 and 128^3, the bonsai), both models against "
+              "path-traced single scattering (records with scene, model, settings, rel_rmse, truth_noise, "
+              "ring_contrast, truth_ring_contrast, ms). "
+              "Markdown and a plot as well",
               "A");
     addParsed(app, "--plot", o.plotPath,
               [](const std::string&, const std::string& text) { return std::optional<std::filesystem::path>(text); },
@@ -213,7 +216,8 @@ int main(int argc, char** argv) {
             const AccuracyReport report = *options->accuracy == "slab"   ? runSlabAccuracy(a)
                                           : *options->accuracy == "mesh" ? runMeshAccuracy(bench, a)
                                           : *options->accuracy == "volume" ? runVolumeAccuracy(bench, a)
-                                                                           : runLightVolumeAccuracy(bench, a);
+                                          : *options->accuracy == "surfaces" ? runSurfaceAccuracy(bench, a)
+                                                                             : runLightVolumeAccuracy(bench, a);
             const nlohmann::ordered_json json = {{"accuracy", *options->accuracy},
                                                  {"renderer", bench.glInfo().renderer},
                                                  {"date", bench.startedAt()},

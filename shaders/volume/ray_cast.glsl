@@ -146,6 +146,41 @@ vec4 sampleVolume(vec3 tc) {
 vec4 sampleVolume(vec3 tc) { return vec4(0.0, 0.0, 0.0, texture(volumeTexture, tc).r); }
 #endif
 
+#if PREINTEGRATED
+// Texel (front value, back value) of one step-long segment over which the data goes linearly
+// from front to back (src/volume/preintegration.h): layer 0 its premultiplied colour and
+// opacity, layer 1 where it adds its light (fraction from its front) x opacity.
+uniform sampler2DArray preintegrationTable;
+uniform float preintegrationSize;
+
+struct Segment {
+    vec4 premultiplied;
+    float depth;  // where the segment adds its light on average, as a fraction from its front
+};
+
+Segment classifySegment(float front, float back) {
+    vec2 x = clamp(vec2(front, back) * valueScaleOffset.x + valueScaleOffset.y, 0.0, 1.0);
+    vec2 uv = (x * (preintegrationSize - 1.0) + 0.5) / preintegrationSize;
+    vec4 c = texture(preintegrationTable, vec3(uv, 0.0));
+    float depth = texture(preintegrationTable, vec3(uv, 1.0)).r;
+    return Segment(c, c.a > 0.0 ? clamp(depth / c.a, 0.0, 1.0) : 0.5);
+}
+
+// The same for a homogeneous stretch of optical depth tau (meanContributionDepth in C++).
+float meanContributionDepth(float tau) {
+    return tau < 0.1 ? 0.5 - tau / 12.0 : 1.0 / tau - 1.0 / (exp(min(tau, 80.0)) - 1.0);
+}
+
+// A stretch shorter than a step (where the ray enters or leaves the medium) classified by one
+// value over its `voxels`.
+Segment pointSegment(float value, float voxels) {
+    vec4 tf = classify(value);
+    float a = correctOpacity(tf.a, voxels, 1.0);
+    float tau = -log(max(1.0 - min(tf.a, 1.0), 1e-7)) * voxels;
+    return Segment(vec4(tf.rgb * a, a), meanContributionDepth(tau));
+}
+#endif
+
 #if SHADING_GRADIENT || SHADING_SCATTERING
 // Towards the viewer from any point of this pixel's ray: the same all along it (set in main).
 vec3 viewerDirection;
@@ -205,6 +240,104 @@ vec3 cachedInScattering(vec3 tc) {
 }
 #endif
 
+#if SHADING_SCATTERING
+// The light volume stores light at voxel centres, and next to a dense or thin structure its
+// trilinear interpolation mixes in the dark voxels inside it (rings as the surface crosses the
+// grid, and too little light on every lit surface). So a sample reads it lightVolumeReach texels
+// towards the light, at q, clear of the structure it sits in, and carries that light back to
+// itself through the data, c and l changing on the way as in the light volume:
+// L(p) = L(q) T(q -> p).
+
+// The share of the full reach (texture coordinates, towards light i) that stays inside the box
+// and short of a point light; beyond either the light arrives whole.
+float reachShare(int i, vec3 tc, LightReach full, vec3 worldPosition) {
+    vec3 exits = max(-tc * full.inverseReach, (1.0 - tc) * full.inverseReach);
+    float share = min(min(exits.x, exits.y), exits.z);
+#if !DIRECTIONAL_LIGHTS_ONLY
+    if (lightVector[i].w != 0.0) {
+        float reachWorld = length(mat3(modelToWorld) * (full.reach * (boxMax - boxMin)));
+        if (reachWorld > 0.0) share = min(share, length(lightVector[i].xyz - worldPosition) / reachWorld);
+    }
+#endif
+    return clamp(share, 0.0, 1.0);
+}
+
+// `light` ((c, l) at tc + reach) carried back to tc through the data, in pieces about a voxel
+// long.
+vec4 carriedBack(vec4 light, vec3 tc, vec3 reach, float reachVoxels) {
+    int pieces = clamp(int(ceil(reachVoxels)), 1, 16);
+    float pieceVoxels = reachVoxels / float(pieces);
+#if PREINTEGRATED
+    // Each piece classified as a segment between its two ends (the data linear between them), as
+    // the eye ray's: point samples a voxel apart miss most of a thin opaque layer's steep rise,
+    // and let too much light through to a sample just inside it.
+    float far = texture(volumeTexture, tc + reach).r;
+    for (int k = pieces - 1; k >= 0; --k) {
+        float near = texture(volumeTexture, tc + reach * (float(k) / float(pieces))).r;
+        Segment piece = classifySegment(far, near);
+        far = near;
+        float a = piece.premultiplied.a;
+        if (a <= 0.0 || !lightSeesMedium(tc + reach * ((float(k) + 0.5) / float(pieces)))) continue;
+        vec3 colour = piece.premultiplied.rgb / a;
+        a = correctOpacity(a, pieceVoxels, opacityExponent);
+        light = vec4((1.0 - a) * light.rgb + a * colour, (1.0 - a) * light.a);
+    }
+#else
+    for (int k = pieces - 1; k >= 0; --k) {
+        vec3 tcK = tc + reach * ((float(k) + 0.5) / float(pieces));
+        vec4 medium = lightSeesMedium(tcK) ? classify(texture(volumeTexture, tcK).r) : vec4(0.0);
+        float a = correctOpacity(medium.a, pieceVoxels, 1.0);
+        light = vec4((1.0 - a) * light.rgb + a * medium.rgb, (1.0 - a) * light.a);
+    }
+#endif
+    return light;
+}
+
+// The light from light i arriving at p (texture coordinate tc), as (c l, l): c the light
+// volume's chromaticity, l its intensity, times the meshes' shadow.
+vec4 arrivingLight(int i, vec3 p, vec3 tc) {
+#if !DIRECTIONAL_LIGHTS_ONLY
+    vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
+    vec3 radiance;
+    LightReach full = lightReachTowards(i, lightDirectionAt(i, worldPosition, radiance));
+#else
+    const vec3 worldPosition = vec3(0.0);  // directional lights do not depend on it
+    LightReach full = rayLightReaches[i];
+#endif
+    float share = reachShare(i, tc, full, worldPosition);
+    vec3 reach = full.reach * share;
+    vec4 light = share < 1.0 ? vec4(1.0) : texture(lightVolumes[i], tc + reach);
+    light = carriedBack(light, tc, reach, full.voxels * share);
+    light.a *= meshVisibility(i, p);
+    return vec4(light.rgb * light.a, light.a);
+}
+
+#if PREINTEGRATED
+// The light at the current segment's two ends, per light. A segment shaded right after another
+// takes that one's back as its front.
+vec4 frontLight[MAX_LIGHTS];
+vec4 backLight[MAX_LIGHTS];
+bool frontLightKnown;
+float segmentOpticalDepth;  // the eye ray's across the current segment
+
+float layerMean(float x) {
+    x = max(x, -80.0);
+    return abs(x) < 1e-3 ? 1.0 - 0.5 * x : (1.0 - exp(-x)) / x;
+}
+
+// The light a segment scatters, as one arriving light: its optical depth taken to grow in step
+// with the eye ray's across the segment, which is exact in a layered medium of any profile and
+// keeps a surface lit at a grazing angle from being shaded by the light one point deep in it
+// (docs/opaque-surfaces.md derives it).
+vec4 segmentLight(int i) {
+    vec4 front = max(frontLight[i], vec4(1e-20));
+    vec4 b = log(front / max(backLight[i], vec4(1e-20)));
+    float a = segmentOpticalDepth;
+    return front * vec4(layerMean(a + b.x), layerMean(a + b.y), layerMean(a + b.z), layerMean(a + b.w)) / layerMean(a);
+}
+#endif
+#endif
+
 vec3 shade(vec3 p, vec3 tc, vec3 color) {
 #if !DIRECTIONAL_LIGHTS_ONLY
     vec3 worldPosition = (modelToWorld * vec4(p, 1.0)).xyz;
@@ -225,41 +358,11 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
         vec3 h = normalize(l + v);
 #endif
 #if SHADING_SCATTERING
-        // Diffuse light is what the light volume says arrives here: tinted by c, dimmed by l.
-        // The light volume stores light at voxel centres, and next to a dense or thin structure
-        // its trilinear interpolation mixes in the dark voxels inside it (rings as the surface
-        // crosses the grid, and too little light on every lit surface). So read it
-        // lightVolumeReach texels towards the light, at q, clear of the structure the sample sits
-        // in, and carry that light back to the sample through the data itself, c and l changing
-        // on the way as in the light volume: L(p) = L(q) T(q -> p), with T at one-voxel steps.
-        // Where the reach leaves the box or passes a point light, the light arrives there whole.
-#if DIRECTIONAL_LIGHTS_ONLY
-        LightReach full = rayLightReaches[i];
+#if PREINTEGRATED
+        vec4 light = segmentLight(i);
 #else
-        LightReach full = lightReachTowards(i, l);
+        vec4 light = arrivingLight(i, p, tc);
 #endif
-        vec3 reach = full.reach;
-        vec3 exits = max(-tc * full.inverseReach, (1.0 - tc) * full.inverseReach);
-        float reachShare = min(min(exits.x, exits.y), exits.z);
-#if !DIRECTIONAL_LIGHTS_ONLY
-        if (lightVector[i].w != 0.0) {
-            float reachWorld = length(mat3(modelToWorld) * (reach * (boxMax - boxMin)));
-            if (reachWorld > 0.0) reachShare = min(reachShare, length(lightVector[i].xyz - worldPosition) / reachWorld);
-        }
-#endif
-        reachShare = clamp(reachShare, 0.0, 1.0);
-        reach *= reachShare;
-        vec4 arriving = reachShare < 1.0 ? vec4(1.0) : texture(lightVolumes[i], tc + reach);
-        float reachVoxels = full.voxels * reachShare;
-        int subSteps = clamp(int(ceil(reachVoxels)), 1, 16);
-        float subVoxels = reachVoxels / float(subSteps);
-        for (int k = subSteps - 1; k >= 0; --k) {
-            vec3 tcK = tc + reach * ((float(k) + 0.5) / float(subSteps));
-            vec4 medium = lightSeesMedium(tcK) ? classify(texture(volumeTexture, tcK).r) : vec4(0.0);
-            float a = correctOpacity(medium.a, subVoxels, 1.0);
-            arriving = vec4((1.0 - a) * arriving.rgb + a * medium.rgb, (1.0 - a) * arriving.a);
-        }
-        arriving.a *= meshVisibility(i, p);
         if (physicalModel != 0) {
             // Single scattering: albedo (TF colour) x phase function between the light's travel
             // direction -l and the way to the viewer x the light that arrives (grey extinction:
@@ -267,14 +370,14 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
             float cosTheta = dot(-l, viewerDirection);
             float d = 1.0 + phaseG * phaseG - 2.0 * phaseG * cosTheta;
             float phase = (1.0 - phaseG * phaseG) / (12.5663706 * d * sqrt(d));
-            lit += color * radiance * (arriving.a * phase);
+            lit += color * radiance * (light.a * phase);
         } else {
-            lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
+            lit += diffuseStrength * color * radiance * light.rgb;
         }
 #if SHADING_GRADIENT
         float nDotL = dot(surface.n, l);
         if (nDotL > 0.0)
-            lit += surface.strength * arriving.a * radiance * specularColor *
+            lit += surface.strength * light.a * radiance * specularColor *
                    specularPower(max(dot(surface.n, h), 0.0), shininess);
 #endif
 #else
@@ -293,41 +396,6 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     // Homogeneous regions have no meaningful normal: fade to the unshaded colour there.
     return mix(color, lit, surface.strength);
 #endif
-}
-#endif
-
-#if PREINTEGRATED
-// Texel (front value, back value) of one step-long segment over which the data goes linearly
-// from front to back (src/volume/preintegration.h): layer 0 its premultiplied colour and
-// opacity, layer 1 where it adds its light (fraction from its front) x opacity.
-uniform sampler2DArray preintegrationTable;
-uniform float preintegrationSize;
-
-struct Segment {
-    vec4 premultiplied;
-    float depth;  // where the segment adds its light on average, as a fraction from its front
-};
-
-Segment classifySegment(float front, float back) {
-    vec2 x = clamp(vec2(front, back) * valueScaleOffset.x + valueScaleOffset.y, 0.0, 1.0);
-    vec2 uv = (x * (preintegrationSize - 1.0) + 0.5) / preintegrationSize;
-    vec4 c = texture(preintegrationTable, vec3(uv, 0.0));
-    float depth = texture(preintegrationTable, vec3(uv, 1.0)).r;
-    return Segment(c, c.a > 0.0 ? clamp(depth / c.a, 0.0, 1.0) : 0.5);
-}
-
-// The same for a homogeneous stretch of optical depth tau (meanContributionDepth in C++).
-float meanContributionDepth(float tau) {
-    return tau < 0.1 ? 0.5 - tau / 12.0 : 1.0 / tau - 1.0 / (exp(min(tau, 80.0)) - 1.0);
-}
-
-// A stretch shorter than a step (where the ray enters or leaves the medium) classified by one
-// value over its `voxels`.
-Segment pointSegment(float value, float voxels) {
-    vec4 tf = classify(value);
-    float a = correctOpacity(tf.a, voxels, 1.0);
-    float tau = -log(max(1.0 - min(tf.a, 1.0), 1e-7)) * voxels;
-    return Segment(vec4(tf.rgb * a, a), meanContributionDepth(tau));
 }
 #endif
 
@@ -361,10 +429,27 @@ void composite(vec3 p, vec3 tc, vec3 albedo, float a, inout vec3 color, inout fl
 // shadow of the very surface the segment holds.
 void compositeSegment(Segment segment, vec3 end, float length, vec3 direction, inout vec3 color, inout float alpha) {
     float a = segment.premultiplied.a;
+#if SHADING_SCATTERING
+    if (a <= 0.0) {
+        frontLightKnown = false;
+        return;
+    }
+    vec3 start = end - length * direction;
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        if (!frontLightKnown) frontLight[i] = arrivingLight(i, start, toTexture(start));
+        backLight[i] = arrivingLight(i, end, toTexture(end));
+    }
+    segmentOpticalDepth = -log(max(1.0 - a, 1e-7));
+#else
     if (a <= 0.0) return;
+#endif
     // The segment's mean colour, weighted by what each part of it adds.
     vec3 p = end - (1.0 - segment.depth) * length * direction;
     composite(p, toTexture(p), segment.premultiplied.rgb / a, a, color, alpha);
+#if SHADING_SCATTERING
+    for (int i = 0; i < LIGHT_COUNT; ++i) frontLight[i] = backLight[i];
+    frontLightKnown = true;
+#endif
 }
 #endif
 
@@ -402,6 +487,9 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
     }
     vec3 color = vec3(0.0);
     float alpha = 0.0;
+#if PREINTEGRATED && SHADING_SCATTERING
+    frontLightKnown = false;
+#endif
     if (span.x < span.y) {
         float tFirst = span.x + (jitterEnabled != 0 ? fract(pixelJitter(fragCoord) + jitterShift) : 0.5) * stepLength;
 #if PREINTEGRATED
@@ -457,6 +545,9 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
                 vec3 tFar = max((lo - ray.origin) * inv, (hi - ray.origin) * inv);
                 float exitT = min(min(tFar.x, tFar.y), tFar.z);
                 i = max(i, int(ceil((exitT - tFirst) / stepLength)) - 1);  // the loop adds one
+#if PREINTEGRATED && SHADING_SCATTERING
+                frontLightKnown = false;
+#endif
                 continue;
             }
 #endif
