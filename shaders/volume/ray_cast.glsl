@@ -313,12 +313,30 @@ vec4 arrivingLight(int i, vec3 p, vec3 tc) {
 }
 
 #if PREINTEGRATED
-// The light at the current segment's two ends, per light. A segment shaded right after another
-// takes that one's back as its front.
+// The light at the current segment's two ends, per light. The ray caster evaluates it once per
+// sample, at every sample next to a segment that holds medium (it looks one sample ahead), so a
+// segment's front is the previous sample's light: one call site in the loop, which keeps
+// neighbouring rays in step on SIMD hardware.
 vec4 frontLight[MAX_LIGHTS];
 vec4 backLight[MAX_LIGHTS];
-bool frontLightKnown;
+bool frontLit;              // frontLight holds the light at the current segment's start
 float segmentOpticalDepth;  // the eye ray's across the current segment
+
+void evaluateLightAt(vec3 q) {
+    for (int i = 0; i < LIGHT_COUNT; ++i) backLight[i] = arrivingLight(i, q, toTexture(q));
+}
+
+// Outside the loop only (the ray's first and last stretches): llvmpipe runs a branch's body
+// whether or not a lane takes it, so a second light evaluation in the loop would double its cost.
+void evaluateFrontLightAt(vec3 q) {
+    for (int i = 0; i < LIGHT_COUNT; ++i) frontLight[i] = arrivingLight(i, q, toTexture(q));
+}
+
+// After a sample: its light, if evaluated, is the next segment's front.
+void passLightOn(bool evaluated) {
+    for (int i = 0; i < LIGHT_COUNT; ++i) frontLight[i] = backLight[i];
+    frontLit = evaluated;
+}
 
 float layerMean(float x) {
     x = max(x, -80.0);
@@ -429,27 +447,14 @@ void composite(vec3 p, vec3 tc, vec3 albedo, float a, inout vec3 color, inout fl
 // shadow of the very surface the segment holds.
 void compositeSegment(Segment segment, vec3 end, float length, vec3 direction, inout vec3 color, inout float alpha) {
     float a = segment.premultiplied.a;
-#if SHADING_SCATTERING
-    if (a <= 0.0) {
-        frontLightKnown = false;
-        return;
-    }
-    vec3 start = end - length * direction;
-    for (int i = 0; i < LIGHT_COUNT; ++i) {
-        if (!frontLightKnown) frontLight[i] = arrivingLight(i, start, toTexture(start));
-        backLight[i] = arrivingLight(i, end, toTexture(end));
-    }
-    segmentOpticalDepth = -log(max(1.0 - a, 1e-7));
-#else
     if (a <= 0.0) return;
+#if SHADING_SCATTERING
+    // frontLight and backLight hold the light at its ends (the caller's).
+    segmentOpticalDepth = -log(max(1.0 - a, 1e-7));
 #endif
     // The segment's mean colour, weighted by what each part of it adds.
     vec3 p = end - (1.0 - segment.depth) * length * direction;
     composite(p, toTexture(p), segment.premultiplied.rgb / a, a, color, alpha);
-#if SHADING_SCATTERING
-    for (int i = 0; i < LIGHT_COUNT; ++i) frontLight[i] = backLight[i];
-    frontLightKnown = true;
-#endif
 }
 #endif
 
@@ -488,7 +493,9 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
     vec3 color = vec3(0.0);
     float alpha = 0.0;
 #if PREINTEGRATED && SHADING_SCATTERING
-    frontLightKnown = false;
+    frontLit = false;
+    vec4 ahead;       // the next sample, taken one step early
+    bool aheadValid;  // it lies on the ray (else it is the ray's end, for the look-ahead only)
 #endif
     if (span.x < span.y) {
         float tFirst = span.x + (jitterEnabled != 0 ? fract(pixelJitter(fragCoord) + jitterShift) : 0.5) * stepLength;
@@ -505,9 +512,20 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
         vec3 previousDifferences = firstSample.xyz;  // the gradient at `previous`
         shadedDifferences = firstSample.xyz;
 #endif
-        compositeSegment(pointSegment(previous, (firstEnd - span.x) / stepLength * opacityExponent), firstPoint,
-                         firstEnd - span.x, ray.direction, color, alpha);
+        Segment first = pointSegment(previous, (firstEnd - span.x) / stepLength * opacityExponent);
+#if SHADING_SCATTERING
+        ahead = sampleVolume(tcOrigin + min(tFirst + stepLength, span.y) * tcDirection);
+        aheadValid = tFirst + stepLength < span.y;
+        bool firstLit = first.premultiplied.a > 0.0 || classifySegment(previous, ahead.w).premultiplied.a > 0.0;
+        if (first.premultiplied.a > 0.0) evaluateFrontLightAt(ray.origin + span.x * ray.direction);
+        if (firstLit) evaluateLightAt(firstPoint);
+#endif
+        compositeSegment(first, firstPoint, firstEnd - span.x, ray.direction, color, alpha);
+#if SHADING_SCATTERING
+        passLightOn(firstLit);
+#endif
         bool segmentOpen = true;
+        bool landing = false;  // the loop has just skipped bricks and lands on their last sample
         const int firstStep = 1;
         bool reachedEnd = false;  // the loop left the ray at its end (not by early termination)
         float tEnd = 0.0;         // where: the first sample position at or past span.y
@@ -533,7 +551,7 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #if PREINTEGRATED
             // The segment from the last sample taken into an empty brick may still hold medium at
             // its start: take this one sample to close it, and skip from the next.
-            if (emptyBrick && !segmentOpen) {
+            if (emptyBrick && !segmentOpen && !landing) {
 #else
             if (emptyBrick) {
 #endif
@@ -544,24 +562,31 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
                 vec3 inv = safeInverse(ray.direction);
                 vec3 tFar = max((lo - ray.origin) * inv, (hi - ray.origin) * inv);
                 float exitT = min(min(tFar.x, tFar.y), tFar.z);
+#if PREINTEGRATED
+                // Land on the brick's last sample, which opens the segment to the next one: no
+                // sample before it is needed, and the next segment's light is looked ahead to.
+                i = max(i, int(ceil((exitT - tFirst) / stepLength)) - 1) - 1;  // the loop adds one
+                landing = true;
+#if SHADING_SCATTERING
+                aheadValid = false;
+                frontLit = false;
+#endif
+#else
                 i = max(i, int(ceil((exitT - tFirst) / stepLength)) - 1);  // the loop adds one
-#if PREINTEGRATED && SHADING_SCATTERING
-                frontLightKnown = false;
 #endif
                 continue;
             }
 #endif
+#if PREINTEGRATED && SHADING_SCATTERING
+            vec4 sampled = aheadValid ? ahead : sampleVolume(tc);
+#else
             vec4 sampled = sampleVolume(tc);
+#endif
             float value = sampled.w;
 #if PREINTEGRATED
-            // Just out of skipped bricks, the previous position was not sampled.
-            if (!segmentOpen) {
-                vec4 before = sampleVolume(toTexture(p - stepLength * ray.direction));
-                previous = before.w;
-#if COMBINED_FETCH
-                previousDifferences = before.xyz;
-#endif
-            }
+            // Landed in an empty brick: no segment ends here (and this sample's value is clear).
+            if (landing) previous = value;
+            landing = false;
             Segment segment = classifySegment(previous, value);
 #if COMBINED_FETCH
             // The segment is shaded where it adds its light, a fraction `depth` along it: the
@@ -569,7 +594,17 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
             shadedDifferences = mix(previousDifferences, sampled.xyz, segment.depth);
             previousDifferences = sampled.xyz;
 #endif
+#if SHADING_SCATTERING
+            ahead = sampleVolume(tcOrigin + min(t + stepLength, span.y) * tcDirection);
+            aheadValid = t + stepLength < span.y;
+            bool lightHere = segment.premultiplied.a > 0.0 ||
+                             classifySegment(value, ahead.w).premultiplied.a > 0.0;
+            if (lightHere) evaluateLightAt(p);
+#endif
             compositeSegment(segment, p, stepLength, ray.direction, color, alpha);
+#if SHADING_SCATTERING
+            passLightOn(lightHere);
+#endif
             previous = value;
 #if EMPTY_SPACE_SKIPPING
             segmentOpen = !emptyBrick;
@@ -596,8 +631,14 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #if COMBINED_FETCH
             shadedDifferences = tailSample.xyz;
 #endif
-            compositeSegment(pointSegment(tailSample.w, tail / stepLength * opacityExponent),
-                             tailEnd, tail, ray.direction, color, alpha);
+            Segment tailSegment = pointSegment(tailSample.w, tail / stepLength * opacityExponent);
+#if SHADING_SCATTERING
+            if (tailSegment.premultiplied.a > 0.0) {
+                if (!frontLit) evaluateFrontLightAt(ray.origin + tailStart * ray.direction);
+                evaluateLightAt(tailEnd);
+            }
+#endif
+            compositeSegment(tailSegment, tailEnd, tail, ray.direction, color, alpha);
         }
 #endif
     }
