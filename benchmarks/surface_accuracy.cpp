@@ -159,6 +159,69 @@ std::vector<Settings> surfaceSettings() {
     return settings;
 }
 
+// What a table row is measured against: path-traced single scattering of the scene, cached.
+struct SurfaceTruth {
+    sss::Image image{1, 1};
+    double noise = 0.0;           // its own expected relRMSE
+    std::vector<bool> litMask;    // where the ring contrast is measured
+    double ringContrast = 0.0;
+};
+
+struct SurfaceView {
+    sss::Camera camera;
+    sss::DirectionalLight light;
+    int width, height, paths;
+    float g;
+};
+
+SurfaceTruth surfaceTruth(BenchmarkContext& bench, const Scene& scene, const SurfaceView& view) {
+    std::optional<sss::VolumePathTracerResult> traced;
+    auto trace = [&]() -> const sss::VolumePathTracerResult& {
+        if (!traced) {
+            sss::VolumePathTracerOptions po;
+            po.samplesPerPixel = view.paths;
+            po.g = view.g;
+            po.mode = sss::VolumeScatteringMode::SingleScattering;
+            traced = sss::renderVolumePathTraced(scene.volume, scene.tf, 256, glm::mat4(1.0f), {view.light},
+                                                 view.camera, view.width, view.height, po);
+        }
+        return *traced;
+    };
+    const std::string name = "surfaces-truth-" + scene.name + "-" + std::to_string(view.width) + "x" +
+                             std::to_string(view.height) + "-" + std::to_string(view.paths);
+    SurfaceTruth truth;
+    truth.image = cachedReference(bench.options(), name + ".exr", [&] { return trace().image; });
+    truth.noise = relativeNoise(truth.image,
+                                cachedReference(bench.options(), name + "-stderr.exr", [&] { return trace().standardError; }));
+    truth.litMask = litInterior(truth.image);
+    truth.ringContrast = ringContrast(truth.image, truth.litMask);
+    return truth;
+}
+
+struct SurfaceRecord {
+    double error, rings, ms;
+    sss::Image image{1, 1};
+};
+
+// One GPU render at `settings` in `model` against the truth.
+SurfaceRecord measureSurface(const Scene& scene, const SurfaceView& view, const SurfaceTruth& truth,
+                             sss::VolumeRenderOptions options, sss::VolumeModel model) {
+    const bool physical = model == sss::VolumeModel::Physical;
+    options.shading = sss::VolumeShading::Scattering;
+    options.anisotropy = view.g;
+    options.model = model;
+    if (!physical) {  // the paper model's light alone, as its reference takes it
+        options.ambient = 0.0f;
+        options.diffuse = 1.0f;
+    }
+    const TimedImage timed =
+        renderVolumeTimed(scene.volume, scene.tf, view.light, options, view.camera, view.width, view.height, false);
+    sss::Image gpu = physical ? timed.image : scaled(timed.image, bestScale(timed.image, truth.image));
+    const double error = sss::computeErrorMetrics(gpu, truth.image).relRmse;
+    const double rings = ringContrast(gpu, truth.litMask);
+    return {error, rings, timed.medianMs, std::move(gpu)};
+}
+
 }  // namespace
 
 AccuracyReport runSurfaceAccuracy(BenchmarkContext& bench, const AccuracyOptions& options) {
@@ -166,13 +229,12 @@ AccuracyReport runSurfaceAccuracy(BenchmarkContext& bench, const AccuracyOptions
     report.json = nlohmann::ordered_json::array();
     const int width = options.quick ? 64 : (options.width == 96 ? 256 : options.width);
     const int height = options.quick ? 36 : (options.height == 72 ? 144 : options.height);
-    const int spp = options.quick ? 16 : 4 * options.pathsPerPixel;
-    constexpr float kG = 0.5f;
-    const sss::DirectionalLight light{.direction = glm::normalize(glm::vec3(1.0f, -0.4f, -0.2f))};
+    SurfaceView view{{}, {.direction = glm::normalize(glm::vec3(1.0f, -0.4f, -0.2f))}, width, height,
+                     options.quick ? 16 : 4 * options.pathsPerPixel, 0.5f};
     std::ostringstream md;
     md << "# Opaque surfaces under a side light: both volume models against path-traced single scattering\n\n"
-       << width << " x " << height << ", one directional light travelling along (1, -0.4, -0.2), g = " << kG << ", "
-       << options.renderer << ". Truth: renderVolumePathTraced, single scattering, " << spp
+       << width << " x " << height << ", one directional light travelling along (1, -0.4, -0.2), g = " << view.g << ", "
+       << options.renderer << ". Truth: renderVolumePathTraced, single scattering, " << view.paths
        << " paths per pixel. relRMSE over all pixels: the physical model as it is, the paper model after its best "
           "single factor. Ring contrast: RMS of the luminance minus its Gaussian blur (sigma 1.5 pixels) over "
           "the mean luminance, on the lit inside of the truth's silhouette; the truth's own value is what the "
@@ -180,62 +242,31 @@ AccuracyReport runSurfaceAccuracy(BenchmarkContext& bench, const AccuracyOptions
        << "| scene | model | GPU settings | relRMSE | without truth noise | ring contrast | truth's ring contrast | ms |\n"
        << "|---|---|---|---:|---:|---:|---:|---:|\n";
     PlotSeries series[2] = {{"paper (scaled)", {}, 0xd62728, false}, {"physical", {}, 0x1f77b4, false}};
+    if (!options.imageDir.empty()) std::filesystem::create_directories(options.imageDir);
     for (const Scene& scene : surfaceScenes(bench, options.quick)) {
-        const sss::Camera camera = volumeAccuracyCamera(scene.volume, width, height);
-        std::optional<sss::VolumePathTracerResult> traced;
-        auto trace = [&]() -> const sss::VolumePathTracerResult& {
-            if (!traced) {
-                sss::VolumePathTracerOptions po;
-                po.samplesPerPixel = spp;
-                po.g = kG;
-                po.mode = sss::VolumeScatteringMode::SingleScattering;
-                traced = sss::renderVolumePathTraced(scene.volume, scene.tf, 256, glm::mat4(1.0f), {light}, camera,
-                                                     width, height, po);
-            }
-            return *traced;
-        };
-        const std::string truthName = "surfaces-truth-" + scene.name + "-" + std::to_string(width) + "x" +
-                                      std::to_string(height) + "-" + std::to_string(spp);
-        const sss::Image truth = cachedReference(bench.options(), truthName + ".exr", [&] { return trace().image; });
-        const double truthNoise = relativeNoise(
-            truth, cachedReference(bench.options(), truthName + "-stderr.exr", [&] { return trace().standardError; }));
-        const std::vector<bool> mask = litInterior(truth);
-        const double truthRings = ringContrast(truth, mask);
-        if (!options.imageDir.empty()) {
-            std::filesystem::create_directories(options.imageDir);
-            truth.saveExr(options.imageDir / ("surfaces-" + scene.name + "-truth.exr"));
-        }
+        view.camera = volumeAccuracyCamera(scene.volume, width, height);
+        const SurfaceTruth truth = surfaceTruth(bench, scene, view);
+        if (!options.imageDir.empty()) truth.image.saveExr(options.imageDir / ("surfaces-" + scene.name + "-truth.exr"));
         for (const Settings& s : surfaceSettings())
             for (const sss::VolumeModel model : {sss::VolumeModel::Paper, sss::VolumeModel::Physical}) {
+                const SurfaceRecord r = measureSurface(scene, view, truth, s.options, model);
                 const bool physical = model == sss::VolumeModel::Physical;
-                sss::VolumeRenderOptions o = s.options;
-                o.shading = sss::VolumeShading::Scattering;
-                o.anisotropy = kG;
-                o.model = model;
-                if (!physical) {  // the paper model's light alone, as its reference takes it
-                    o.ambient = 0.0f;
-                    o.diffuse = 1.0f;
-                }
-                const TimedImage timed = renderVolumeTimed(scene.volume, scene.tf, light, o, camera, width, height, false);
-                const sss::Image gpu = physical ? timed.image : scaled(timed.image, bestScale(timed.image, truth));
-                const double error = sss::computeErrorMetrics(gpu, truth).relRmse;
-                const double rings = ringContrast(gpu, mask);
                 const std::string modelName = physical ? "physical" : "paper";
                 report.json.push_back({{"scene", scene.name},
                                        {"model", modelName},
                                        {"settings", s.name},
-                                       {"rel_rmse", error},
-                                       {"truth_noise", truthNoise},
-                                       {"ring_contrast", rings},
-                                       {"truth_ring_contrast", truthRings},
-                                       {"ms", timed.medianMs}});
-                md << "| " << scene.name << " | " << modelName << " | " << s.name << " | " << fixed(100.0 * error, 1)
-                   << " % | " << fixed(100.0 * std::sqrt(std::max(0.0, error * error - truthNoise * truthNoise)), 1)
-                   << " % | " << fixed(100.0 * rings, 2) << " % | " << fixed(100.0 * truthRings, 2) << " % | "
-                   << fixed(timed.medianMs, 1) << " |\n";
-                if (s.name == "default") series[physical ? 1 : 0].points.push_back({double(report.json.size()), 100.0 * error});
+                                       {"rel_rmse", r.error},
+                                       {"truth_noise", truth.noise},
+                                       {"ring_contrast", r.rings},
+                                       {"truth_ring_contrast", truth.ringContrast},
+                                       {"ms", r.ms}});
+                const double withoutNoise = std::sqrt(std::max(0.0, r.error * r.error - truth.noise * truth.noise));
+                md << "| " << scene.name << " | " << modelName << " | " << s.name << " | " << fixed(100.0 * r.error, 1)
+                   << " % | " << fixed(100.0 * withoutNoise, 1) << " % | " << fixed(100.0 * r.rings, 2) << " % | "
+                   << fixed(100.0 * truth.ringContrast, 2) << " % | " << fixed(r.ms, 1) << " |\n";
+                if (s.name == "default") series[physical ? 1 : 0].points.push_back({double(report.json.size()), 100.0 * r.error});
                 if (!options.imageDir.empty())
-                    gpu.saveExr(options.imageDir / ("surfaces-" + scene.name + "-" + modelName + "-" + s.name + ".exr"));
+                    r.image.saveExr(options.imageDir / ("surfaces-" + scene.name + "-" + modelName + "-" + s.name + ".exr"));
             }
     }
     report.markdown = md.str();
