@@ -72,12 +72,6 @@ glm::dvec3 gpuSlab(const sss::ScatteringMaterial& material, double incidenceDeg,
     return sum / (n * std::cos(theta));
 }
 
-std::string fixed(double v, int digits) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-    return buf;
-}
-
 std::string percent(double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%+.1f %%", 100.0 * v);

@@ -269,5 +269,7 @@ sss::Image cachedReference(const Options& o, const std::string& name, const std:
 
 // ---- reports ----------------------------------------------------------------------------------
 
+/// v with `digits` decimals, for the tables.
+std::string fixed(double v, int digits = 2);
 nlohmann::ordered_json toJson(const BenchmarkContext& bench);
 std::string toMarkdown(const BenchmarkContext& bench);

@@ -6,15 +6,11 @@
 #include <sstream>
 #include <thread>
 
-namespace {
-
-std::string fixed(double v, int digits = 2) {
+std::string fixed(double v, int digits) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.*f", digits, v);
     return buf;
 }
-
-}  // namespace
 
 nlohmann::ordered_json toJson(const BenchmarkContext& bench) {
     const Options& o = bench.options();

@@ -502,8 +502,9 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #if PREINTEGRATED
         // Each sample stands for the segment from the previous sample to it; the stretches before
         // the first sample and after the last are classified by one value each (outside the
-        // loop: inside it, llvmpipe ran the whole ray twice as slowly). segmentOpen: the
-        // previous sample was taken, and `previous` is its value.
+        // loop: inside it, llvmpipe ran the whole ray twice as slowly). `previous` is the value of
+        // the last sample taken; segmentOpen: that sample lay outside empty bricks, so the
+        // segment from it may hold medium.
         float firstEnd = min(tFirst, span.y);
         vec3 firstPoint = ray.origin + firstEnd * ray.direction;
         vec4 firstSample = sampleVolume(toTexture(firstPoint));
