@@ -219,6 +219,8 @@ void runTable53(BenchmarkContext& bench);
 void runTable54(BenchmarkContext& bench);
 /// Fragment against compute ray casting, side by side, per volume and mode.
 void runCastersTable(BenchmarkContext& bench);
+/// The light-volume rebuild against the slices each dispatch advances, side by side, per volume and model.
+void runSweepTable(BenchmarkContext& bench);
 /// The ways to clear a render target, side by side (the floor under every frame's time).
 void runClearTable(BenchmarkContext& bench);
 /// Textured translucent meshes against the same mesh untextured: change and fixed frames per combine.

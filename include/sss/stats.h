@@ -24,12 +24,16 @@ struct PassStats {
     std::uint64_t gpuRuns = 0;
     double lastGpuMs = 0.0;
     double totalGpuMs = 0.0;
+    /// Compute dispatches of the last run, for passes that count them (the light volume: one
+    /// GPU-wide wait each).
+    std::uint64_t lastDispatches = 0;
 };
 
 class RenderStats {
 public:
     void record(std::string_view pass, double ms);
     void recordGpu(std::string_view pass, double ms);
+    void recordDispatches(std::string_view pass, std::uint64_t dispatches);
     /// Runs of `pass` so far (0 for a pass that never ran).
     std::uint64_t runs(std::string_view pass) const;
     const PassStats* find(std::string_view pass) const;

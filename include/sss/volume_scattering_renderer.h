@@ -146,6 +146,14 @@ struct VolumeRenderOptions {
     /// on llvmpipe against the CPU reference (sss-bench --accuracy light-volume): 4 texels
     /// brings bucky, bonsai and the engine to 5-6 % at step 0.25 (default: 4).
     float lightVolumeReach = 4.0f;
+    /// Slices each compute dispatch of the light-volume sweep advances at most, 1..16, or 0 to
+    /// choose per device: 16 on hardware GPUs, 1 on software rasterisers, as measured
+    /// (docs/light-volume-sweep.md). Each dispatch waits for the whole GPU, so one per slice
+    /// leaves a 256^3 light volume launch-bound on a large GPU; with several, each workgroup
+    /// recomputes the margins of its tile that its later slices look up (more arithmetic).
+    /// The light volume is the same texel for texel; fewer slices are used where the light's
+    /// sideways reach per slice leaves too little room in shared memory (default: 0).
+    int lightSweepSlices = 0;
     /// When the light volume does not fit the GPU (default: Reduce, with a warning).
     LightVolumeFallback lightVolumeFallback = LightVolumeFallback::Reduce;
     /// Henyey-Greenstein g in (-1, 1): the forward cone over which the light's colour is blurred

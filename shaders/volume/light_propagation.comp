@@ -1,12 +1,11 @@
-// One step of the light-volume propagation (Ropinski, Doering, Rezk-Salama 2010).
+// The light-volume propagation (Ropinski, Doering, Rezk-Salama 2010).
 // The volume is swept slice by slice along "sweep" frames (u, v across a slice, w along the
 // sweep), each a permutation/flip of the data axes chosen by src/volume/light_volume_pass.cpp
 // so the light always travels towards +w. A light's sweeps (two blended ones, or six from a light
-// inside) advance together, one slice each per dispatch: workgroup z is the sweep. For each voxel
-// of slice w:
+// inside) advance together: workgroup z is the sweep. For each voxel of slice w:
 //   - the light arriving there is looked up where the light ray through the voxel crosses slice
-//     w-1: intensity l with one bilinear fetch (hard shadows), chromaticity c gathered over a
-//     cone whose aperture follows the Henyey-Greenstein g;
+//     w-1: intensity l bilinearly (hard shadows), chromaticity c gathered over a cone whose
+//     aperture follows the Henyey-Greenstein g;
 //   - along the ray across the voxel's slab the medium is sampled at data resolution, and each
 //     piece changes the light as c' = (1-a) c + a rgb, l' = (1-a) l, with the TF opacity a
 //     corrected for the piece's length;
@@ -15,30 +14,55 @@
 //     leaving the slab goes to the next slice.
 // Outside the volume the light is unattenuated white: (1, 1, 1, 1).
 //
+// SLAB 0: one slice per dispatch, the lookups filtered by the texture unit from the slice
+// texture. SLAB 1, several slices per dispatch (docs/light-volume-sweep.md): each workgroup owns
+// a TILE x TILE square of its sweep's slices and advances it `slabSlices` slices through shared
+// memory. A slice's lookups reach at most `slabHalo` texels beyond the voxel (bounded on the
+// CPU), so the workgroup first loads the previous slice over the tile and slices x halo texels
+// around it, then computes each slice over a square that shrinks by the halo per slice, down to
+// the tile itself. The margins are computed twice, by neighbouring workgroups; in exchange a
+// light costs a few dispatches instead of one per slice (each a GPU-wide wait), and the cone's
+// taps read shared memory. Shared memory and the slice texture hold the same half floats, so any
+// number of slices per dispatch gives the same light volume; SLAB 0 differs from it by the
+// texture unit's bilinear weights alone.
+//
 // EYE_PASS 1 (the optional second pass, towards the viewer): the same sweep carries the light the
 // voxels scatter (litColour, from lit_colour.comp) instead of the TF colour, starting from no
-// light (border (0, 0, 0, 1)), so rgb becomes the cone-blurred light scattered towards the eye
-// from behind each voxel.
+// light (outsideLight (0, 0, 0, 1)), so rgb becomes the cone-blurred light scattered towards the
+// eye from behind each voxel.
 //
 // CHROMATICITY 0 (readers that use l alone: the physical model's grey extinction): no cone
 // gather and no colour mixing; c stays 1 and l is exactly what CHROMATICITY 1 computes.
 #ifndef CHROMATICITY
 #define CHROMATICITY 1
 #endif
+#ifndef SLAB
+#define SLAB 1
+#endif
+#if SLAB
+#define TILE 32         // kSweepTile in light_volume_pass.cpp
+#define SLAB_SIDE 64    // kSweepSlabSide there: TILE + 2 x slices x halo at most
+layout(local_size_x = 16, local_size_y = 16) in;
+const int kThreads = 256;
+const int kItems = SLAB_SIDE * SLAB_SIDE / kThreads;  // slab texels per invocation
+#else
 layout(local_size_x = 8, local_size_y = 8) in;
+#endif
 
 #include "volume/transfer_function.glsl"
 #include "volume/clip.glsl"
 
 #define MAX_SWEEPS 6
-// Layer 2 s + parity holds the light leaving sweep s's previous (parity = step % 2) or current
-// slice. Each sweep uses the layers' first sliceDims texels; the rest stays at the unlit value,
-// like the border, so the lookups see what a texture of the slice's own size would give.
+// Layer 2 s + parity holds the light leaving sweep s's last slice of the previous (parity =
+// pass % 2) or of this dispatch. SLAB 1 reads it by texelFetch (texels beyond a sweep's slice
+// are outsideLight, whatever the layer holds there); SLAB 0 filters it, with the layers cleared
+// to outsideLight and a border of it.
 uniform sampler2DArray previousSlices;
+uniform vec2 slicesTextureSize;  // SLAB 0
 layout(rgba16f) uniform writeonly image2DArray currentSlices;
-uniform vec2 slicesTextureSize;
 layout(rgba16f) uniform writeonly image3D lightVolume;    // (c, l) arriving at each voxel
 layout(rgba16f) uniform writeonly image3D blendedVolume;  // the same from the blended sweep
+uniform vec4 outsideLight;  // the light entering from outside the volume
 
 // Each sweep's frame against the data axes (set on the CPU, so no voxel permutes axes):
 // voxel = voxelOrigin + u voxelStepU + v voxelStepV + w voxelStepW, a data-space vector x is
@@ -53,7 +77,10 @@ uniform mat3 dataToSweep[MAX_SWEEPS];
 uniform vec3 sweepVoxelSize[MAX_SWEEPS];
 uniform int blended[MAX_SWEEPS];       // 1: writes blendedVolume, mixed into lightVolume afterwards
 uniform int pyramidMask[MAX_SWEEPS];   // 1: writes only voxels whose dominant light axis is +w
-uniform int step;                      // slices every sweep has done
+uniform ivec2 winsTies[MAX_SWEEPS];    // pyramids: 1 where +w owns a voxel the light reaches as much along u (v)
+uniform int slabSlices[MAX_SWEEPS];    // SLAB 1: slices each dispatch advances the sweep
+uniform int slabHalo[MAX_SWEEPS];      // SLAB 1: texels beyond a voxel its lookups reach at most
+uniform int pass;                      // dispatches before this one
 uniform ivec3 lightVolumeDims;  // per data axis
 uniform vec3 voxelSize;         // light-volume voxel edge per data axis, model units
 uniform vec3 boxMin;            // model-space corner of the volume box
@@ -74,13 +101,45 @@ uniform vec3 textureToBrick;    // dataDims / brickVoxels: a brick by a float pr
 uniform sampler3D litColour;
 #endif
 
-void main() {
-    int sweep = int(gl_WorkGroupID.z);
-    ivec3 dims = sliceDims[sweep];
-    ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
-    int w = firstSlice[sweep] + step;
-    if (uv.x >= dims.x || uv.y >= dims.y || w >= dims.z) return;
+int sweep;
+ivec3 dims;
 
+#if SLAB
+// The previous slice around this workgroup's tile, as half floats (c.rg, c.b l).
+shared uvec2 slab[SLAB_SIDE * SLAB_SIDE];
+ivec2 slabOrigin;  // slice texel at slab[0]
+int slabSide;      // texels of the slab the workgroup loaded, per side
+
+uvec2 packLight(vec4 light) { return uvec2(packHalf2x16(light.rg), packHalf2x16(light.ba)); }
+vec4 unpackLight(uvec2 halves) { return vec4(unpackHalf2x16(halves.x), unpackHalf2x16(halves.y)); }
+
+bool inSlice(ivec2 texel) { return all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, dims.xy)); }
+
+int slabIndex(ivec2 texel) {
+    ivec2 local = clamp(texel - slabOrigin, ivec2(0), ivec2(slabSide - 1));
+    return local.y * SLAB_SIDE + local.x;
+}
+
+vec4 previousTexel(ivec2 texel) { return inSlice(texel) ? unpackLight(slab[slabIndex(texel)]) : outsideLight; }
+
+// The previous slice's light at `position` (slice texels, centres at + 0.5), bilinear.
+vec4 previousLight(vec2 position) {
+    vec2 corner = position - 0.5;
+    ivec2 i = ivec2(floor(corner));
+    vec2 f = corner - vec2(i);
+    vec4 bottom = mix(previousTexel(i), previousTexel(i + ivec2(1, 0)), f.x);
+    vec4 top = mix(previousTexel(i + ivec2(0, 1)), previousTexel(i + ivec2(1, 1)), f.x);
+    return mix(bottom, top, f.y);
+}
+#else
+vec4 previousLight(vec2 position) {
+    return texture(previousSlices, vec3(position / slicesTextureSize, float(2 * sweep + pass % 2)));
+}
+#endif
+
+// Propagates the light across voxel (uv, w) of the sweep; stores the light arriving at its
+// centre in the light volume when `store`, and returns the light leaving its slab.
+vec4 propagateVoxel(ivec2 uv, int w, bool store) {
     ivec3 voxel = voxelOrigin[sweep] + uv.x * voxelStepU[sweep] + uv.y * voxelStepV[sweep] + w * voxelStepW[sweep];
     vec3 position = boxMin + (vec3(voxel) + 0.5) * voxelSize;
     vec3 direction = isPointLight != 0 ? position - lightPosition : lightDirection;
@@ -97,8 +156,7 @@ void main() {
 
     // Where the light ray through this voxel crosses the previous slice, in slice texels.
     vec2 previous = vec2(uv) + 0.5 - d.xy / dz * s.z / s.xy;
-    float previousLayer = float(2 * sweep + step % 2);
-    vec4 centre = texture(previousSlices, vec3(previous / slicesTextureSize, previousLayer));
+    vec4 centre = previousLight(previous);
 #if CHROMATICITY
     vec3 chromaticity = centre.rgb;
     vec2 ringRadius = coneTangent * pathLength / s.xy;  // texels
@@ -106,8 +164,7 @@ void main() {
         vec3 ring = vec3(0.0);
         for (int k = 0; k < 8; ++k) {
             float angle = float(k) * 0.78539816;
-            vec2 tap = previous + ringRadius * vec2(cos(angle), sin(angle));
-            ring += texture(previousSlices, vec3(tap / slicesTextureSize, previousLayer)).rgb;
+            ring += previousLight(previous + ringRadius * vec2(cos(angle), sin(angle))).rgb;
         }
         chromaticity = coneWeights.x * centre.rgb + coneWeights.y * ring;
     }
@@ -159,16 +216,79 @@ void main() {
 #endif
         if (k == n / 2 - 1) arriving = light;
     }
-    imageStore(currentSlices, ivec3(uv, 2 * sweep + 1 - step % 2), light);
-
+    if (!store) return light;
     if (pyramidMask[sweep] != 0) {
         // Light inside the volume: six sweeps, each owning the voxels whose light arrives
-        // mostly along its +w (measured in voxels, so the lookup stays within one texel).
+        // mostly along its +w (measured in voxels, so the lookup stays within one texel). A tie
+        // goes to the lower data axis, so exactly one sweep writes each voxel.
         vec3 inVoxels = abs(d) / s;
-        if (d.z <= 0.0 || inVoxels.z < inVoxels.x || inVoxels.z < inVoxels.y) return;
+        bool ownsU = inVoxels.z > inVoxels.x || (inVoxels.z == inVoxels.x && winsTies[sweep].x != 0);
+        bool ownsV = inVoxels.z > inVoxels.y || (inVoxels.z == inVoxels.y && winsTies[sweep].y != 0);
+        if (d.z <= 0.0 || !ownsU || !ownsV) return light;
     }
     if (blended[sweep] != 0)
         imageStore(blendedVolume, voxel, arriving);
     else
         imageStore(lightVolume, voxel, arriving);
+    return light;
 }
+
+#if SLAB
+void main() {
+    sweep = int(gl_WorkGroupID.z);
+    dims = sliceDims[sweep];
+    int slices = slabSlices[sweep];
+    int halo = slabHalo[sweep];
+    int firstW = firstSlice[sweep] + pass * slices;
+    int count = clamp(dims.z - firstW, 0, slices);
+    ivec2 tileOrigin = ivec2(gl_WorkGroupID.xy) * TILE;
+    // Whole workgroups leave here, before any barrier.
+    if (count == 0 || any(greaterThanEqual(tileOrigin, dims.xy))) return;
+    slabOrigin = tileOrigin - slices * halo;
+    slabSide = TILE + 2 * slices * halo;
+    int invocation = int(gl_LocalInvocationIndex);
+
+    for (int i = 0; i < kItems; ++i) {
+        int index = invocation + i * kThreads;
+        if (index >= slabSide * slabSide) break;
+        ivec2 texel = slabOrigin + ivec2(index % slabSide, index / slabSide);
+        vec4 stored = texelFetch(previousSlices, ivec3(texel, 2 * sweep + pass % 2), 0);
+        slab[slabIndex(texel)] = packLight(pass > 0 && inSlice(texel) ? stored : outsideLight);
+    }
+    barrier();
+
+    uvec2 leaving[kItems];
+    for (int j = 0; j < count; ++j) {
+        int margin = (slices - 1 - j) * halo;
+        ivec2 regionOrigin = tileOrigin - margin;
+        int side = TILE + 2 * margin;
+        bool lastSlice = j == count - 1;
+        for (int i = 0; i < kItems; ++i) {
+            int index = invocation + i * kThreads;
+            if (index >= side * side) break;
+            ivec2 uv = regionOrigin + ivec2(index % side, index / side);
+            bool inTile = all(greaterThanEqual(uv, tileOrigin)) && all(lessThan(uv, tileOrigin + TILE));
+            leaving[i] = packLight(inSlice(uv) ? propagateVoxel(uv, firstW + j, inTile) : outsideLight);
+            // Stored already rounded, so the texture holds exactly what shared memory does.
+            if (lastSlice && inTile && inSlice(uv))
+                imageStore(currentSlices, ivec3(uv, 2 * sweep + 1 - pass % 2), unpackLight(leaving[i]));
+        }
+        barrier();  // every lookup into the previous slice is done
+        for (int i = 0; i < kItems; ++i) {
+            int index = invocation + i * kThreads;
+            if (index >= side * side) break;
+            slab[slabIndex(regionOrigin + ivec2(index % side, index / side))] = leaving[i];
+        }
+        barrier();
+    }
+}
+#else
+void main() {
+    sweep = int(gl_WorkGroupID.z);
+    dims = sliceDims[sweep];
+    ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
+    int w = firstSlice[sweep] + pass;
+    if (uv.x >= dims.x || uv.y >= dims.y || w >= dims.z) return;
+    imageStore(currentSlices, ivec3(uv, 2 * sweep + 1 - pass % 2), propagateVoxel(uv, w, true));
+}
+#endif

@@ -26,6 +26,10 @@ void RenderStats::recordGpu(std::string_view pass, double ms) {
     s.totalGpuMs += ms;
 }
 
+void RenderStats::recordDispatches(std::string_view pass, std::uint64_t dispatches) {
+    entry(m_passes, pass).lastDispatches = dispatches;
+}
+
 std::uint64_t RenderStats::runs(std::string_view pass) const {
     const PassStats* s = find(pass);
     return s ? s->runs : 0;

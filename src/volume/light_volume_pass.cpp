@@ -1,6 +1,7 @@
 #include "volume/light_volume_pass.h"
 
 #include "core/light_geometry.h"
+#include "gl/device.h"
 #include "lighting/texture_units.h"
 #include "volume/clip_uniforms.h"
 #include "volume/empty_space.h"
@@ -10,24 +11,94 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 namespace sss::detail {
 namespace {
 
-constexpr int kMaxSweeps = 6;  // MAX_SWEEPS in light_propagation.comp
+constexpr int kMaxSweeps = 6;        // MAX_SWEEPS in light_propagation.comp
+constexpr int kSweepTile = 32;       // TILE there: slice texels per workgroup, per side
+constexpr int kSweepSlabSide = 64;   // SLAB_SIDE there: the tile and its halos, per side
+
+// What bounds how far a voxel's previous-slice lookups reach.
+struct LookupGeometry {
+    const Light& light;      // model space
+    glm::vec3 voxelCentreMin, voxelCentreMax;  // model space
+    float coneTangent;       // 0 without the chromaticity cone
+};
+
+// The farthest, in slice texels along u or v, that any voxel's lookups into the previous slice
+// reach from the voxel: the light's sideways shift between slices plus the cone's ring radius,
+// plus one texel of bilinear footprint. nullopt where some voxel's light runs (nearly) along the
+// slice. Both terms are largest at a corner of the box of voxel centres (a perspective map of a
+// box is convex), so the corners bound a point light's sweep.
+std::optional<int> lookupReach(const LookupGeometry& g, int u, int v, const LightSweep& sweep, glm::vec3 s) {
+    std::vector<glm::vec3> directions;
+    if (const auto* d = std::get_if<DirectionalLight>(&g.light)) {
+        directions.push_back(d->direction);
+    } else {
+        if (sweep.pyramid) return std::nullopt;
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 c(corner & 1 ? g.voxelCentreMax.x : g.voxelCentreMin.x,
+                              corner & 2 ? g.voxelCentreMax.y : g.voxelCentreMin.y,
+                              corner & 4 ? g.voxelCentreMax.z : g.voxelCentreMin.z);
+            directions.push_back(c - *lightPosition(g.light));
+        }
+    }
+    glm::vec2 shift(0.0f), ring(0.0f);
+    for (const glm::vec3& x : directions) {
+        const glm::vec3 d(x[u], x[v], sweep.reversed ? -x[sweep.axis] : x[sweep.axis]);
+        const float length = glm::length(d);
+        if (!(length > 0.0f) || d.z <= 1e-3f * length) return std::nullopt;
+        const glm::vec2 sideways = glm::abs(glm::vec2(d)) / d.z;  // per unit of w
+        shift = glm::max(shift, sideways * s.z / glm::vec2(s));
+        ring = glm::max(ring, g.coneTangent * (length / d.z) * s.z / glm::vec2(s));
+    }
+    const glm::vec2 reach = shift + ring;
+    const float farthest = std::max(reach.x, reach.y) + 1e-3f;  // CPU and GPU round apart
+    if (farthest > static_cast<float>(kSweepSlabSide)) return std::nullopt;
+    return static_cast<int>(std::floor(farthest)) + 1;
+}
+
+// How many slices a dispatch advances a sweep, and the halo each slice needs around a tile.
+struct SweepSlab {
+    int slices = 1;
+    int halo = 0;
+};
+
+// The slabs of `sweeps` (light_propagation.comp's SLAB 1), or none where a sweep's reach is
+// unbounded (a light inside the volume, light along a slice) or no more than one slice per
+// dispatch is asked for: then one dispatch per slice, the lookups filtered from the slice texture.
+std::vector<SweepSlab> planSlabs(const std::vector<LightSweep>& sweeps, const LookupGeometry& lookups,
+                                 glm::vec3 voxelSize, int maxSlices) {
+    if (maxSlices < 2) return {};
+    const int room = (kSweepSlabSide - kSweepTile) / 2;  // halo texels per side, summed over slices
+    std::vector<SweepSlab> slabs;
+    for (const LightSweep& sweep : sweeps) {
+        const int u = (sweep.axis + 1) % 3, v = (sweep.axis + 2) % 3;
+        const std::optional<int> reach =
+            lookupReach(lookups, u, v, sweep, glm::vec3(voxelSize[u], voxelSize[v], voxelSize[sweep.axis]));
+        if (!reach || *reach > room) return {};
+        slabs.push_back({std::min(room / *reach, maxSlices), *reach});
+    }
+    return slabs;
+}
 
 // Sets each sweep's frame (light_propagation.comp): u and v across a slice, w along the sweep
-// (towards -axis if reversed).
+// (towards -axis if reversed), and how many slices each dispatch advances it.
 LightVolumePass::SweepLayout setSweepFrames(const gl::Program& p, const std::vector<LightSweep>& sweeps, glm::ivec3 dims,
-                           glm::vec3 voxelSize) {
+                                            glm::vec3 voxelSize, const std::vector<SweepSlab>& slabs) {
     if (sweeps.size() > static_cast<size_t>(kMaxSweeps)) throw std::logic_error("light volume: too many sweeps");
     LightVolumePass::SweepLayout layout;
     layout.sweeps = static_cast<int>(sweeps.size());
+    layout.slab = !slabs.empty();
     for (int s = 0; s < static_cast<int>(sweeps.size()); ++s) {
         const LightSweep& sweep = sweeps[static_cast<size_t>(s)];
         const int u = (sweep.axis + 1) % 3, v = (sweep.axis + 2) % 3;
+        const glm::vec3 sweepVoxelSize(voxelSize[u], voxelSize[v], voxelSize[sweep.axis]);
+        const SweepSlab slab = layout.slab ? slabs[static_cast<size_t>(s)] : SweepSlab{};
         glm::ivec3 origin(0), stepU(0), stepV(0), stepW(0);
         stepU[u] = 1;
         stepV[v] = 1;
@@ -45,7 +116,9 @@ LightVolumePass::SweepLayout setSweepFrames(const gl::Program& p, const std::vec
         p.set("voxelStepV" + i, stepV);
         p.set("voxelStepW" + i, stepW);
         p.set("dataToSweep" + i, dataToSweep);
-        p.set("sweepVoxelSize" + i, glm::vec3(voxelSize[u], voxelSize[v], voxelSize[sweep.axis]));
+        p.set("sweepVoxelSize" + i, sweepVoxelSize);
+        p.set("slabSlices" + i, slab.slices);
+        p.set("slabHalo" + i, slab.halo);
         // The second of two blended sweeps goes to its own volume, mixed in once both are done.
         const bool blended = !sweep.pyramid && s > 0;
         if (blended) {
@@ -54,21 +127,31 @@ LightVolumePass::SweepLayout setSweepFrames(const gl::Program& p, const std::vec
         }
         p.set("blended" + i, blended ? 1 : 0);
         p.set("pyramidMask" + i, sweep.pyramid ? 1 : 0);
+        p.set("winsTies" + i, glm::ivec2(sweep.axis < u ? 1 : 0, sweep.axis < v ? 1 : 0));
         layout.largestSlice = glm::max(layout.largestSlice, glm::ivec2(dims[u], dims[v]));
-        layout.steps = std::max(layout.steps, dims[sweep.axis] - sweep.firstSlice);
+        const int steps = dims[sweep.axis] - sweep.firstSlice;
+        layout.passes = std::max(layout.passes, (steps + slab.slices - 1) / slab.slices);
+        layout.slicesPerPass = std::max(layout.slicesPerPass, slab.slices);
     }
     return layout;
 }
 
+// Slices per dispatch when the settings leave it to the device. Measured side by side
+// (sss-bench --table sweep, docs/light-volume-sweep.md): on llvmpipe the recomputed margins cost
+// more than the dispatches they save; on an H100 the dispatches dominate.
+int deviceSlicesPerDispatch(bool softwareDevice) { return softwareDevice ? 1 : 16; }
+
 }  // namespace
 
-LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass) { program(true); }
+LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass), m_softwareDevice(gl::currentDeviceIsSoftware()) {}
 
-const gl::Program& LightVolumePass::program(bool chromaticity) {
-    std::optional<gl::Program>& p = m_programs[chromaticity ? 1 : 0];
+const gl::Program& LightVolumePass::program(bool chromaticity, bool slab) {
+    std::optional<gl::Program>& p = m_programs[chromaticity ? 1 : 0][slab ? 1 : 0];
     if (!p)
         p = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
-                              {{"EYE_PASS", m_eyePass ? "1" : "0"}, {"CHROMATICITY", chromaticity ? "1" : "0"}});
+                              {{"EYE_PASS", m_eyePass ? "1" : "0"},
+                               {"CHROMATICITY", chromaticity ? "1" : "0"},
+                               {"SLAB", slab ? "1" : "0"}});
     return *p;
 }
 
@@ -80,7 +163,6 @@ void LightVolumePass::run(const LightVolumeMedium& medium, const Light& light, c
 void LightVolumePass::runEyePass(const LightVolumeMedium& medium, const gl::Texture& litColour,
                                  glm::vec3 viewDirection, const glm::mat4& model, const LightVolumeSettings& settings,
                                  gl::Texture& output) {
-    program(true).set("litColour", units::kLitColour);
     litColour.bind(units::kLitColour);
     // Light travelling towards the viewer; nothing enters from behind the volume.
     sweep(medium, DirectionalLight{.direction = -viewDirection}, model, settings, output,
@@ -106,9 +188,17 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
 
     const std::vector<LightSweep> sweeps = planLightSweeps(light, volume.box, dims);
     const ChromaticityCone cone = chromaticityCone(settings.anisotropy);
-
     // The eye pass carries colour whatever the settings say.
-    const gl::Program& p = program(settings.chromaticity || m_eyePass);
+    const bool chromaticity = settings.chromaticity || m_eyePass;
+    const glm::vec3 voxelSize = volume.box.size() / glm::vec3(dims);
+    const LookupGeometry lookups{light, volume.box.min + 0.5f * voxelSize, volume.box.max - 0.5f * voxelSize,
+                                 chromaticity ? cone.tangent : 0.0f};
+    const int maxSlices = settings.maxSlicesPerDispatch > 0 ? settings.maxSlicesPerDispatch
+                                                             : deviceSlicesPerDispatch(m_softwareDevice);
+    const std::vector<SweepSlab> slabs = planSlabs(sweeps, lookups, voxelSize, maxSlices);
+
+    const gl::Program& p = program(chromaticity, !slabs.empty());
+    if (m_eyePass) p.set("litColour", units::kLitColour);
     p.set("volumeTexture", 0);
     p.set("transferFunction", 1);
     p.set("lightVolume", 0);   // image unit
@@ -116,7 +206,6 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     p.set("transferFunctionEntries", static_cast<float>(medium.transferFunction.size().x));
     p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("lightVolumeDims", dims);
-    const glm::vec3 voxelSize = volume.box.size() / glm::vec3(dims);
     p.set("voxelSize", voxelSize);
     p.set("boxMin", volume.box.min);
     p.set("referenceLength", volume.voxelLength);
@@ -135,7 +224,9 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     p.set("textureToBrick", textureToBrick(volume.dims));
     setClipUniforms(p, medium.clip, model, volume.box);
 
-    propagate(p, setSweepFrames(p, sweeps, dims, voxelSize), medium, outside, output);
+    const SweepLayout layout = setSweepFrames(p, sweeps, dims, voxelSize, slabs);
+    m_lastLayout = layout;
+    propagate(p, layout, medium, outside, output);
     glUseProgram(0);
 }
 
@@ -149,12 +240,15 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     // Grown, never shrunk: lights of different kinds (2 or 6 sweeps) share one array.
     if (!m_slices || glm::ivec2(m_slices.size()) != largestSlice || m_slices.size().z < 2 * count) {
         m_slices = gl::Texture::create2DArray(GL_RGBA16F, largestSlice.x, largestSlice.y, 2 * count, "light volume slices");
-        m_slices.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume
+        m_slices.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume (SLAB 0)
     }
-    m_slices.setBorderColor(outside);
-    // The unlit value everywhere: each sweep's first lookups, and beyond a smaller sweep's slice.
-    const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};
-    glClearTexImage(m_slices.id(), 0, GL_RGBA, GL_FLOAT, unlit);
+    if (!layout.slab) {
+        // Filtered lookups see the unlit value in each sweep's first slice and beyond a smaller
+        // sweep's slice; the slabs take outsideLight there instead.
+        m_slices.setBorderColor(outside);
+        const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};
+        glClearTexImage(m_slices.id(), 0, GL_RGBA, GL_FLOAT, unlit);
+    }
     // Scratch for this rebuild only, so the memory a renderer holds between light changes stays
     // one light volume per light.
     gl::Texture blended;
@@ -162,6 +256,7 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     p.set("previousSlices", 2);
     p.set("currentSlices", 1);
     p.set("blendedVolume", 2);  // image unit
+    p.set("outsideLight", outside);
     p.set("slicesTextureSize", glm::vec2(largestSlice));
 
     volume.texture.bind(0);
@@ -173,13 +268,13 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     m_slices.bindImage(1, GL_WRITE_ONLY);
     (blendedSweep >= 0 ? blended : output).bindImage(2, GL_WRITE_ONLY);
     p.use();
-    const glm::ivec3 group = p.workGroupSize();
-    const auto groupsX = static_cast<GLuint>((largestSlice.x + group.x - 1) / group.x);
-    const auto groupsY = static_cast<GLuint>((largestSlice.y + group.y - 1) / group.y);
-    for (int step = 0; step < layout.steps; ++step) {
-        p.set("step", step);
+    const glm::ivec2 tile = layout.slab ? glm::ivec2(kSweepTile) : glm::ivec2(p.workGroupSize());
+    const auto groupsX = static_cast<GLuint>((largestSlice.x + tile.x - 1) / tile.x);
+    const auto groupsY = static_cast<GLuint>((largestSlice.y + tile.y - 1) / tile.y);
+    for (int pass = 0; pass < layout.passes; ++pass) {
+        p.set("pass", pass);
         glDispatchCompute(groupsX, groupsY, static_cast<GLuint>(count));
-        // The next step samples this one's slices; the ray caster samples the volume afterwards.
+        // The next pass reads this one's slices; the ray caster samples the volume afterwards.
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     if (blendedSweep >= 0) blend(blended, layout.blendedWeight, output);

@@ -4,8 +4,8 @@
 // by slice from the light (shaders/volume/light_propagation.comp). View-independent: it is
 // rebuilt only when the volume, transfer function, light, model transform or options change.
 //
-// Sweeps (all along +w of a permuted frame; a light's sweeps advance together, one compute
-// dispatch per slice step, so a light costs as many dispatches as its longest sweep has slices):
+// Sweeps (all along +w of a permuted frame; a light's sweeps advance together, each compute
+// dispatch several slices of each, as many as the light's sideways reach per slice allows):
 //  - directional light, or point light outside the volume: along the axis the light travels most
 //    along (dir_max) and, blended, the second one (dir_blend), with weights proportional to
 //    (p1 - p3) and (p2 - p3) of the sorted direction components, which are continuous when the
@@ -44,6 +44,12 @@ struct LightVolumeSettings {
     /// readers that take none (VolumeModel::Physical: grey extinction). The sweep then makes
     /// no cone gather and no colour mixing; l is the same texel for texel.
     bool chromaticity = true;
+    /// Slices one dispatch advances a sweep at most, or 0 for the device's choice
+    /// (VolumeRenderOptions::lightSweepSlices). Each workgroup recomputes the margins its tile's
+    /// later slices look up, so fewer dispatches cost more arithmetic; the light volume is the
+    /// same texel for texel. Fewer are used where the light's sideways reach per slice leaves no
+    /// room in shared memory (docs/light-volume-sweep.md).
+    int maxSlicesPerDispatch = 0;
     bool operator==(const LightVolumeSettings&) const = default;
 };
 
@@ -64,10 +70,17 @@ public:
     struct SweepLayout {
         int sweeps = 0;
         glm::ivec2 largestSlice{1};
-        int steps = 0;               ///< dispatches: the longest sweep's slices
+        int passes = 0;              ///< dispatches
+        bool slab = false;           ///< several slices per dispatch through shared memory
+        int slicesPerPass = 1;       ///< the most slices a dispatch advances a sweep
         int blendedSweep = -1;       ///< the sweep mixed in afterwards, if any
         float blendedWeight = 0.0f;
+        /// Compute dispatches in all: the passes and the blend.
+        int dispatches() const { return passes + (blendedSweep >= 0 ? 1 : 0); }
     };
+
+    /// How the last run or runEyePass laid out its dispatches.
+    const SweepLayout& lastLayout() const { return m_lastLayout; }
 
 private:
     void sweep(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
@@ -77,12 +90,14 @@ private:
                    gl::Texture& output);
     /// Mixes the blended sweep's volume `blended` into `output` with `weight`.
     void blend(const gl::Texture& blended, float weight, const gl::Texture& output);
-    /// The propagation program for this pass and `chromaticity`, linked on first use.
-    const gl::Program& program(bool chromaticity);
-    std::optional<gl::Program> m_programs[2];  // [chromaticity]
+    /// The propagation program for this pass, `chromaticity` and `slab`, linked on first use.
+    const gl::Program& program(bool chromaticity, bool slab);
+    std::optional<gl::Program> m_programs[2][2];  // [chromaticity][slab]
     std::optional<gl::Program> m_blendProgram;
     bool m_eyePass = false;
-    gl::Texture m_slices;  // per sweep, ping-pong: light leaving the previous / current slice
+    bool m_softwareDevice = false;  // the device's choice of maxSlicesPerDispatch
+    gl::Texture m_slices;  // per sweep, ping-pong: light leaving the previous / current dispatch
+    SweepLayout m_lastLayout;
 };
 
 }  // namespace sss::detail

@@ -294,7 +294,8 @@ struct VolumeScatteringRenderer::Impl {
         // shadows in a hybrid scene: the sweep leaves the chromaticity out.
         const detail::LightVolumeSettings asked{.resolutionScale = options.lightVolumeScale,
                                                 .anisotropy = options.anisotropy,
-                                                .chromaticity = options.model != VolumeModel::Physical};
+                                                .chromaticity = options.model != VolumeModel::Physical,
+                                                .maxSlicesPerDispatch = options.lightSweepSlices};
         const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
                                        lights, model, asked, lightClip() ? clip : VolumeClip{}};
         if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
@@ -302,16 +303,20 @@ struct VolumeScatteringRenderer::Impl {
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         detail::LightVolumeSettings settings = asked;
         float& scale = settings.resolutionScale;
+        std::uint64_t dispatches = 0;
         for (;;) {
             try {
                 lightVolumes.resize(lights.size());
-                for (size_t i = 0; i < lights.size(); ++i)
+                dispatches = 0;
+                for (size_t i = 0; i < lights.size(); ++i) {
                     lightVolumePass->run({.volume = *volume,
                                           .transferFunction = transferFunctionTable,
                                           .occupiedNeighbourhoods =
                                               options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr,
                                           .clip = lightClip()},
                                          lights[i], model, settings, lightVolumes[i]);
+                    dispatches += static_cast<std::uint64_t>(lightVolumePass->lastLayout().dispatches());
+                }
                 break;
             } catch (const Error& e) {
                 const glm::ivec3 dims = detail::lightVolumeDims(volume->dims, scale);
@@ -331,6 +336,7 @@ struct VolumeScatteringRenderer::Impl {
         }
         lightVolumeScaleInUse = scale;
         passTimer.end("light-volume", mark, passTiming());
+        stats.recordDispatches("light-volume", dispatches);
         lightVolumeInputs = inputs;
     }
 
@@ -341,7 +347,9 @@ struct VolumeScatteringRenderer::Impl {
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         if (!eyePass) eyePass.emplace();
         eyePass->run({*volume, transferFunctionTable, lightVolumes, lights, model, camera.forward(),
-                      options.ambient + options.emission, options.diffuse, {lightVolumeScaleInUse, options.anisotropy},
+                      options.ambient + options.emission, options.diffuse,
+                      {.resolutionScale = lightVolumeScaleInUse, .anisotropy = options.anisotropy,
+                       .maxSlicesPerDispatch = options.lightSweepSlices},
                       options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr, clipOrNull()});
         passTimer.end("eye-pass", mark, passTiming());
         eyeInputs = inputs;
