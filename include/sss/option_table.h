@@ -143,8 +143,8 @@ struct OptionTable<VolumeRenderOptions> {
             "light-volume texels towards the light at which each sample reads the light volume, then carries the "
             "light back through the data", between(0, 16), "--light-volume-reach", "T"},
         OptionField<O, int>{&O::lightSweepSlices, "lightSweepSlices",
-            "slices each light-volume dispatch advances at most, 0 = per device (same light volume; fewer "
-            "dispatches, more arithmetic)", between(0, 16), "--light-sweep-slices", "N"},
+            "slices each light-volume dispatch advances at most, 0 = the measured choice (fewer dispatches, more "
+            "arithmetic)", between(0, 16), "--light-sweep-slices", "N"},
         OptionField<O, LightVolumeFallback>{&O::lightVolumeFallback, "lightVolumeFallback",
             "when the light volume does not fit the GPU: halve its resolution until it fits, with a warning, or "
             "fail", {}, "--light-volume-fallback"},

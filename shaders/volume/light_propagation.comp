@@ -37,13 +37,13 @@
 #define CHROMATICITY 1
 #endif
 #ifndef SLAB
-#define SLAB 1
+#define SLAB 0
 #endif
 #if SLAB
-#define TILE 32         // kSweepTile in light_volume_pass.cpp
-#define SLAB_SIDE 64    // kSweepSlabSide there: TILE + 2 x slices x halo at most
-layout(local_size_x = 16, local_size_y = 16) in;
-const int kThreads = 256;
+// TILE (slice texels per workgroup and side) and SLAB_SIDE (TILE + 2 x slices x halo at most)
+// come from light_volume_pass.cpp.
+layout(local_size_x = 32, local_size_y = 32) in;
+const int kThreads = 1024;
 const int kItems = SLAB_SIDE * SLAB_SIDE / kThreads;  // slab texels per invocation
 #else
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -77,7 +77,6 @@ uniform mat3 dataToSweep[MAX_SWEEPS];
 uniform vec3 sweepVoxelSize[MAX_SWEEPS];
 uniform int blended[MAX_SWEEPS];       // 1: writes blendedVolume, mixed into lightVolume afterwards
 uniform int pyramidMask[MAX_SWEEPS];   // 1: writes only voxels whose dominant light axis is +w
-uniform ivec2 winsTies[MAX_SWEEPS];    // pyramids: 1 where +w owns a voxel the light reaches as much along u (v)
 uniform int slabSlices[MAX_SWEEPS];    // SLAB 1: slices each dispatch advances the sweep
 uniform int slabHalo[MAX_SWEEPS];      // SLAB 1: texels beyond a voxel its lookups reach at most
 uniform int pass;                      // dispatches before this one
@@ -219,12 +218,16 @@ vec4 propagateVoxel(ivec2 uv, int w, bool store) {
     if (!store) return light;
     if (pyramidMask[sweep] != 0) {
         // Light inside the volume: six sweeps, each owning the voxels whose light arrives
-        // mostly along its +w (measured in voxels, so the lookup stays within one texel). A tie
-        // goes to the lower data axis, so exactly one sweep writes each voxel.
-        vec3 inVoxels = abs(d) / s;
-        bool ownsU = inVoxels.z > inVoxels.x || (inVoxels.z == inVoxels.x && winsTies[sweep].x != 0);
-        bool ownsV = inVoxels.z > inVoxels.y || (inVoxels.z == inVoxels.y && winsTies[sweep].y != 0);
-        if (d.z <= 0.0 || !ownsU || !ownsV) return light;
+        // mostly along its +w (measured in voxels, so the lookup stays within one texel). Every
+        // sweep decides from the same data-space arithmetic, a tie going to the lower axis, so
+        // exactly one writes each voxel (per-sweep frames round apart).
+        ivec3 stepW = voxelStepW[sweep];
+        int axis = stepW.x != 0 ? 0 : (stepW.y != 0 ? 1 : 2);
+        vec3 inVoxels = abs(direction) / voxelSize;
+        bool owns = direction[axis] * float(stepW[axis]) > 0.0;
+        for (int b = 0; b < 3; ++b)
+            if (b != axis) owns = owns && (inVoxels[axis] > inVoxels[b] || (inVoxels[axis] == inVoxels[b] && axis < b));
+        if (!owns) return light;
     }
     if (blended[sweep] != 0)
         imageStore(blendedVolume, voxel, arriving);

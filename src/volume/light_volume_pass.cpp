@@ -19,8 +19,13 @@ namespace sss::detail {
 namespace {
 
 constexpr int kMaxSweeps = 6;        // MAX_SWEEPS in light_propagation.comp
-constexpr int kSweepTile = 32;       // TILE there: slice texels per workgroup, per side
-constexpr int kSweepSlabSide = 64;   // SLAB_SIDE there: the tile and its halos, per side
+// Slabs (light_propagation.comp, SLAB 1): slice texels per workgroup and side, and the tile with
+// its halos. 1024 invocations hold the 64^2 slab, four texels each, in 32 KiB of shared memory
+// (what GL guarantees). Measured on an H100 (docs/light-volume-sweep.md): a 16-texel tile with
+// one texel per invocation, or 256 invocations, left the slabs 1.3-3x slower than one slice per
+// dispatch.
+constexpr int kSweepTile = 32;
+constexpr int kSweepSlabSide = 64;
 
 // What bounds how far a voxel's previous-slice lookups reach.
 struct LookupGeometry {
@@ -127,7 +132,6 @@ LightVolumePass::SweepLayout setSweepFrames(const gl::Program& p, const std::vec
         }
         p.set("blended" + i, blended ? 1 : 0);
         p.set("pyramidMask" + i, sweep.pyramid ? 1 : 0);
-        p.set("winsTies" + i, glm::ivec2(sweep.axis < u ? 1 : 0, sweep.axis < v ? 1 : 0));
         layout.largestSlice = glm::max(layout.largestSlice, glm::ivec2(dims[u], dims[v]));
         const int steps = dims[sweep.axis] - sweep.firstSlice;
         layout.passes = std::max(layout.passes, (steps + slab.slices - 1) / slab.slices);
@@ -136,10 +140,13 @@ LightVolumePass::SweepLayout setSweepFrames(const gl::Program& p, const std::vec
     return layout;
 }
 
-// Slices per dispatch when the settings leave it to the device. Measured side by side
-// (sss-bench --table sweep, docs/light-volume-sweep.md): on llvmpipe the recomputed margins cost
-// more than the dispatches they save; on an H100 the dispatches dominate.
-int deviceSlicesPerDispatch(bool softwareDevice) { return softwareDevice ? 1 : 16; }
+// Slices per dispatch when the settings leave it to the device, measured side by side
+// (sss-bench --table sweep, docs/light-volume-sweep.md). On an H100 four slices made the
+// intensity-only sweep 1.14-1.19x faster; the chromaticity cone's wider halos made every slab
+// slower than one slice. On llvmpipe the recomputed margins cost more than the dispatches save.
+int deviceSlicesPerDispatch(bool softwareDevice, bool chromaticity) {
+    return softwareDevice || chromaticity ? 1 : 4;
+}
 
 }  // namespace
 
@@ -151,7 +158,9 @@ const gl::Program& LightVolumePass::program(bool chromaticity, bool slab) {
         p = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
                               {{"EYE_PASS", m_eyePass ? "1" : "0"},
                                {"CHROMATICITY", chromaticity ? "1" : "0"},
-                               {"SLAB", slab ? "1" : "0"}});
+                               {"SLAB", slab ? "1" : "0"},
+                               {"TILE", std::to_string(kSweepTile)},
+                               {"SLAB_SIDE", std::to_string(kSweepSlabSide)}});
     return *p;
 }
 
@@ -194,7 +203,7 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     const LookupGeometry lookups{light, volume.box.min + 0.5f * voxelSize, volume.box.max - 0.5f * voxelSize,
                                  chromaticity ? cone.tangent : 0.0f};
     const int maxSlices = settings.maxSlicesPerDispatch > 0 ? settings.maxSlicesPerDispatch
-                                                             : deviceSlicesPerDispatch(m_softwareDevice);
+                                                             : deviceSlicesPerDispatch(m_softwareDevice, chromaticity);
     const std::vector<SweepSlab> slabs = planSlabs(sweeps, lookups, voxelSize, maxSlices);
 
     const gl::Program& p = program(chromaticity, !slabs.empty());

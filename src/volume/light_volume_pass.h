@@ -44,11 +44,11 @@ struct LightVolumeSettings {
     /// readers that take none (VolumeModel::Physical: grey extinction). The sweep then makes
     /// no cone gather and no colour mixing; l is the same texel for texel.
     bool chromaticity = true;
-    /// Slices one dispatch advances a sweep at most, or 0 for the device's choice
+    /// Slices one dispatch advances a sweep at most, or 0 for the measured choice
     /// (VolumeRenderOptions::lightSweepSlices). Each workgroup recomputes the margins its tile's
-    /// later slices look up, so fewer dispatches cost more arithmetic; the light volume is the
-    /// same texel for texel. Fewer are used where the light's sideways reach per slice leaves no
-    /// room in shared memory (docs/light-volume-sweep.md).
+    /// later slices look up, so fewer dispatches cost more arithmetic; two or more give the same
+    /// light volume texel for texel. Fewer are used where the light's sideways reach per slice
+    /// leaves no room in shared memory (docs/light-volume-sweep.md).
     int maxSlicesPerDispatch = 0;
     bool operator==(const LightVolumeSettings&) const = default;
 };

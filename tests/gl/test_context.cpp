@@ -141,8 +141,11 @@ TEST_CASE("every embedded shader program compiles and links", "[gl][shaders]") {
                                     {{"MAX_CAMERAS", "32"}}));
     CHECK_NOTHROW(gl::Program::link({{GL_VERTEX_SHADER, "hybrid/mesh_shadow_map.vert"},
                                      {GL_FRAGMENT_SHADER, "hybrid/mesh_shadow_map.frag"}}));
-    for (const char* eye : {"0", "1"})
+    for (const char* eye : {"0", "1"}) {
         CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}}, {{"EYE_PASS", eye}}));
+        CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
+                                        {{"EYE_PASS", eye}, {"SLAB", "1"}, {"TILE", "32"}, {"SLAB_SIDE", "64"}}));
+    }
     CHECK_NOTHROW(gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}}, {{"LIGHT_COUNT", "2"}}));
     for (const char* gradient : {"0", "1"})
         for (const char* scattering : {"0", "1"})
