@@ -175,8 +175,15 @@ public:
     /// One record per pass that ran: `row`'s table, model and size, mode "pass", and pass,
     /// frame, gpu_ms, cpu_ms (means over the timed frames; gpu_ms null without timestamps).
     void addRecords(BenchmarkContext& bench, const Record& row, const std::string& frame) const;
+    /// `pass`'s mean GPU time over the timed frames; nullopt where it did not run or was not timed.
+    std::optional<double> gpuMs(std::string_view pass) const;
 
 private:
+    struct Cost {
+        std::uint64_t runs = 0, gpuRuns = 0;
+        double cpuMs = 0.0, gpuMs = 0.0;  // means
+    };
+    Cost cost(const std::string& pass, const sss::PassStats& after) const;
     const sss::RenderStats& m_stats;
     std::map<std::string, sss::PassStats, std::less<>> m_before, m_after;
 };
@@ -220,7 +227,7 @@ void runTable54(BenchmarkContext& bench);
 /// Fragment against compute ray casting, side by side, per volume and mode.
 void runCastersTable(BenchmarkContext& bench);
 /// The light-volume rebuild against the slices each dispatch advances, side by side, per volume and model.
-void runSweepTable(BenchmarkContext& bench);
+void runLightSweepTable(BenchmarkContext& bench);
 /// The ways to clear a render target, side by side (the floor under every frame's time).
 void runClearTable(BenchmarkContext& bench);
 /// Textured translucent meshes against the same mesh untextured: change and fixed frames per combine.

@@ -186,16 +186,30 @@ std::function<void(bool)> PassRecorder::hook() {
     return [this](bool starting) { (starting ? m_before : m_after) = m_stats.passes(); };
 }
 
+PassRecorder::Cost PassRecorder::cost(const std::string& pass, const sss::PassStats& after) const {
+    const auto it = m_before.find(pass);
+    const sss::PassStats before = it == m_before.end() ? sss::PassStats{} : it->second;
+    Cost c{after.runs - before.runs, after.gpuRuns - before.gpuRuns};
+    if (c.runs > 0) c.cpuMs = (after.totalMs - before.totalMs) / static_cast<double>(c.runs);
+    if (c.gpuRuns > 0) c.gpuMs = (after.totalGpuMs - before.totalGpuMs) / static_cast<double>(c.gpuRuns);
+    return c;
+}
+
+std::optional<double> PassRecorder::gpuMs(std::string_view pass) const {
+    const auto it = m_after.find(pass);
+    if (it == m_after.end()) return std::nullopt;
+    const Cost c = cost(it->first, it->second);
+    return c.gpuRuns > 0 ? std::optional(c.gpuMs) : std::nullopt;
+}
+
 void PassRecorder::addRecords(BenchmarkContext& bench, const Record& row, const std::string& frame) const {
     for (const auto& [pass, after] : m_after) {
-        const auto it = m_before.find(pass);
-        const sss::PassStats before = it == m_before.end() ? sss::PassStats{} : it->second;
-        const auto runs = after.runs - before.runs;
-        if (runs == 0) continue;  // the pass did not run in these frames (its inputs were cached)
-        const auto gpuRuns = after.gpuRuns - before.gpuRuns;
-        const double cpuMs = (after.totalMs - before.totalMs) / static_cast<double>(runs);
+        const Cost c = cost(pass, after);
+        if (c.runs == 0) continue;  // the pass did not run in these frames (its inputs were cached)
+        const auto runs = c.runs;
+        const auto gpuRuns = c.gpuRuns;
+        const double cpuMs = c.cpuMs, gpuMs = c.gpuMs;
         const bool timed = gpuRuns > 0;
-        const double gpuMs = timed ? (after.totalGpuMs - before.totalGpuMs) / static_cast<double>(gpuRuns) : 0.0;
         Record r;
         r.table = row.table;
         r.model = row.model;

@@ -20,7 +20,7 @@
 #                   (for a machine with no compilers or packages); NVIDIA's EGL vendor file under
 #                   /usr/local/nvidia is then used when the system has none
 # Environment: SSS_BUILD_DIR (default build), as scripts/test.sh.
-# Writes <table>-<name>.{json,md} per table (baseline, 5.3, 5.4, 5.5, casters, scaling, and the
+# Writes <table>-<name>.{json,md} per table (baseline, 5.3, 5.4, 5.5, casters, light-sweep, scaling, and the
 # per-pass passes-5.4 and passes-5.3), and with --sweeps
 # error-sweep-{mesh,volume}-<name>.* and accuracy-volume-<name>.*; with --tests
 # test-suite-<name>.log. Exit status: 0 done, 2 usage, 3 wrong device, else the failing step's.
@@ -98,6 +98,7 @@ done
 # Fragment against compute ray casting side by side, time against viewport and step, and where
 # each frame's time goes (GPU timestamps per pass).
 run "ray casters" --table casters --json "$out/casters-$name.json"
+run "light sweep" --table light-sweep --json "$out/light-sweep-$name.json"
 run "scaling" --table scaling --json "$out/scaling-$name.json"
 run "passes 5.4" --passes --table 5.4 --only bonsai,engine --json "$out/passes-5.4-$name.json"
 run "passes 5.3" --passes --table 5.3 --only bunny --json "$out/passes-5.3-$name.json"

@@ -97,9 +97,9 @@ Options parseArgs(int argc, char** argv) {
                   std::vector<std::string> tables;
                   for (const std::string& t : splitList(text)) {
                       if (t != "baseline" && t != "5.3" && t != "5.4" && t != "5.5" && t != "casters" && t != "scaling" &&
-                          t != "clear" && t != "textured" && t != "sweep")
+                          t != "clear" && t != "textured" && t != "light-sweep")
                           throw UsageError(name + ": unknown table \"" + t +
-                                           "\" (baseline, 5.3, 5.4, 5.5, casters, scaling, clear, textured, sweep)");
+                                           "\" (baseline, 5.3, 5.4, 5.5, casters, scaling, clear, textured, light-sweep)");
                       tables.push_back(t);
                   }
                   return tables;
@@ -107,8 +107,8 @@ Options parseArgs(int argc, char** argv) {
               "thesis tables to reproduce: baseline (default), 5.3 (mesh scattering), 5.4 (volume scattering), 5.5 "
               "(hybrid scenes); casters: fragment against compute ray casting side by side; scaling: time against "
               "viewport size and ray step, with the fixed and per-pixel costs fitted; clear: the ways to clear a target; "
-              "textured: a textured translucent mesh against the same mesh untextured; sweep: the light-volume rebuild against "
-              "the slices each dispatch advances (1-16), with its dispatches",
+              "textured: a textured translucent mesh against the same mesh untextured; light-sweep: the light-volume rebuild "
+              "against the slices each dispatch advances (1-16), with its dispatches",
               "T[,T...]");
     addEnum(app, "--ray-caster", o.rayCaster, "the ray caster of every volume row (casters: both)");
     addEnum(app, "--volume-model", o.volumeModel,
@@ -254,7 +254,7 @@ int main(int argc, char** argv) {
                 if (t == "scaling") runScalingTable(bench);
                 if (t == "clear") runClearTable(bench);
                 if (t == "textured") runTexturedTable(bench);
-                if (t == "sweep") runSweepTable(bench);
+                if (t == "light-sweep") runLightSweepTable(bench);
             }
         }
 

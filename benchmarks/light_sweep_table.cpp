@@ -1,7 +1,7 @@
 // The light-volume sweep against the slices each dispatch advances it (1 = one dispatch per
-// slice, as before issue 30), side by side in one run: the rebuild's GPU time (timestamps around
-// the pass) and wall time (change minus fixed frames), and its dispatch count, per volume and
-// model (the paper's sweep gathers a chromaticity cone, whose taps reach further per slice and so
+// slice, filtered lookups), side by side in one run: the rebuild's GPU time (timestamps around
+// the pass, mean over the timed change frames) and wall time (change minus fixed frames), and its
+// dispatch count, per volume and model (the paper's sweep gathers a chromaticity cone, whose taps reach further per slice and so
 // allow fewer slices per dispatch; the physical model's sweep carries the intensity alone). The
 // light volume is the same whatever the slices (tests/gl/test_volume_scattering.cpp).
 
@@ -11,21 +11,11 @@
 
 namespace {
 
-constexpr const char* kTable = "sweep";
-
-// What the "light-volume" pass cost over the frames between two snapshots of its stats.
-struct PassCost {
-    double gpuMs = 0.0;  // 0 without timestamps
-    std::uint64_t dispatches = 0;
-};
-PassCost lightVolumeCost(const sss::PassStats& before, const sss::PassStats& after) {
-    const auto runs = after.gpuRuns - before.gpuRuns;
-    return {runs > 0 ? (after.totalGpuMs - before.totalGpuMs) / static_cast<double>(runs) : 0.0, after.lastDispatches};
-}
+constexpr const char* kTable = "light-sweep";
 
 }  // namespace
 
-void runSweepTable(BenchmarkContext& bench) {
+void runLightSweepTable(BenchmarkContext& bench) {
     const bool quick = bench.options().quick;
     const std::vector<std::string> models =
         quick ? std::vector<std::string>{"blobs"} : std::vector<std::string>{"bonsai", "engine"};
@@ -46,13 +36,10 @@ void runSweepTable(BenchmarkContext& bench) {
                 renderer.setOptions(options);
                 const std::string id = std::string(kTable) + "-" + model + "-" + std::string(sss::enumName(volumeModel)) +
                                        "-" + std::to_string(n);
-                const auto snapshot = [&] {
-                    const sss::PassStats* s = renderer.stats().find("light-volume");
-                    return s ? *s : sss::PassStats{};
-                };
-                const sss::PassStats before = snapshot();
-                const auto [change, fixed] = measureChangeAndFixed(bench, renderer, scene->camera, scene->key, id);
-                const PassCost cost = lightVolumeCost(before, snapshot());
+                ChangeAndFixedPasses passes{PassRecorder(renderer.stats()), PassRecorder(renderer.stats())};
+                const auto [change, fixed] = measureChangeAndFixed(bench, renderer, scene->camera, scene->key, id, &passes);
+                const std::optional<double> gpuMs = passes.change.gpuMs("light-volume");
+                const sss::PassStats* lightVolume = renderer.stats().find("light-volume");
                 Record r;
                 r.table = kTable;
                 r.model = model;
@@ -66,11 +53,11 @@ void runSweepTable(BenchmarkContext& bench) {
                 const double lightVolumeMs = change.stats.medianMs - fixed.stats.medianMs;
                 r.details = {{"volume_model", sss::enumName(volumeModel)},
                              {"slices_per_dispatch", n},
-                             {"dispatches", cost.dispatches},
-                             {"light_volume_gpu_ms", cost.gpuMs > 0.0 ? nlohmann::ordered_json(cost.gpuMs) : nullptr},
+                             {"dispatches", lightVolume ? lightVolume->lastDispatches : 0},
+                             {"light_volume_gpu_ms", gpuMs ? nlohmann::ordered_json(*gpuMs) : nullptr},
                              {"light_volume_ms", lightVolumeMs},
                              {"fixed_ms", fixed.stats.medianMs}};
-                const double passMs = cost.gpuMs > 0.0 ? cost.gpuMs : lightVolumeMs;
+                const double passMs = gpuMs.value_or(lightVolumeMs);
                 if (n == 1) oneSliceMs = passMs;
                 else r.details["speedup_over_one_slice"] = oneSliceMs / passMs;
                 bench.addRecord(std::move(r));
