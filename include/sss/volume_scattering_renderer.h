@@ -148,7 +148,7 @@ struct VolumeRenderOptions {
     float lightVolumeReach = 4.0f;
     /// Slices each compute dispatch of the light-volume sweep advances at most, 1..16, or 0 for
     /// the measured choice (docs/light-volume-sweep.md): 4 for the physical model's
-    /// intensity-only sweep on hardware GPUs (1.14-1.19x faster on an H100), else 1. Each
+    /// intensity-only sweep on hardware GPUs (1.16-1.19x faster on an H100), else 1. Each
     /// dispatch waits for the whole GPU; with several slices per dispatch each workgroup
     /// recomputes the margins of its tile that its later slices look up. Two or more give the
     /// same light volume texel for texel; one filters with the texture unit (within 1e-2).

@@ -142,7 +142,7 @@ LightVolumePass::SweepLayout setSweepFrames(const gl::Program& p, const std::vec
 
 // Slices per dispatch when the settings leave it to the device, measured side by side
 // (sss-bench --table light-sweep, docs/light-volume-sweep.md). On an H100 four slices made the
-// intensity-only sweep 1.14-1.19x faster; the chromaticity cone's wider halos made every slab
+// intensity-only sweep 1.16-1.19x faster; the chromaticity cone's wider halos made every slab
 // slower than one slice. On llvmpipe the recomputed margins cost more than the dispatches save.
 int deviceSlicesPerDispatch(bool softwareDevice, bool chromaticity) {
     return softwareDevice || chromaticity ? 1 : 4;
