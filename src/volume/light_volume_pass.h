@@ -42,7 +42,8 @@ struct LightVolumeSettings {
     float anisotropy = 0.5f;       ///< Henyey-Greenstein g: sets the chromaticity blur cone
     /// false: propagate the intensity l alone and leave the chromaticity c at 1 (white), for
     /// readers that take none (VolumeModel::Physical: grey extinction). The sweep then makes
-    /// no cone gather and no colour mixing; l is the same texel for texel.
+    /// no cone gather and no colour mixing; l is the same texel for texel at the same
+    /// maxSlicesPerDispatch (the measured choice takes more slices for this sweep).
     bool chromaticity = true;
     /// Slices one dispatch advances a sweep at most, or 0 for the measured choice
     /// (VolumeRenderOptions::lightSweepSlices). Each workgroup recomputes the margins its tile's
