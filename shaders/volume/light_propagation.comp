@@ -32,7 +32,8 @@
 // eye from behind each voxel.
 //
 // CHROMATICITY 0 (readers that use l alone: the physical model's grey extinction): no cone
-// gather and no colour mixing; c stays 1 and l is exactly what CHROMATICITY 1 computes.
+// gather and no colour mixing; c stays 1 and l is exactly what CHROMATICITY 1 computes with the
+// same SLAB and slices per dispatch.
 #ifndef CHROMATICITY
 #define CHROMATICITY 1
 #endif
