@@ -271,6 +271,12 @@ struct FramedVolume {
 std::optional<FramedVolume> loadFramedVolume(BenchmarkContext& bench, const std::string& table, const std::string& model);
 /// Gives `renderer` the volume, its transfer function and the key light.
 void showVolume(sss::VolumeScatteringRenderer& renderer, const FramedVolume& scene);
+/// For each of `models` (--quick: the procedural "blobs" instead) that --only wants and that
+/// loads: `measure` with its name, the framed volume and a renderer showing it.
+using ShownVolumeMeasure =
+    std::function<void(const std::string& model, const FramedVolume& scene, sss::VolumeScatteringRenderer& renderer)>;
+void forEachShownVolume(BenchmarkContext& bench, const std::string& table, const std::vector<std::string>& models,
+                        const ShownVolumeMeasure& measure);
 
 /// A CPU reference image: read from --reference-cache DIR/name if it is there, else rendered
 /// (timed on stderr) and kept there.

@@ -27,9 +27,6 @@ sss::VolumeRenderOptions optionsFor(const Options& run, const ModeCase& m, sss::
 }  // namespace
 
 void runCastersTable(BenchmarkContext& bench) {
-    const bool quick = bench.options().quick;
-    const std::vector<std::string> models =
-        quick ? std::vector<std::string>{"blobs"} : std::vector<std::string>{"bucky", "bonsai", "engine"};
     const std::vector<ModeCase> modes = {{sss::VolumeShading::EmissionAbsorption, true},
                                          {sss::VolumeShading::Gradient, true},
                                          {sss::VolumeShading::Scattering, true},
@@ -37,13 +34,9 @@ void runCastersTable(BenchmarkContext& bench) {
                                          {sss::VolumeShading::Scattering, false}};
     // What every row's frame costs before anything is drawn: the target's clear.
     const double clearMs = bench.measureClearOnly().stats.medianMs;
-    for (const std::string& model : models) {
-        if (!bench.wanted(model)) continue;
-        const std::optional<FramedVolume> scene = loadFramedVolume(bench, kTable, model);
-        if (!scene) continue;
-        sss::VolumeScatteringRenderer renderer;
-        showVolume(renderer, *scene);
-        const glm::ivec3 d = scene->volume.dims();
+    forEachShownVolume(bench, kTable, {"bucky", "bonsai", "engine"},
+                       [&](const std::string& model, const FramedVolume& scene, sss::VolumeScatteringRenderer& renderer) {
+        const glm::ivec3 d = scene.volume.dims();
         for (const ModeCase& m : modes) {
             const std::string settings = m.thesis ? "thesis" : "defaults";
             double fragmentMs = 0.0;
@@ -59,19 +52,19 @@ void runCastersTable(BenchmarkContext& bench) {
                            std::to_string(options.stepSize).substr(0, 4) + ")";
                 r.width = bench.options().width;
                 r.height = bench.options().height;
-                r.measurement = bench.measure([&](sss::RenderTarget& t) { renderer.render(scene->camera, t); },
+                r.measurement = bench.measure([&](sss::RenderTarget& t) { renderer.render(scene.camera, t); },
                                               std::string(kTable) + "-" + model + "-" + r.mode + "-" + settings + "-" +
                                                   std::string(sss::enumName(caster)));
                 r.details = {{"ray_caster", sss::enumName(caster)},
                              {"settings", settings},
                              {"step_voxels", options.stepSize},
                              {"preintegration", options.preintegration},
-                             {"transfer_function", scene->preset},
+                             {"transfer_function", scene.preset},
                              {"clear_ms", clearMs}};
                 if (caster == sss::RayCaster::Fragment) fragmentMs = r.measurement.stats.medianMs;
                 else r.details["compute_over_fragment"] = r.measurement.stats.medianMs / fragmentMs;
                 bench.addRecord(std::move(r));
             }
         }
-    }
+    });
 }

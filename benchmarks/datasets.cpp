@@ -68,6 +68,19 @@ void showVolume(sss::VolumeScatteringRenderer& renderer, const FramedVolume& sce
     renderer.setLights({scene.key});
 }
 
+void forEachShownVolume(BenchmarkContext& bench, const std::string& table, const std::vector<std::string>& models,
+                        const ShownVolumeMeasure& measure) {
+    const std::vector<std::string> quickModels{"blobs"};
+    for (const std::string& model : bench.options().quick ? quickModels : models) {
+        if (!bench.wanted(model)) continue;
+        const std::optional<FramedVolume> scene = loadFramedVolume(bench, table, model);
+        if (!scene) continue;
+        sss::VolumeScatteringRenderer renderer;
+        showVolume(renderer, *scene);
+        measure(model, *scene, renderer);
+    }
+}
+
 sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render) {
     const std::filesystem::path cached = o.referenceCache / name;
     std::error_code ec;

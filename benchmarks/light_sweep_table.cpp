@@ -17,15 +17,9 @@ constexpr const char* kTable = "light-sweep";
 
 void runLightSweepTable(BenchmarkContext& bench) {
     const bool quick = bench.options().quick;
-    const std::vector<std::string> models =
-        quick ? std::vector<std::string>{"blobs"} : std::vector<std::string>{"bonsai", "engine"};
     const std::vector<int> slices = quick ? std::vector<int>{1, 16} : std::vector<int>{1, 2, 4, 8, 16};
-    for (const std::string& model : models) {
-        if (!bench.wanted(model)) continue;
-        const std::optional<FramedVolume> scene = loadFramedVolume(bench, kTable, model);
-        if (!scene) continue;
-        sss::VolumeScatteringRenderer renderer;
-        showVolume(renderer, *scene);
+    forEachShownVolume(bench, kTable, {"bonsai", "engine"},
+                       [&](const std::string& model, const FramedVolume& scene, sss::VolumeScatteringRenderer& renderer) {
         for (sss::VolumeModel volumeModel : {sss::VolumeModel::Paper, sss::VolumeModel::Physical}) {
             double oneSliceMs = 0.0;
             for (int n : slices) {
@@ -37,14 +31,14 @@ void runLightSweepTable(BenchmarkContext& bench) {
                 const std::string id = std::string(kTable) + "-" + model + "-" + std::string(sss::enumName(volumeModel)) +
                                        "-" + std::to_string(n);
                 ChangeAndFixedPasses passes{PassRecorder(renderer.stats()), PassRecorder(renderer.stats())};
-                const auto [change, fixed] = measureChangeAndFixed(bench, renderer, scene->camera, scene->key, id, &passes);
+                const auto [change, fixed] = measureChangeAndFixed(bench, renderer, scene.camera, scene.key, id, &passes);
                 const std::optional<double> gpuMs = passes.change.gpuMs("light-volume");
                 const sss::PassStats* lightVolume = renderer.stats().find("light-volume");
                 Record r;
                 r.table = kTable;
                 r.model = model;
                 r.mode = "light-volume";
-                r.dataSize = dimsText(scene->volume.dims());
+                r.dataSize = dimsText(scene.volume.dims());
                 r.params = std::string(sss::enumName(volumeModel)) + ", at most " + std::to_string(n) +
                            " slices per dispatch (median = change)";
                 r.width = bench.options().width;
@@ -63,5 +57,5 @@ void runLightSweepTable(BenchmarkContext& bench) {
                 bench.addRecord(std::move(r));
             }
         }
-    }
+    });
 }

@@ -31,17 +31,11 @@ const std::map<std::string, ThesisRow>& thesisRows() {
 
 void runTable54(BenchmarkContext& bench) {
     const bool quick = bench.options().quick;
-    const std::vector<std::string> models =
-        quick ? std::vector<std::string>{"blobs"} : std::vector<std::string>{"bucky", "bonsai", "engine", "cthead"};
     const bool thesisViewport = bench.options().width == kThesisWidth && bench.options().height == kThesisHeight;
-    for (const std::string& model : models) {
-        if (!bench.wanted(model)) continue;
-        const std::optional<FramedVolume> scene = loadFramedVolume(bench, kTable, model);
-        if (!scene) continue;
-        const sss::Camera& camera = scene->camera;
-        const sss::DirectionalLight& key = scene->key;
-        sss::VolumeScatteringRenderer renderer;
-        showVolume(renderer, *scene);
+    forEachShownVolume(bench, kTable, {"bucky", "bonsai", "engine", "cthead"},
+                       [&](const std::string& model, const FramedVolume& scene, sss::VolumeScatteringRenderer& renderer) {
+        const sss::Camera& camera = scene.camera;
+        const sss::DirectionalLight& key = scene.key;
         const std::string id = std::string(kTable) + "-" + model;
         auto withShading = [&](sss::VolumeShading shading) {
             // The thesis's configuration (full-resolution light volume, step 1, post-classification).
@@ -67,13 +61,13 @@ void runTable54(BenchmarkContext& bench) {
         const Measurement eaGradient =
             bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-ea-gradient");
 
-        const glm::ivec3 d = scene->volume.dims();
+        const glm::ivec3 d = scene.volume.dims();
         Record r;
         r.table = kTable;
         r.model = model;
         r.mode = "scattering";
         r.dataSize = dimsText(d);
-        r.params = "tf=" + scene->preset + " (median = fixed)";
+        r.params = "tf=" + scene.preset + " (median = fixed)";
         r.width = bench.options().width;
         r.height = bench.options().height;
         r.measurement = fixed;
@@ -88,7 +82,7 @@ void runTable54(BenchmarkContext& bench) {
                      {"change_spread_ms", {change.stats.minMs, change.stats.maxMs}},
                      {"fixed_spread_ms", {fixed.stats.minMs, fixed.stats.maxMs}},
                      {"dims", {d.x, d.y, d.z}},
-                     {"transfer_function", scene->preset}};
+                     {"transfer_function", scene.preset}};
         if (const auto it = thesisRows().find(model); it != thesisRows().end() && thesisViewport && !quick) {
             r.thesisMs = it->second.fixed;
             r.details["thesis_gtx660"] = {{"change_ms", it->second.change},
@@ -103,5 +97,5 @@ void runTable54(BenchmarkContext& bench) {
             passes.change.addRecords(bench, row, "change");
             passes.fixed.addRecords(bench, row, "fixed");
         }
-    }
+    });
 }
