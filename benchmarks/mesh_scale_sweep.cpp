@@ -205,6 +205,10 @@ void meshScaleSweep(BenchmarkContext& bench) {
             ro.absoluteError = 1e-4;
             return sss::renderMeshReference(mesh, glm::mat4(1.0f), material, {key}, camera, kWidth, kHeight, ro);
         });
+        // The baseline of the fixed frames' cost, timed next to each of them (this machine is noisy).
+        sss::MeshScatteringRenderer blinnPhong;
+        blinnPhong.setMesh(mesh);
+        blinnPhong.setLights({key});
         for (const Method& method : methods()) {
             if (!methodWanted(bench, method.name)) continue;
             sss::MeshRenderOptions mo;
@@ -223,6 +227,8 @@ void meshScaleSweep(BenchmarkContext& bench) {
             const std::string id = "scale-" + scene + "-" + method.name;
             saveImages(o, id, image, reference.image, "scale-" + scene + "-reference");
             const Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed");
+            const Measurement baseline =
+                bench.measure([&](sss::RenderTarget& t) { blinnPhong.render(camera, t); }, id + "-blinn-phong");
             Record r;
             r.table = "error-sweep";
             r.model = s.model;
@@ -248,6 +254,8 @@ void meshScaleSweep(BenchmarkContext& bench) {
                          {"mean_ratio", meanRatio(image, reference.image)},
                          {"ms", regenerateMs},
                          {"fixed_ms", fixed.stats.medianMs},
+                         {"blinn_phong_ms", baseline.stats.medianMs},
+                         {"fixed_over_blinn_phong", fixed.stats.medianMs / baseline.stats.medianMs},
                          {"reference_rel_rmse", reference.ownRelRmse}};
             std::cerr << "sss-bench: " << scene << " " << method.name << " (" << combineName(renderer.activeCombine())
                       << ", edges " << renderer.edgeToDiffusionLength() << " diffusion lengths) relRMSE "

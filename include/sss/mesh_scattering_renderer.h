@@ -99,11 +99,12 @@ struct MeshRenderOptions {
     /// Radius of the vertex estimate's near field, in the mesh's edge lengths (the edge of
     /// MeshScatteringRenderer::edgeToDiffusionLength), >= 0: the light entering that close to a
     /// point, for a locally flat surface lit like the point, is evaluated per pixel; the vertices
-    /// interpolate only the rest, which varies little across a triangle. Keeps the radiosity
-    /// right on meshes whose triangles are many diffusion lengths wide (life-size objects); 0
-    /// interpolates all of it. Off by default until it keeps the light that thin parts of coarse
-    /// meshes let through (docs/near-field.md); 1 is the measured setting (default: 0).
-    float nearField = 0.0f;
+    /// interpolate only the rest, which varies little across a triangle. Where a lit surface hides
+    /// the point (a thin part lit from behind), the light entering it is evaluated per pixel too.
+    /// Keeps the radiosity right on meshes whose triangles are many diffusion lengths wide
+    /// (life-size objects); 0 interpolates all of it, and MeshCombine::Automatic then takes the
+    /// maps on coarse meshes (docs/near-field.md) (default: 1).
+    float nearField = 1.0f;
     /// Map frames accumulated while the scene is static, >= 1 (default: 8).
     int accumulationFrames = 8;
     /// Visibility depth bias of the map lookup, in texels' worth of depth, >= 0 (default: 1.5).

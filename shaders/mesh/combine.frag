@@ -79,6 +79,12 @@ void main() {
         for (int i = 0; i < lightCount; ++i) {
             vec3 radiance;
             vec3 l = lightDirectionAt(i, worldPosition, radiance);
+            vec3 nearVisible, nearCovered;
+            if (nearFieldOn != 0) {
+                nearFieldTaps(i, worldPosition, nWorld, l, nearVisible, nearCovered);
+                color += exitT * radiance * referenceScale *
+                         nearFieldBehindRadiosity(i, worldPosition, nWorld, l, eta, nearCovered);
+            }
             float nDotL = dot(nWorld, l);
             if (nDotL <= 0.0) continue;
             radiance *= nDotL * volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
@@ -87,8 +93,7 @@ void main() {
                 if (visible > 0.0) color += visible * radiance * dirpoleSingleScattering(profile, nWorld, l, wo);
             }
             if (nearFieldOn != 0)
-                color += exitT * radiance * nearFieldVisibility(i, worldPosition, nWorld, l) * nearFieldAt(nDotL) *
-                         referenceScale;
+                color += exitT * radiance * nearVisible * nearFieldAt(nDotL) * referenceScale;
             if (specular) {
                 vec3 h = normalize(l + wo);
                 // The surface reflects what it does not transmit: 1 - T at the viewing angle.

@@ -9,12 +9,21 @@
 #define NEAR_FIELD_TAPS 8  // kNearFieldTaps
 #endif
 #include "mesh/light_buffer_lookup.glsl"
+#include "common/dirpole.glsl"
 #include "common/surface_shadows.glsl"
 
 uniform int nearFieldOn;                   // 0: no near field (the table is zero)
 uniform vec3 nearField[NEAR_FIELD_NODES];  // per unit irradiance at cos theta = i / (NEAR_FIELD_NODES - 1)
 uniform float nearFieldTapRadius[NEAR_FIELD_TAPS];  // on the light's disk, world units
 uniform vec3 nearFieldTapWeight[NEAR_FIELD_TAPS];   // per channel, summing to 1
+uniform vec3 nearFieldBehind[NEAR_FIELD_NODES];     // per unit irradiance at depth behindDepth (i / (N - 1))^2
+uniform float nearFieldBehindDepth;                 // scene units; nothing from there on
+
+// The depth a surface must lie in front of x to hide it: lightBufferBias where x faces the light;
+// a surface facing away is never what the light sees.
+float nearFieldBehindBias(vec3 n, vec3 toLight) {
+    return dot(n, toLight) > 0.0 ? lightBufferBias(n, toLight) : 2.0 * lightTexelWorld;
+}
 
 vec3 nearFieldAt(float cosTheta) {
     float f = clamp(cosTheta, 0.0, 1.0) * float(NEAR_FIELD_NODES - 1);
@@ -22,40 +31,87 @@ vec3 nearFieldAt(float cosTheta) {
     return mix(nearField[i], nearField[i + 1], f - float(i));
 }
 
-// Light l's visibility over the near field's disk around x, per channel weighted by the profile:
-// a shadow's edge blurred as the subsurface light blurs it. Taps closer than half a light-buffer
+// Light l over the near field's disk around x, per channel weighted by the profile: `visible`,
+// the share that reaches the surface around x (a shadow's edge blurred as the subsurface light
+// blurs it); `covered`, the share where a surface in front of x hides it (how much of the near
+// field behind is there: less at the edge of a thin part). Taps closer than half a light-buffer
 // texel are the centre's.
-vec3 nearFieldVisibility(int l, vec3 x, vec3 n, vec3 toLight) {
-    float centre = selfVisibility(l, x, n, toLight);
+void nearFieldTaps(int l, vec3 x, vec3 n, vec3 toLight, out vec3 visible, out vec3 covered) {
+    float bias = lightBufferBias(n, toLight), behindBias = nearFieldBehindBias(n, toLight);
+    vec2 centre = lightSeenAround(l, x, bias, x, behindBias);
     vec3 u = normalize(abs(toLight.x) < 0.9 ? cross(toLight, vec3(1, 0, 0)) : cross(toLight, vec3(0, 1, 0)));
     vec3 v = cross(toLight, u);
     float nDotL = max(dot(n, toLight), 0.05);
-    vec3 sum = vec3(0.0);
+    visible = vec3(0.0);
+    covered = vec3(0.0);
     for (int k = 0; k < NEAR_FIELD_TAPS; ++k) {
         float r = nearFieldTapRadius[k];
-        float visible = centre;
+        vec2 seen = centre;
         if (r > 0.5 * lightTexelWorld) {
             float phi = 2.39996323 * float(k);  // the golden angle
             vec3 d = r * (cos(phi) * u + sin(phi) * v);
             d -= toLight * (dot(d, n) / nDotL);  // along the light onto the tangent plane
-            visible = selfVisibility(l, x + d, n, toLight);
+            seen = lightSeenAround(l, x + d, bias, x, behindBias);
         }
-        sum += nearFieldTapWeight[k] * visible;
+        visible += nearFieldTapWeight[k] * seen.x;
+        covered += nearFieldTapWeight[k] * seen.y;
     }
-    return sum;
 }
 
-// Sum over the lights of the near field at x (unit normal n), before the exit Fresnel factor.
-vec3 nearFieldRadiosity(vec3 x, vec3 n) {
+vec3 nearFieldBehindAt(float depth) {
+    if (!(depth < nearFieldBehindDepth)) return vec3(0.0);
+    float f = sqrt(max(depth, 0.0) / nearFieldBehindDepth) * float(NEAR_FIELD_NODES - 1);
+    int i = min(int(f), NEAR_FIELD_NODES - 2);
+    return mix(nearFieldBehind[i], nearFieldBehind[i + 1], f - float(i));
+}
+
+// The near field behind x, per unit radiance of light l: where the surface light l sees at x's
+// texel lies in front of x (a thin part lit from behind, an overhang), the light entering it
+// near x, taken as a flat surface through the point seen, lit at its own angle, at its depth
+// along the light times that angle's cosine from x. Blended over the 2x2 texels around x, then
+// scaled by the share of the disk such a surface covers (`covered`, from nearFieldTaps) over
+// the centre's own.
+vec3 nearFieldBehindRadiosity(int l, vec3 x, vec3 n, vec3 toLight, float eta, vec3 covered) {
+    vec4 clip = lightViewProjection[l] * vec4(x, 1.0);
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    ivec2 size = textureSize(lightPositions, 0).xy;
+    vec2 texel = uv * vec2(size) - 0.5;
+    ivec2 base = ivec2(floor(texel));
+    vec2 f = texel - vec2(base);
+    float behindBias = nearFieldBehindBias(n, toLight);
+    vec3 sum = vec3(0.0);
+    float centreCovered = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec3 t = ivec3(clamp(base + o, ivec2(0), size - 1), l);
+        vec4 seen = texelFetch(lightPositions, t, 0);
+        float depth = depthBehind(l, seen.xyz, x, toLight);
+        if (seen.w < 0.5 || depth <= behindBias) continue;
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        centreCovered += w;
+        vec3 ns = normalize(texelFetch(lightNormals, t, 0).xyz);
+        float cosSeen = dot(ns, toLight);
+        if (cosSeen <= 0.0) continue;
+        sum += w * cosSeen * dirpoleFresnelT(eta, cosSeen) * nearFieldBehindAt(depth * cosSeen) *
+               volumeTransmittance(l, seen.xyz, toLight) * meshShadow(l, seen.xyz, ns, toLight, 0);
+    }
+    return centreCovered > 1e-3 ? sum * min(covered / centreCovered, vec3(1.0)) : vec3(0.0);
+}
+
+// Sum over the lights of the near field at x (unit normal n), before the exit Fresnel factor:
+// in front where the light reaches x, behind where a lit surface hides it.
+vec3 nearFieldRadiosity(vec3 x, vec3 n, float eta) {
     vec3 sum = vec3(0.0);
     if (nearFieldOn == 0) return sum;
     for (int i = 0; i < lightCount; ++i) {
-        vec3 radiance;
+        vec3 radiance, visible, covered;
         vec3 l = lightDirectionAt(i, x, radiance);
+        nearFieldTaps(i, x, n, l, visible, covered);
+        sum += radiance * nearFieldBehindRadiosity(i, x, n, l, eta, covered);
         float nDotL = dot(n, l);
         if (nDotL <= 0.0) continue;
-        sum += nDotL * radiance * nearFieldVisibility(i, x, n, l) * volumeTransmittance(i, x, l) *
-               meshShadow(i, x, n, l, 0) * nearFieldAt(nDotL);
+        sum += nDotL * radiance * visible * volumeTransmittance(i, x, l) * meshShadow(i, x, n, l, 0) *
+               nearFieldAt(nDotL);
     }
     return sum;
 }

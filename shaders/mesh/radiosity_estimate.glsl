@@ -22,7 +22,6 @@
 #include "common/dirpole.glsl"
 #include "common/surface_shadows.glsl"
 
-uniform sampler2DArray lightNormals;
 #if TEXTURED_MATERIAL
 uniform sampler2DArray lightEntryWeights;  // a textured material's entry weight per light-buffer texel
 #endif

@@ -60,6 +60,6 @@ void main() {
     vec4 outerSum = (frameSeed == 0u ? vec4(0.0) : sums[2 * i + 1]) + vec4(outer, 1.0);
     sums[2 * i] = innerSum;
     sums[2 * i + 1] = outerSum;
-    vec3 difference = innerSum.rgb / innerSum.a - nearFieldScale * nearFieldRadiosity(x, n);
+    vec3 difference = innerSum.rgb / innerSum.a - nearFieldScale * nearFieldRadiosity(x, n, dipole.eta);
     radiosityOut[i] = vec4((outerSum.rgb / outerSum.a + nearFieldCorrection * difference) / normaliser, 1.0);
 }

@@ -66,10 +66,11 @@ double edgeToDiffusionLength(float edgeLength, const ScatteringMaterial& materia
     return static_cast<double>(edgeLength) * sigmaTr;
 }
 
-MeshCombine resolveCombine(MeshCombine requested, double edgeRatio, float nearField) {
+MeshCombine resolveCombine(MeshCombine requested, double edgeRatio, float nearField, double edgeOverRadius) {
     if (requested != MeshCombine::Automatic) return requested;
-    if (nearField > 0.0f) return MeshCombine::VertexEstimate;
-    return edgeRatio <= kVertexEstimateMaxEdgeRatio ? MeshCombine::VertexEstimate : MeshCombine::PerPixel;
+    if (edgeRatio <= kVertexEstimateMaxEdgeRatio) return MeshCombine::VertexEstimate;
+    const bool followsShape = edgeOverRadius <= kVertexEstimateMaxEdgeOverRadius;
+    return nearField > 0.0f && followsShape ? MeshCombine::VertexEstimate : MeshCombine::PerPixel;
 }
 
 }  // namespace sss::detail

@@ -5,8 +5,9 @@
 // 1 / sigma_tr, so without the near field the test compares the mesh's edges with that length
 // and takes the paper's per-pixel maps on coarser meshes. With the near field
 // (MeshRenderOptions::nearField, src/mesh/near_field.h) the pixel keeps the detail the vertices
-// cannot, and the estimate was nearer the reference than the maps at every scale measured
-// (docs/near-field.md): it is taken everywhere when the near field is on.
+// cannot, and the estimate was nearer the reference than the maps at every scale measured on
+// meshes that follow their shape (docs/near-field.md). A mesh too coarse to follow its own shape
+// (a box of two-triangle faces) leaves the vertices nothing to interpolate between: the maps.
 #include "sss/materials.h"
 #include "sss/mesh.h"
 #include "sss/mesh_scattering_renderer.h"
@@ -33,8 +34,14 @@ double edgeToDiffusionLength(float edgeLength, const ScatteringMaterial& materia
 /// (measured: tests/gl/test_mesh_accuracy.cpp, "the automatic combine ...").
 inline constexpr double kVertexEstimateMaxEdgeRatio = 2.0;
 
-/// `requested` unless it is Automatic; then VertexEstimate with a near field (`nearField` > 0),
-/// else VertexEstimate up to kVertexEstimateMaxEdgeRatio and PerPixel above it.
-MeshCombine resolveCombine(MeshCombine requested, double edgeRatio, float nearField);
+/// The largest surfaceEdgeLength() over the mesh's bounding radius at which the vertex estimate
+/// with the near field is taken on triangles wider than kVertexEstimateMaxEdgeRatio (measured:
+/// the automatic-combine test; a 24-segment sphere, 0.26, and a two-triangle-faced slab, 2.0).
+inline constexpr double kVertexEstimateMaxEdgeOverRadius = 0.5;
+
+/// `requested` unless it is Automatic; then VertexEstimate up to kVertexEstimateMaxEdgeRatio,
+/// and above it where the near field is on (`nearField` > 0) and the mesh follows its shape
+/// (`edgeOverRadius` up to kVertexEstimateMaxEdgeOverRadius); PerPixel otherwise.
+MeshCombine resolveCombine(MeshCombine requested, double edgeRatio, float nearField, double edgeOverRadius);
 
 }  // namespace sss::detail

@@ -46,9 +46,11 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     if (s.material) s.material->bind(p, s.millimetresPerUnit);
     p.set("lightTexelWorld", in.lightBuffer.texelWorld(in.mesh, in.model));
     p.set("lightPositions", units::kPassInputs + 2);
+    p.set("lightNormals", units::kPassInputs + 3);
     for (size_t i = 0; i < in.lightBuffer.viewProjections().size(); ++i)
         p.set("lightViewProjection[" + std::to_string(i) + "]", in.lightBuffer.viewProjections()[i]);
     in.lightBuffer.positions().bind(units::kPassInputs + 2);
+    in.lightBuffer.normals().bind(units::kPassInputs + 3);
     setLightUniforms(p, in.lights);
     setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.id());

@@ -215,7 +215,8 @@ struct MeshScatteringRenderer::Impl {
     MeshCombine activeCombine() const {
         if (!mesh) return MeshCombine::PerPixel;
         if (options.combine != MeshCombine::Automatic) return options.combine;
-        return detail::resolveCombine(options.combine, edgeToDiffusionLength(), options.nearField);
+        const double edgeOverRadius = surfaceEdgeLength / std::max(mesh->bounds.radius(), 1e-12f);
+        return detail::resolveCombine(options.combine, edgeToDiffusionLength(), options.nearField, edgeOverRadius);
     }
 
     ScatteringMapInputs currentMapInputs() const {

@@ -82,6 +82,22 @@ glm::dvec3 dipoleDiskIntegral(const DipoleConstants& c, double cosIncidence, dou
     return cumulative.empty() ? glm::dvec3(0.0) : cumulative.back().second;
 }
 
+glm::dvec3 dipoleDiskIntegralBehind(const DipoleConstants& c, double depth, double radius) {
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) shortest = std::min(shortest, 1.0 / c.sigmaTPrime[i]);
+    const double r0 = 1e-6 * shortest;
+    if (!(radius > r0)) return glm::dvec3(0.0);
+    // Head-on light makes the integrand symmetric about the axis: log-spaced rings in r.
+    const glm::dvec3 up{0.0, 0.0, 1.0}, xo{0.0, 0.0, -std::max(depth, 0.0)};
+    const double l0 = std::log(r0), dl = (std::log(radius) - l0) / kRadialBins;
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < kRadialBins; ++i) {
+        const double r = std::exp(l0 + (i + 0.5) * dl);
+        sum += evaluateSd(c, glm::dvec3(r, 0.0, 0.0), up, up, xo, -up) * (r * r * dl * 2.0 * std::numbers::pi);
+    }
+    return sum;
+}
+
 float nearFieldCorrection(double edgeRatio) {
     const double k = kNearFieldCorrectionEdges;
     return edgeRatio > k ? static_cast<float>(k / edgeRatio) : 1.0f;
@@ -99,6 +115,14 @@ NearFieldTable tabulateNearField(const DipoleConstants& c, double radius, double
         const glm::dvec3 perIrradiance = fresnelTransmittance(c.eta, mu) * dipoleDiskIntegral(c, mu, radius) / mu;
         table.reflectance[i] = glm::vec3(perIrradiance);
     }
+    // Six diffusion lengths of the farthest-reaching channel: e^-6 of the light is left there.
+    double longest = 0.0;
+    for (int ch = 0; ch < 3; ++ch) longest = std::max(longest, 1.0 / std::max(c.sigmaTr[ch], 1e-12));
+    table.behindDepth = static_cast<float>(std::min(6.0 * longest, 16.0 * radius));
+    for (int i = 0; i < kNearFieldNodes; ++i) {
+        const double t = static_cast<double>(i) / (kNearFieldNodes - 1);
+        table.behind[i] = glm::vec3(dipoleDiskIntegralBehind(c, table.behindDepth * t * t, radius));
+    }
     return table;
 }
 
@@ -107,6 +131,8 @@ void setNearFieldUniforms(const gl::Program& p, const NearFieldTable& table) {
     glProgramUniform3fv(p.id(), p.uniformLocation("nearField[0]"), kNearFieldNodes, &table.reflectance[0].x);
     glProgramUniform1fv(p.id(), p.uniformLocation("nearFieldTapRadius[0]"), kNearFieldTaps, table.tapRadius.data());
     glProgramUniform3fv(p.id(), p.uniformLocation("nearFieldTapWeight[0]"), kNearFieldTaps, &table.tapWeight[0].x);
+    glProgramUniform3fv(p.id(), p.uniformLocation("nearFieldBehind[0]"), kNearFieldNodes, &table.behind[0].x);
+    p.set("nearFieldBehindDepth", table.behindDepth);
 }
 
 }  // namespace sss::detail

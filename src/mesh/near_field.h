@@ -34,6 +34,13 @@ struct NearFieldTable {
     /// to 1, each tap the ring of the profile around its radius (lit head-on).
     std::array<float, kNearFieldTaps> tapRadius{};
     std::array<glm::vec3, kNearFieldTaps> tapWeight{};
+    /// The near field behind: where a lit surface hides x_o from the light (a thin part lit from
+    /// behind, an overhang), the light entering it within rho, for a flat surface lit head-on at
+    /// a distance d behind x_o and facing away from it. Per node i, at d = behindDepth (i / 32)^2:
+    /// the integral of S_d over that disk per unit irradiance (rgb, 1/sr), without Fresnel
+    /// factors; zero from behindDepth on.
+    std::array<glm::vec3, kNearFieldNodes> behind{};
+    float behindDepth = 0.0f;  ///< scene units
 };
 
 /// The integral of S_d(x_i -> x_o) over the disk of radius `radius` around x_o facing a light at
@@ -43,6 +50,11 @@ struct NearFieldTable {
 /// is dipolePlaneIntegral(c, 1, radius); for an unbounded radius, cos theta times
 /// dipolePlaneIntegral(c, cos theta).
 glm::dvec3 dipoleDiskIntegral(const DipoleConstants& constants, double cosIncidence, double radius);
+
+/// The integral of S_d(x_i -> x_o) over the disk of radius `radius` on a flat surface lit head-on,
+/// for x_o a distance `depth` behind the disk's centre and facing away from the surface (the far
+/// side of a slab), per unit area, per channel, without Fresnel factors.
+glm::dvec3 dipoleDiskIntegralBehind(const DipoleConstants& constants, double depth, double radius);
 
 /// The weight of the vertices' near-field difference for edges `edgeRatio` diffusion lengths
 /// long: 1 up to kNearFieldCorrectionEdges, then kNearFieldCorrectionEdges / edgeRatio

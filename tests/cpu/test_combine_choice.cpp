@@ -47,16 +47,23 @@ TEST_CASE("the edge is measured against the narrowest profile among the channels
     CHECK(detail::edgeToDiffusionLength(0.5f, marble, 20.0) == Approx(2.0 * detail::edgeToDiffusionLength(0.5f, marble, 10.0)));
 }
 
-TEST_CASE("Automatic takes the vertex estimate with a near field, else resolves by the threshold; explicit choices stay",
+TEST_CASE("Automatic takes the vertex estimate with a near field on meshes that follow their shape, else resolves by "
+          "the threshold; explicit choices stay",
           "[mesh][combine]") {
-    // With the near field (the default): the estimate at every edge length.
+    const double followsShape = detail::kVertexEstimateMaxEdgeOverRadius, coarseShape = 2.0;
+    // With the near field (the default): the estimate at every edge length on a mesh that
+    // follows its shape; on one that does not, the maps above the threshold.
     for (const double ratio : {0.0, 0.5, 2.0, 8.0, 100.0})
-        CHECK(detail::resolveCombine(MeshCombine::Automatic, ratio, 1.0f) == MeshCombine::VertexEstimate);
+        CHECK(detail::resolveCombine(MeshCombine::Automatic, ratio, 1.0f, followsShape) == MeshCombine::VertexEstimate);
+    CHECK(detail::resolveCombine(MeshCombine::Automatic, 0.5, 1.0f, coarseShape) == MeshCombine::VertexEstimate);
+    CHECK(detail::resolveCombine(MeshCombine::Automatic, 8.0, 1.0f, coarseShape) == MeshCombine::PerPixel);
     // Without it: the estimate up to the threshold, the maps above.
-    CHECK(detail::resolveCombine(MeshCombine::Automatic, 0.5, 0.0f) == MeshCombine::VertexEstimate);
-    CHECK(detail::resolveCombine(MeshCombine::Automatic, detail::kVertexEstimateMaxEdgeRatio, 0.0f) == MeshCombine::VertexEstimate);
-    CHECK(detail::resolveCombine(MeshCombine::Automatic, detail::kVertexEstimateMaxEdgeRatio * 1.01, 0.0f) == MeshCombine::PerPixel);
-    CHECK(detail::resolveCombine(MeshCombine::PerVertex, 100.0, 1.0f) == MeshCombine::PerVertex);
-    CHECK(detail::resolveCombine(MeshCombine::VertexEstimate, 100.0, 0.0f) == MeshCombine::VertexEstimate);
-    CHECK(detail::resolveCombine(MeshCombine::PerPixel, 0.0, 1.0f) == MeshCombine::PerPixel);
+    CHECK(detail::resolveCombine(MeshCombine::Automatic, 0.5, 0.0f, 0.1) == MeshCombine::VertexEstimate);
+    CHECK(detail::resolveCombine(MeshCombine::Automatic, detail::kVertexEstimateMaxEdgeRatio, 0.0f, 0.1) ==
+          MeshCombine::VertexEstimate);
+    CHECK(detail::resolveCombine(MeshCombine::Automatic, detail::kVertexEstimateMaxEdgeRatio * 1.01, 0.0f, 0.1) ==
+          MeshCombine::PerPixel);
+    CHECK(detail::resolveCombine(MeshCombine::PerVertex, 100.0, 1.0f, 0.1) == MeshCombine::PerVertex);
+    CHECK(detail::resolveCombine(MeshCombine::VertexEstimate, 100.0, 0.0f, coarseShape) == MeshCombine::VertexEstimate);
+    CHECK(detail::resolveCombine(MeshCombine::PerPixel, 0.0, 1.0f, 0.1) == MeshCombine::PerPixel);
 }

@@ -129,7 +129,7 @@ TEST_CASE("volume reference: a spot light's incident light is the point light's 
     CHECK(outside == 2);
 }
 
-TEST_CASE("volume path tracer: a spot light holding the box in its inner cone is its point light; aimed away, black",
+TEST_CASE("volume path tracer: a spot light holding the box in its inner cone is its point light, and aimed away, black",
           "[cpu][spot]") {
     const Volume volume = makeBlobsVolume(16);
     const glm::vec3 white(1.0f);
@@ -154,7 +154,7 @@ TEST_CASE("volume path tracer: a spot light holding the box in its inner cone is
     CHECK(maxRgb(dark) == 0.0);
 }
 
-TEST_CASE("mesh random walk: a spot light holding the box in its inner cone is its point light; aimed away, black",
+TEST_CASE("mesh random walk: a spot light holding the box in its inner cone is its point light, and aimed away, black",
           "[cpu][spot]") {
     ScatteringMaterial m;
     m.sigmaS = {0.9, 0.8, 0.7};

@@ -211,7 +211,7 @@ TEST_CASE("Spot-light falloff: an analytic check on a plane", "[gl][spot][mesh][
     gl.requireNoErrors();
 }
 
-TEST_CASE("a spot light on a volume lights only its cone; inside it, the point light's image", "[gl][spot][volume]") {
+TEST_CASE("a spot light on a volume lights only its cone, and inside it, the point light's image", "[gl][spot][volume]") {
     // A uniform box seen head-on (orthographic, from +z), the spot at the camera's position aimed
     // along the view: a view ray at distance r from the axis meets the box at angles to the cone
     // axis between atan(r / 3.5) and atan(r / 2.5). Pixels whose every sample is in the inner
