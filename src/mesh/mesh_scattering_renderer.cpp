@@ -185,7 +185,7 @@ struct MeshScatteringRenderer::Impl {
         }
         // The near field ends inside the disk: beyond it the profile is what the disk keeps.
         const double edge = surfaceEdgeLength * detail::largestScale(model);
-        sampling.nearRadius = std::min(sampling.diskRadius, static_cast<float>(options.nearField * edge));
+        sampling.nearRadius = detail::nearFieldRadius(options.nearField, edge, edgeToDiffusionLength(), sampling.diskRadius);
         nearField = detail::tabulateNearField(dipole, sampling.nearRadius, edge);
         environmentReflectance = options.profile == ScatteringProfile::Calibrated
                                      ? profileDiffuseReflectanceUniform(dipole)

@@ -98,6 +98,11 @@ glm::dvec3 dipoleDiskIntegralBehind(const DipoleConstants& c, double depth, doub
     return sum;
 }
 
+float nearFieldRadius(float nearFieldEdges, double edgeLength, double edgeRatio, float diskRadius) {
+    if (edgeRatio < kNearFieldMinEdgeRatio) return 0.0f;
+    return std::min(diskRadius, static_cast<float>(nearFieldEdges * edgeLength));
+}
+
 float nearFieldCorrection(double edgeRatio) {
     const double k = kNearFieldCorrectionEdges;
     return edgeRatio > k ? static_cast<float>(k / edgeRatio) : 1.0f;

@@ -107,3 +107,11 @@ TEST_CASE("near field behind: the table falls with depth, grows with the disk, a
     // surface (measured 0.044).
     CHECK(large.behind.back().x < 0.06f * large.behind[0].x);
 }
+
+TEST_CASE("near field: its radius is the edges asked for, within the disk, and none on fine meshes", "[cpu][near-field]") {
+    CHECK(detail::nearFieldRadius(1.0f, 2.0, 4.0, 10.0f) == Approx(2.0f));
+    CHECK(detail::nearFieldRadius(2.0f, 2.0, 4.0, 3.0f) == Approx(3.0f));  // at most the disk
+    CHECK(detail::nearFieldRadius(0.0f, 2.0, 4.0, 10.0f) == 0.0f);         // off
+    CHECK(detail::nearFieldRadius(1.0f, 2.0, detail::kNearFieldMinEdgeRatio, 10.0f) == Approx(2.0f));
+    CHECK(detail::nearFieldRadius(1.0f, 2.0, 0.99 * detail::kNearFieldMinEdgeRatio, 10.0f) == 0.0f);
+}
