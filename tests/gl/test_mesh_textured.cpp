@@ -56,7 +56,8 @@ Mesh gridSlab(glm::vec3 size, int n) {
         const auto base = static_cast<uint32_t>(positions.size());
         for (int j = 0; j <= n; ++j)
             for (int i = 0; i <= n; ++i) {
-                const float a = 2.0f * i / n - 1.0f, b = 2.0f * j / n - 1.0f;
+                const float a = 2.0f * static_cast<float>(i) / static_cast<float>(n) - 1.0f,
+                            b = 2.0f * static_cast<float>(j) / static_cast<float>(n) - 1.0f;
                 const glm::vec3 p = (f.n + a * f.u + b * f.v) * h;
                 positions.push_back(p);
                 normals.push_back(f.n);
