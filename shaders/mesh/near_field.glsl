@@ -68,7 +68,7 @@ vec3 nearFieldBehindAt(float depth) {
 // The near field behind x, per unit radiance of light l: where the surface light l sees at x's
 // texel lies in front of x (a thin part lit from behind, an overhang), the light entering it
 // near x, taken as a flat surface through the point seen, lit at its own angle, at its depth
-// along the light times that angle's cosine from x. Blended over the 2x2 texels around x, then
+// along the light times that angle's cosine from x, weighted by how far it faces away from x. Blended over the 2x2 texels around x, then
 // scaled by the share of the disk such a surface covers (`covered`, from nearFieldTaps) over
 // the centre's own.
 vec3 nearFieldBehindRadiosity(int l, vec3 x, vec3 n, vec3 toLight, float eta, vec3 covered) {
@@ -90,9 +90,12 @@ vec3 nearFieldBehindRadiosity(int l, vec3 x, vec3 n, vec3 toLight, float eta, ve
         float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         centreCovered += w;
         vec3 ns = normalize(texelFetch(lightNormals, t, 0).xyz);
-        float cosSeen = dot(ns, toLight);
-        if (cosSeen <= 0.0) continue;
-        sum += w * cosSeen * dirpoleFresnelT(eta, cosSeen) * nearFieldBehindAt(depth * cosSeen) *
+        // The model is a surface facing away from x (the far side of a thin part). One facing
+        // the way x does lies on x's own side: beside a terminator it is the same surface
+        // curving away, whose light the vertices already carry (it drew a bright band there).
+        float cosSeen = dot(ns, toLight), facing = -dot(ns, n);
+        if (cosSeen <= 0.0 || facing <= 0.0) continue;
+        sum += w * facing * cosSeen * dirpoleFresnelT(eta, cosSeen) * nearFieldBehindAt(depth * cosSeen) *
                volumeTransmittance(l, seen.xyz, toLight) * meshShadow(l, seen.xyz, ns, toLight, 0);
     }
     return centreCovered > 1e-3 ? sum * min(covered / centreCovered, vec3(1.0)) : vec3(0.0);
