@@ -72,24 +72,19 @@ vec3 nearFieldBehindAt(float depth) {
 // scaled by the share of the disk such a surface covers (`covered`, from nearFieldTaps) over
 // the centre's own.
 vec3 nearFieldBehindRadiosity(int l, vec3 x, vec3 n, vec3 toLight, float eta, vec3 covered) {
-    vec4 clip = lightViewProjection[l] * vec4(x, 1.0);
-    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-    ivec2 size = textureSize(lightPositions, 0).xy;
-    vec2 texel = uv * vec2(size) - 0.5;
-    ivec2 base = ivec2(floor(texel));
-    vec2 f = texel - vec2(base);
+    LightTexels t = lightTexelsAround(l, x);
+    if (!t.inside) return vec3(0.0);
     float behindBias = nearFieldBehindBias(n, toLight);
     vec3 sum = vec3(0.0);
     float centreCovered = 0.0;
     for (int k = 0; k < 4; ++k) {
-        ivec2 o = ivec2(k & 1, k >> 1);
-        ivec3 t = ivec3(clamp(base + o, ivec2(0), size - 1), l);
-        vec4 seen = texelFetch(lightPositions, t, 0);
+        ivec3 texel = lightTexel(t, k, l);
+        vec4 seen = texelFetch(lightPositions, texel, 0);
         float depth = depthBehind(l, seen.xyz, x, toLight);
         if (seen.w < 0.5 || depth <= behindBias) continue;
-        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        float w = lightTexelWeight(t, k);
         centreCovered += w;
-        vec3 ns = normalize(texelFetch(lightNormals, t, 0).xyz);
+        vec3 ns = normalize(texelFetch(lightNormals, texel, 0).xyz);
         // The model is a surface facing away from x (the far side of a thin part). One facing
         // the way x does lies on x's own side: beside a terminator it is the same surface
         // curving away, whose light the vertices already carry (it drew a bright band there).
