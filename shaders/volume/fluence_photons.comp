@@ -4,13 +4,15 @@
 // to the cell p lies in, s being sigma_t at the centre of p's voxel: the collision estimator of
 // the integral of s times the track length, so that the cell's fluence comes out averaged with
 // the weight s, where the medium scatters (fluence_density.comp gives the integral of s). Per
-// channel for the fluence, and times the direction of travel for each channel's flux vector.
+// channel for the fluence, times the direction of travel for each channel's flux vector, and,
+// for the mean channel, times the traceless square of the direction (the second moment).
 // Light that has not scattered yet is the light volume's, and is left out.
 //
 // The sums are 64-bit two's-complement fixed point in pairs of uints (low word, high word), added
 // with integer atomics and stochastic rounding: unbiased, and the same sums whatever the order of
 // the adds, so a cache does not depend on how the GPU schedules its photons. Slots per cell:
-// fluence r, g, b, then the flux vector of r, of g and of b (x, y, z each).
+// fluence r, g, b, then the flux vector of r, of g and of b (x, y, z each), then the mean
+// channel's second moment xx - 1/3, yy - 1/3, xy, xz, yz.
 //
 // Photons are resumable, as the path tracer's paths (path_trace.comp says why): a dispatch
 // spends at most `stepsPerDispatch` units per invocation and keeps each photon's state in
@@ -45,7 +47,7 @@ uniform vec2 lightSpotCosines[MAX_LIGHTS];
 const int kRouletteStartBounce = 3;  // as the path tracer
 const uint kMaxStepsPerPhoton = 1u << 24;
 const int kWalkStepsPerEvent = 16;
-const int kSlotsPerCell = 12;
+const int kSlotsPerCell = 17;
 
 // std430: 80 bytes.
 struct PhotonState {
@@ -97,6 +99,13 @@ void deposit(vec3 p) {
         for (int axis = 0; axis < 3; ++axis)
             addFixed(base + uint(3 + 3 * channel + axis), q[channel] * walkDirection[axis]);
     }
+    vec3 d = walkDirection;
+    float mean = (q.r + q.g + q.b) / 3.0;
+    addFixed(base + 12u, mean * (d.x * d.x - 1.0 / 3.0));
+    addFixed(base + 13u, mean * (d.y * d.y - 1.0 / 3.0));
+    addFixed(base + 14u, mean * d.x * d.y);
+    addFixed(base + 15u, mean * d.x * d.z);
+    addFixed(base + 16u, mean * d.y * d.z);
 }
 
 // One tentative collision or brick crossing of the photon's walk.

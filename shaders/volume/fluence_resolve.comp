@@ -1,6 +1,7 @@
 // The multiple-scattering cache's textures from its photon sums (fluence_photons.comp): per cell,
 // the fluence of light scattered at least once (rgb), the flux vector of the mean channel (xyz:
-// the direction the light flows) and each channel's flux length (rgb: how strongly), all in the
+// the direction the light flows) and each channel's flux length (rgb: how strongly), the mean
+// channel's traceless second moment (xx - 1/3, yy - 1/3, xy, xz; yz in the flux's alpha), all in the
 // lights' units (colour x intensity), averaged over the cell with the weight s
 // (fluence_density.comp), and premultiplied by the cell's mean weight, which the fluence
 // texture's alpha holds. Readers divide the filtered values by the filtered weight: cells
@@ -13,11 +14,12 @@ layout(std430, binding = 3) readonly buffer Weights { float cellWeight[]; };  //
 layout(rgba32f, binding = 0) uniform writeonly image3D fluence;
 layout(rgba32f, binding = 1) uniform writeonly image3D flux;
 layout(rgba32f, binding = 2) uniform writeonly image3D fluxLengths;
+layout(rgba32f, binding = 3) uniform writeonly image3D secondMoment;
 uniform ivec3 cacheCells;
 uniform float sumsToFluence;  // power per photon / (photons x quanta per unit)
 uniform float cellVolume;     // model units^3
 
-const uint kSlotsPerCell = 12u;
+const uint kSlotsPerCell = 17u;
 
 // A slot's 64-bit two's-complement sum.
 float slotValue(uint slot) { return float(int(sums[2u * slot + 1u])) * 4294967296.0 + float(sums[2u * slot]); }
@@ -35,6 +37,8 @@ void main() {
     vec3 phi = slotVector(base) * scale;
     vec3 red = slotVector(base + 3u) * scale, green = slotVector(base + 6u) * scale, blue = slotVector(base + 9u) * scale;
     imageStore(fluence, c, vec4(phi, cellWeight[cellIndex] / cellVolume));
-    imageStore(flux, c, vec4((red + green + blue) / 3.0, 0.0));
+    vec4 moment = vec4(slotValue(base + 12u), slotValue(base + 13u), slotValue(base + 14u), slotValue(base + 15u)) * scale;
+    imageStore(flux, c, vec4((red + green + blue) / 3.0, slotValue(base + 16u) * scale));
+    imageStore(secondMoment, c, moment);
     imageStore(fluxLengths, c, vec4(length(red), length(green), length(blue), 0.0));
 }

@@ -218,17 +218,20 @@ LightReach rayLightReaches[MAX_LIGHTS];
 // interpolation). The radiance is taken as the HG lobe with the same first moment,
 // phi p_HG(k, w . F / |F|), k = |F| / phi; the HG phase function convolves it to
 // phi p_HG(g k, v . F / |F|) towards the viewer v (the Legendre coefficients of HG lobes
-// multiply: g^l k^l).
+// multiply: g^l k^l). The lobe's second band is then replaced by the one the photons measured
+// (docs/multiple-scattering.md).
 uniform sampler3D cacheFluence;
 uniform sampler3D cacheFlux;
 uniform sampler3D cacheFluxLengths;
+uniform sampler3D cacheSecondMoment;
 vec3 cacheViewDirection;  // model space, towards the viewer (set in castRay)
 
 vec3 cachedInScattering(vec3 tc) {
     vec4 weighted = texture(cacheFluence, tc);
     if (!(weighted.a > 0.0)) return vec3(0.0);
     vec3 phi = weighted.rgb / weighted.a;
-    vec3 flux = texture(cacheFlux, tc).xyz;
+    vec4 fluxAndYz = texture(cacheFlux, tc);
+    vec3 flux = fluxAndYz.xyz;
     vec3 k = min(texture(cacheFluxLengths, tc).rgb / max(weighted.rgb, vec3(1e-30)), vec3(0.99));
     float fluxLength = length(flux);
     float cosTheta = fluxLength > 0.0 ? dot(flux, cacheViewDirection) / fluxLength : 0.0;
@@ -236,7 +239,18 @@ vec3 cachedInScattering(vec3 tc) {
     // |F| / phi: the phase function's lobe and it convolve to the HG lobe of mean cosine g k.
     vec3 gk = phaseG * k;
     vec3 d = 1.0 + gk * gk - 2.0 * gk * cosTheta;
-    return phi * ((1.0 - gk * gk) / (12.5663706 * d * sqrt(d)));
+    vec3 lobe = (1.0 - gk * gk) / (12.5663706 * d * sqrt(d));
+    // Band 2: (5 / 4 pi) g^2 times the measured 3/2 v.M.v / phi (M: the mean channel's traceless
+    // second moment) in place of the lobe's k^2 P2(cos).
+    vec4 m = texture(cacheSecondMoment, tc);
+    vec3 v = cacheViewDirection;
+    float vMv = m.x * v.x * v.x + m.y * v.y * v.y - (m.x + m.y) * v.z * v.z +
+                2.0 * (m.z * v.x * v.y + m.w * v.x * v.z + fluxAndYz.w * v.y * v.z);
+    float meanPhi = (weighted.r + weighted.g + weighted.b) / 3.0;
+    float measured = meanPhi > 0.0 ? 1.5 * vMv / meanPhi : 0.0;
+    float p2 = 1.5 * cosTheta * cosTheta - 0.5;
+    lobe += (5.0 / 12.5663706) * phaseG * phaseG * (measured - k * k * p2);
+    return phi * max(lobe, vec3(0.0));
 }
 #endif
 

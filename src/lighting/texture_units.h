@@ -32,6 +32,7 @@ inline constexpr int kStepTransferFunction = 16;
 inline constexpr int kCacheFluence = 17;
 inline constexpr int kCacheFlux = 18;
 inline constexpr int kCacheFluxLengths = 19;
+inline constexpr int kCacheSecondMoment = 20;
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

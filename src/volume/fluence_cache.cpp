@@ -21,7 +21,7 @@
 namespace sss::detail {
 
 namespace {
-constexpr int kSlotsPerCell = 12;            // fluence_photons.comp
+constexpr int kSlotsPerCell = 17;            // fluence_photons.comp
 constexpr std::size_t kPhotonStateBytes = 80;
 constexpr int kMaxPhotonSlots = 1 << 15;     // photons in flight at once (2.5 MiB of state)
 constexpr int kStepsPerDispatch = 1024;      // as the path tracer: under llvmpipe's loop limit
@@ -100,14 +100,14 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_fluence = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache");
         m_flux = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux");
         m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths");
+        m_secondMoment = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache second moment");
         m_cells = cells;
     }
     const std::uint32_t zero = 0;
     glClearNamedBufferData(m_sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearTexImage(m_fluence.id(), 0, GL_RGBA, GL_FLOAT, black);
-    glClearTexImage(m_flux.id(), 0, GL_RGBA, GL_FLOAT, black);
-    glClearTexImage(m_fluxLengths.id(), 0, GL_RGBA, GL_FLOAT, black);
+    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+        glClearTexImage(t->id(), 0, GL_RGBA, GL_FLOAT, black);
     m_photons = 0;
     m_cellVolume = glm::compMul(in.volume.box.size()) / static_cast<float>(count);
     if (!sameMedium) computeWeights(in);
@@ -233,13 +233,12 @@ void FluenceCache::resolve() {
     m_fluence.bindImage(0, GL_WRITE_ONLY);
     m_flux.bindImage(1, GL_WRITE_ONLY);
     m_fluxLengths.bindImage(2, GL_WRITE_ONLY);
+    m_secondMoment.bindImage(3, GL_WRITE_ONLY);
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
                       static_cast<GLuint>((m_cells.z + 3) / 4));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    for (GLuint unit = 0; unit < 4; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 }  // namespace sss::detail

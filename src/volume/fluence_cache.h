@@ -57,10 +57,14 @@ public:
     /// filtered values by the filtered weight (fluence_resolve.comp). Texel centres are the
     /// cells' centres.
     const gl::Texture& fluence() const { return m_fluence; }
-    /// Per cell: xyz flux vector of the mean channel times the weight, model space (RGBA32F).
+    /// Per cell: xyz flux vector of the mean channel times the weight, model space, and the
+    /// second moment's yz (RGBA32F).
     const gl::Texture& flux() const { return m_flux; }
     /// Per cell: rgb length of each channel's flux vector times the weight (RGBA32F).
     const gl::Texture& fluxLengths() const { return m_fluxLengths; }
+    /// Per cell: the mean channel's traceless second angular moment xx - 1/3, yy - 1/3, xy, xz
+    /// times the weight, model space (RGBA32F); yz is flux()'s alpha.
+    const gl::Texture& secondMoment() const { return m_secondMoment; }
     /// Photons traced since the last restart (those that missed the box included).
     std::uint64_t photons() const { return m_photons; }
     glm::ivec3 cells() const { return m_cells; }
@@ -79,11 +83,11 @@ private:
     gl::Program m_densityProgram;
     gl::Program m_resolveProgram;
     glm::ivec3 m_cells{0};
-    gl::Buffer m_sums;            // 12 slots per cell, 64-bit fixed point (fluence_photons.comp)
+    gl::Buffer m_sums;            // 17 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
     gl::Buffer m_photonStates;
     gl::Buffer m_status;
-    gl::Texture m_fluence, m_flux, m_fluxLengths;
+    gl::Texture m_fluence, m_flux, m_fluxLengths, m_secondMoment;
     std::uint64_t m_photons = 0;
     float m_cellVolume = 1.0f;    // model units^3
     float m_powerUnit = 0.0f;     // power a photon of weight 1 carries (see setUniforms)

@@ -214,13 +214,15 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
             in.eyeVolume->bind(units::kEyeVolume);
         }
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
-        if (m_variant.scatteringCache && in.cacheFluence && in.cacheFlux && in.cacheFluxLengths) {
+        if (m_variant.scatteringCache && in.cacheFluence && in.cacheFlux && in.cacheFluxLengths && in.cacheSecondMoment) {
             p.set("cacheFluence", units::kCacheFluence);
             p.set("cacheFlux", units::kCacheFlux);
             p.set("cacheFluxLengths", units::kCacheFluxLengths);
+            p.set("cacheSecondMoment", units::kCacheSecondMoment);
             in.cacheFluence->bind(units::kCacheFluence);
             in.cacheFlux->bind(units::kCacheFlux);
             in.cacheFluxLengths->bind(units::kCacheFluxLengths);
+            in.cacheSecondMoment->bind(units::kCacheSecondMoment);
         }
         // Reads the light volume this many texels towards the light and carries the light back
         // through the data (shaders/volume/ray_cast.glsl, shade()).

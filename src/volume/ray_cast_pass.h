@@ -58,6 +58,7 @@ struct RayCastInputs {
     const gl::Texture* cacheFluence = nullptr;
     const gl::Texture* cacheFlux = nullptr;
     const gl::Texture* cacheFluxLengths = nullptr;
+    const gl::Texture* cacheSecondMoment = nullptr;
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)

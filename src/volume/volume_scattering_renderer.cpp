@@ -482,6 +482,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .cacheFluence = scatteringCache ? &r.fluenceCache->fluence() : nullptr,
                     .cacheFlux = scatteringCache ? &r.fluenceCache->flux() : nullptr,
                     .cacheFluxLengths = scatteringCache ? &r.fluenceCache->fluxLengths() : nullptr,
+                    .cacheSecondMoment = scatteringCache ? &r.fluenceCache->secondMoment() : nullptr,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,
