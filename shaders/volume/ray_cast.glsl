@@ -224,16 +224,23 @@ uniform sampler3D cacheFluence;
 uniform sampler3D cacheFlux;
 uniform sampler3D cacheFluxLengths;
 uniform sampler3D cacheSecondMoment;
+uniform float cacheLevel;  // coarser while the cache refines (FluenceCache::readLevel)
 vec3 cacheViewDirection;  // model space, towards the viewer (set in castRay)
 
 vec3 cachedInScattering(vec3 tc) {
-    vec4 weighted = texture(cacheFluence, tc);
+    vec4 weighted = textureLod(cacheFluence, tc, cacheLevel);
     if (!(weighted.a > 0.0)) return vec3(0.0);
     vec3 phi = weighted.rgb / weighted.a;
-    vec4 fluxAndYz = texture(cacheFlux, tc);
+    vec4 fluxAndYz = textureLod(cacheFlux, tc, cacheLevel);
     vec3 flux = fluxAndYz.xyz;
-    vec3 k = min(texture(cacheFluxLengths, tc).rgb / max(weighted.rgb, vec3(1e-30)), vec3(0.99));
     float fluxLength = length(flux);
+    // Each channel's flux along the mean channel's: its share of the channels' flux lengths
+    // times the mean vector's length. Noise (few photons, coarse levels' averages) shortens the
+    // mean vector but lengthens each cell's own, which alone gave near-delta lobes.
+    vec3 lengths = textureLod(cacheFluxLengths, tc, cacheLevel).rgb;
+    float meanLength = (lengths.r + lengths.g + lengths.b) / 3.0;
+    vec3 k = meanLength > 0.0 ? min(lengths * (fluxLength / meanLength) / max(weighted.rgb, vec3(1e-30)), vec3(0.99))
+                              : vec3(0.0);
     float cosTheta = fluxLength > 0.0 ? dot(flux, cacheViewDirection) / fluxLength : 0.0;
     // Per channel, the radiance as a Henyey-Greenstein lobe about the flux with mean cosine k =
     // |F| / phi: the phase function's lobe and it convolve to the HG lobe of mean cosine g k.
@@ -242,7 +249,7 @@ vec3 cachedInScattering(vec3 tc) {
     vec3 lobe = (1.0 - gk * gk) / (12.5663706 * d * sqrt(d));
     // Band 2: (5 / 4 pi) g^2 times the measured 3/2 v.M.v / phi (M: the mean channel's traceless
     // second moment) in place of the lobe's k^2 P2(cos).
-    vec4 m = texture(cacheSecondMoment, tc);
+    vec4 m = textureLod(cacheSecondMoment, tc, cacheLevel);
     vec3 v = cacheViewDirection;
     float vMv = m.x * v.x * v.x + m.y * v.y * v.y - (m.x + m.y) * v.z * v.z +
                 2.0 * (m.z * v.x * v.y + m.w * v.x * v.z + fluxAndYz.w * v.y * v.z);

@@ -104,8 +104,8 @@ Texture Texture::create2DArray(GLenum internalFormat, int width, int height, int
     return create(GL_TEXTURE_2D_ARRAY, internalFormat, {width, height, layers}, 1, label);
 }
 
-Texture Texture::create3D(GLenum internalFormat, glm::ivec3 size, std::string_view label) {
-    return create(GL_TEXTURE_3D, internalFormat, size, 1, label);
+Texture Texture::create3D(GLenum internalFormat, glm::ivec3 size, std::string_view label, int levels) {
+    return create(GL_TEXTURE_3D, internalFormat, size, levels, label);
 }
 
 void Texture::upload(GLenum format, GLenum type, const void* pixels) const {

@@ -23,7 +23,7 @@ public:
     Texture() = default;
     static Texture create2D(GLenum internalFormat, int width, int height, std::string_view label, int levels = 1);
     static Texture create2DArray(GLenum internalFormat, int width, int height, int layers, std::string_view label);
-    static Texture create3D(GLenum internalFormat, glm::ivec3 size, std::string_view label);
+    static Texture create3D(GLenum internalFormat, glm::ivec3 size, std::string_view label, int levels = 1);
 
     /// Uploads a whole 2D image, 3D volume, or (for arrays) all layers.
     void upload(GLenum format, GLenum type, const void* pixels) const;

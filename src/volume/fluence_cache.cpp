@@ -31,6 +31,9 @@ constexpr float kQuantaPerUnit = 1048576.0f;
 // Voxels per cell side at most: the weights' pass loops over a cell's voxels in one invocation,
 // which llvmpipe stops after 65535 iterations.
 constexpr int kMaxVoxelsPerCell = 32;
+// Mip levels of the cache's textures at most (64 cells: 64, 32, 16, 8): read coarser while few
+// photons have arrived (FluenceCache::readLevel).
+constexpr int kMaxLevels = 4;
 
 float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
@@ -97,17 +100,20 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         sameMedium = false;
         m_sums = gl::Buffer::create(count * kSlotsPerCell * 2 * sizeof(std::uint32_t), nullptr, 0, "fluence-cache sums");
         m_weights = gl::Buffer::create(count * sizeof(float), nullptr, 0, "fluence-cache cell weights");
-        m_fluence = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache");
-        m_flux = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux");
-        m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths");
-        m_secondMoment = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache second moment");
+        m_levels = std::min(kMaxLevels, 1 + static_cast<int>(std::log2(static_cast<float>(glm::compMax(cells)))));
+        m_fluence = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache", m_levels);
+        m_flux = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux", m_levels);
+        m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths", m_levels);
+        m_secondMoment = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache second moment", m_levels);
+        for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+            t->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
         m_cells = cells;
     }
     const std::uint32_t zero = 0;
     glClearNamedBufferData(m_sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
-        glClearTexImage(t->id(), 0, GL_RGBA, GL_FLOAT, black);
+        for (int level = 0; level < m_levels; ++level) glClearTexImage(t->id(), level, GL_RGBA, GL_FLOAT, black);
     m_photons = 0;
     m_cellVolume = glm::compMul(in.volume.box.size()) / static_cast<float>(count);
     if (!sameMedium) computeWeights(in);
@@ -223,6 +229,12 @@ void FluenceCache::dispatchPhotons(int invocations) {
                                    " photons were given up after 2^24 steps each (degenerate rays)");
 }
 
+float FluenceCache::readLevel(std::uint64_t budget) const {
+    if (m_photons == 0 || m_photons >= budget) return 0.0f;
+    const float level = std::log2(static_cast<float>(budget) / static_cast<float>(m_photons)) / 3.0f;
+    return std::min(level, static_cast<float>(m_levels - 1));
+}
+
 void FluenceCache::resolve() {
     const gl::Program& p = m_resolveProgram;
     p.set("cacheCells", m_cells);
@@ -239,6 +251,9 @@ void FluenceCache::resolve() {
                       static_cast<GLuint>((m_cells.z + 3) / 4));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     for (GLuint unit = 0; unit < 4; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    // Every texture holds weighted sums (premultiplied by the cell's weight), so a level's box
+    // filter gives its larger cells' weighted means.
+    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment}) glGenerateTextureMipmap(t->id());
 }
 
 }  // namespace sss::detail

@@ -65,6 +65,10 @@ public:
     /// Per cell: the mean channel's traceless second angular moment xx - 1/3, yy - 1/3, xy, xz
     /// times the weight, model space (RGBA32F); yz is flux()'s alpha.
     const gl::Texture& secondMoment() const { return m_secondMoment; }
+    /// The mip level to read while the cache refines towards `budget` photons: each level up has
+    /// 8 times the photons per cell, so log8(budget / photons) reads about the noise the finest
+    /// level will have once refined (0 once it is; at most the coarsest level).
+    float readLevel(std::uint64_t budget) const;
     /// Photons traced since the last restart (those that missed the box included).
     std::uint64_t photons() const { return m_photons; }
     glm::ivec3 cells() const { return m_cells; }
@@ -93,6 +97,7 @@ private:
     float m_powerUnit = 0.0f;     // power a photon of weight 1 carries (see setUniforms)
     bool m_resumable = true;
     int m_lastDispatches = 0;
+    int m_levels = 1;             // mip levels of the cache's textures
 };
 
 }  // namespace sss::detail

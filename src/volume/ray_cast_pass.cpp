@@ -219,6 +219,7 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
             p.set("cacheFlux", units::kCacheFlux);
             p.set("cacheFluxLengths", units::kCacheFluxLengths);
             p.set("cacheSecondMoment", units::kCacheSecondMoment);
+            p.set("cacheLevel", in.cacheLevel);
             in.cacheFluence->bind(units::kCacheFluence);
             in.cacheFlux->bind(units::kCacheFlux);
             in.cacheFluxLengths->bind(units::kCacheFluxLengths);

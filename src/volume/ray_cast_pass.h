@@ -59,6 +59,7 @@ struct RayCastInputs {
     const gl::Texture* cacheFlux = nullptr;
     const gl::Texture* cacheFluxLengths = nullptr;
     const gl::Texture* cacheSecondMoment = nullptr;
+    float cacheLevel = 0.0f;  ///< the cache's mip level to read (FluenceCache::readLevel)
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)

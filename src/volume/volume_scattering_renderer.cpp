@@ -471,6 +471,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (!variant.compute) m_impl->copyDepth(target);
     target.bindForDrawing();
     const Impl& r = *m_impl;
+    const auto photonBudget = static_cast<std::uint64_t>(r.options.cachePhotons);
     r.rayCast->run({.target = target,
                     .volume = *r.volume,
                     .transferFunction = r.transferFunctionTable,
@@ -483,6 +484,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .cacheFlux = scatteringCache ? &r.fluenceCache->flux() : nullptr,
                     .cacheFluxLengths = scatteringCache ? &r.fluenceCache->fluxLengths() : nullptr,
                     .cacheSecondMoment = scatteringCache ? &r.fluenceCache->secondMoment() : nullptr,
+                    .cacheLevel = scatteringCache ? r.fluenceCache->readLevel(photonBudget) : 0.0f,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,
