@@ -202,9 +202,9 @@ struct VolumeRenderOptions {
     bool multipleScatteringCache = false;
     /// Cells of the cache along the box's longest side, the other sides in proportion, at most
     /// one per voxel and at most 32 voxels wide, 1..1024. Finer cells follow the fluence into
-    /// dense matter better once refined (bonsai: 21 % relRMSE against the path tracer at 64,
-    /// 16 % at 128) but are noisier while the cache fills (first frame 32 % against 60 %) and
-    /// cost memory: 144 bytes per cell, 38 MiB at 64^3, 300 MiB at 128^3 (default: 64).
+    /// dense matter better once refined (bonsai: 20 % relRMSE against the path tracer at 64,
+    /// 14 % at 128; first frames, read at coarser levels, 34 % and 30 %) and cost memory: about
+    /// 210 bytes per cell, 53 MiB at 64^3, 430 MiB at 128^3 (default: 64).
     int cacheResolution = 64;
     /// Photons each render() adds while the cache refines, 1..2^24 (default: 65536).
     int cachePhotonsPerFrame = 1 << 16;
