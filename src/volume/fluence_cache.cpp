@@ -249,7 +249,7 @@ void FluenceCache::resolve() {
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
                       static_cast<GLuint>((m_cells.z + 3) / 4));
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by the mipmaps too
     for (GLuint unit = 0; unit < 4; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     // Every texture holds weighted sums (premultiplied by the cell's weight), so a level's box
     // filter gives its larger cells' weighted means.

@@ -2,6 +2,7 @@
 
 #include "volume/clip_uniforms.h"
 #include "volume/composite_over.h"
+#include "volume/fluence_cache.h"
 #include "lighting/texture_units.h"
 #include "sss/error.h"
 
@@ -214,16 +215,16 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
             in.eyeVolume->bind(units::kEyeVolume);
         }
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
-        if (m_variant.scatteringCache && in.cacheFluence && in.cacheFlux && in.cacheFluxLengths && in.cacheSecondMoment) {
+        if (m_variant.scatteringCache && in.cache) {
             p.set("cacheFluence", units::kCacheFluence);
             p.set("cacheFlux", units::kCacheFlux);
             p.set("cacheFluxLengths", units::kCacheFluxLengths);
             p.set("cacheSecondMoment", units::kCacheSecondMoment);
             p.set("cacheLevel", in.cacheLevel);
-            in.cacheFluence->bind(units::kCacheFluence);
-            in.cacheFlux->bind(units::kCacheFlux);
-            in.cacheFluxLengths->bind(units::kCacheFluxLengths);
-            in.cacheSecondMoment->bind(units::kCacheSecondMoment);
+            in.cache->fluence().bind(units::kCacheFluence);
+            in.cache->flux().bind(units::kCacheFlux);
+            in.cache->fluxLengths().bind(units::kCacheFluxLengths);
+            in.cache->secondMoment().bind(units::kCacheSecondMoment);
         }
         // Reads the light volume this many texels towards the light and carries the light back
         // through the data (shaders/volume/ray_cast.glsl, shade()).

@@ -17,6 +17,8 @@
 
 namespace sss::detail {
 
+class FluenceCache;
+
 /// Scattering modes sample light volumes.
 bool usesLightVolume(VolumeShading shading);
 /// Gradient and ScatteringGradient shade with the data's gradient.
@@ -54,12 +56,10 @@ struct RayCastInputs {
     const std::vector<gl::Texture>& lightVolumes;  ///< one per light in the scattering modes
     const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights
     const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
-    /// The multiple-scattering cache's fluence and flux (volume/fluence_cache.h), if it is on.
-    const gl::Texture* cacheFluence = nullptr;
-    const gl::Texture* cacheFlux = nullptr;
-    const gl::Texture* cacheFluxLengths = nullptr;
-    const gl::Texture* cacheSecondMoment = nullptr;
-    float cacheLevel = 0.0f;  ///< the cache's mip level to read (FluenceCache::readLevel)
+    /// The multiple-scattering cache, if it is on, and the mip level to read it at
+    /// (FluenceCache::readLevel).
+    const FluenceCache* cache = nullptr;
+    float cacheLevel = 0.0f;
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)
