@@ -350,6 +350,38 @@ sss::DirectionalLight volumeAccuracyLight() {
     return {.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.4f))};
 }
 
+namespace {
+// The truth's expected relRMSE from its standard errors (VolumePathTracerResult::relativeRmseEstimate).
+double relativeNoise(const sss::Image& mean, const sss::Image& standardError) {
+    double se = 0.0, m = 0.0;
+    for (int y = 0; y < mean.height(); ++y)
+        for (int x = 0; x < mean.width(); ++x)
+            for (int c = 0; c < 3; ++c) {
+                se += double(standardError.at(x, y)[c]) * standardError.at(x, y)[c];
+                m += double(mean.at(x, y)[c]) * mean.at(x, y)[c];
+            }
+    return m > 0.0 ? std::sqrt(se / m) : 0.0;
+}
+
+}  // namespace
+
+PathTracedTruth cachedPathTraced(BenchmarkContext& bench, const std::string& name, const sss::Volume& volume,
+                                 const sss::TransferFunction& tf, const sss::DirectionalLight& light,
+                                 const sss::Camera& camera, int width, int height,
+                                 const sss::VolumePathTracerOptions& options) {
+    std::optional<sss::VolumePathTracerResult> traced;
+    auto trace = [&]() -> const sss::VolumePathTracerResult& {
+        if (!traced)
+            traced = sss::renderVolumePathTraced(volume, tf, 256, glm::mat4(1.0f), {light}, camera, width, height, options);
+        return *traced;
+    };
+    PathTracedTruth truth;
+    truth.image = cachedReference(bench.options(), name + ".exr", [&] { return trace().image; });
+    truth.relativeRmseEstimate = relativeNoise(
+        truth.image, cachedReference(bench.options(), name + "-stderr.exr", [&] { return trace().standardError; }));
+    return truth;
+}
+
 // One frame of `renderer` into the cleared `target`, waited for: its milliseconds.
 double timedFrameMs(sss::VolumeScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target) {
     target.clear({0, 0, 0, 0});
@@ -483,7 +515,7 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
        << "| scene | method | vs single | vs single, scaled | vs multiple | vs multiple, scaled | mean ratio to multiple R / G / B | ms |\n"
        << "|---|---|---:|---:|---:|---:|---|---:|\n";
     std::ostringstream truthMd;
-    truthMd << "\n| scene | multiple / single R / G / B | truth noise single / multiple | path tracing s single / multiple |\n"
+    truthMd << "\n| scene | multiple / single R / G / B | truth noise single / multiple | path tracing s single / multiple (~0: --reference-cache) |\n"
             << "|---|---|---:|---:|\n";
     std::ostringstream gpuMd;
     gpuMd << "\nMultiple scattering on the GPU (gpu-path-traced: VolumeRenderOptions::multipleScattering, 8 paths "
@@ -514,14 +546,17 @@ AccuracyReport runVolumeAccuracy(BenchmarkContext& bench, const AccuracyOptions&
         po.samplesPerPixel = spp;
         po.g = kG;
         po.mode = sss::VolumeScatteringMode::SingleScattering;
+        // The truths, kept in --reference-cache under names that hold what they depend on.
+        const std::string truthName = "volume-truth-" + scene.name + "-" + std::to_string(width) + "x" +
+                                      std::to_string(height) + "-" + std::to_string(spp) + "-g" + fixed(kG, 2);
         auto start = std::chrono::steady_clock::now();
-        const sss::VolumePathTracerResult single =
-            sss::renderVolumePathTraced(scene.volume, scene.tf, 256, glm::mat4(1.0f), {light}, camera, width, height, po);
+        const PathTracedTruth single =
+            cachedPathTraced(bench, truthName + "-single", scene.volume, scene.tf, light, camera, width, height, po);
         const double singleSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         po.mode = sss::VolumeScatteringMode::MultipleScattering;
         start = std::chrono::steady_clock::now();
-        const sss::VolumePathTracerResult multiple =
-            sss::renderVolumePathTraced(scene.volume, scene.tf, 256, glm::mat4(1.0f), {light}, camera, width, height, po);
+        const PathTracedTruth multiple =
+            cachedPathTraced(bench, truthName + "-multiple", scene.volume, scene.tf, light, camera, width, height, po);
         const double multipleSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::cerr << "sss-bench: accuracy volume " << scene.name << ": path tracing " << singleSeconds << " + "
                   << multipleSeconds << " s\n";

@@ -147,8 +147,8 @@ Options parseArgs(int argc, char** argv) {
               "where the sweep's PNG plot goes (default: the JSON path with .png)", "FILE")
         ->group("output");
     app.add_option("--reference-cache", o.referenceCache,
-                   "keep the sweeps' CPU references there as OpenEXR and reuse them when the scene is the same (the "
-                   "file name holds every parameter)")
+                   "keep the sweeps' and the volume accuracy tables' CPU references there as OpenEXR and reuse them "
+                   "when the scene is the same (the file name holds every parameter)")
         ->type_name("DIR");
     parseCommandLine(app, argc, argv);
 

@@ -70,18 +70,6 @@ std::vector<bool> litInterior(const sss::Image& truth) {
     return mask;
 }
 
-// The truth's expected relRMSE from its standard errors (VolumePathTracerResult::relativeRmseEstimate).
-double relativeNoise(const sss::Image& mean, const sss::Image& standardError) {
-    double se = 0.0, m = 0.0;
-    for (int y = 0; y < mean.height(); ++y)
-        for (int x = 0; x < mean.width(); ++x)
-            for (int c = 0; c < 3; ++c) {
-                se += double(standardError.at(x, y)[c]) * standardError.at(x, y)[c];
-                m += double(mean.at(x, y)[c]) * mean.at(x, y)[c];
-            }
-    return m > 0.0 ? std::sqrt(se / m) : 0.0;
-}
-
 double ringContrast(const sss::Image& image, const std::vector<bool>& mask) {
     const std::vector<double> blurred = blurredLuminance(image, 1.5);
     double residual = 0.0, mean = 0.0;
@@ -168,24 +156,17 @@ struct SurfaceView {
 };
 
 SurfaceTruth surfaceTruth(BenchmarkContext& bench, const Scene& scene, const SurfaceView& view) {
-    std::optional<sss::VolumePathTracerResult> traced;
-    auto trace = [&]() -> const sss::VolumePathTracerResult& {
-        if (!traced) {
-            sss::VolumePathTracerOptions po;
-            po.samplesPerPixel = view.paths;
-            po.g = view.g;
-            po.mode = sss::VolumeScatteringMode::SingleScattering;
-            traced = sss::renderVolumePathTraced(scene.volume, scene.tf, 256, glm::mat4(1.0f), {view.light},
-                                                 view.camera, view.width, view.height, po);
-        }
-        return *traced;
-    };
+    sss::VolumePathTracerOptions po;
+    po.samplesPerPixel = view.paths;
+    po.g = view.g;
+    po.mode = sss::VolumeScatteringMode::SingleScattering;
     const std::string name = "surfaces-truth-" + scene.name + "-" + std::to_string(view.width) + "x" +
                              std::to_string(view.height) + "-" + std::to_string(view.paths);
+    const volume_accuracy::PathTracedTruth traced = volume_accuracy::cachedPathTraced(
+        bench, name, scene.volume, scene.tf, view.light, view.camera, view.width, view.height, po);
     SurfaceTruth truth;
-    truth.image = cachedReference(bench.options(), name + ".exr", [&] { return trace().image; });
-    truth.noise = relativeNoise(truth.image,
-                                cachedReference(bench.options(), name + "-stderr.exr", [&] { return trace().standardError; }));
+    truth.image = traced.image;
+    truth.noise = traced.relativeRmseEstimate;
     truth.litMask = litInterior(truth.image);
     truth.ringContrast = ringContrast(truth.image, truth.litMask);
     return truth;

@@ -3,7 +3,13 @@
 // the view, the scaling that forgives the paper model its units, and timed GPU images.
 #include <sss/sss.h>
 
+#include <sss/volume_path_tracer.h>
+
 #include <glm/vec3.hpp>
+
+#include <string>
+
+class BenchmarkContext;
 
 namespace volume_accuracy {
 
@@ -18,6 +24,19 @@ glm::dvec3 meanRatio(const sss::Image& test, const sss::Image& reference);
 sss::Camera volumeAccuracyCamera(const sss::Volume& volume, int width, int height);
 /// One directional light from above, behind and to the right of the viewer.
 sss::DirectionalLight volumeAccuracyLight();
+
+/// A path-traced truth and its own expected relRMSE (from its standard errors).
+struct PathTracedTruth {
+    sss::Image image{1, 1};
+    double relativeRmseEstimate = 0.0;
+};
+/// renderVolumePathTraced of the scene (the data at 256 TF entries, identity model), or its copy
+/// in --reference-cache: `name`.exr and `name`-stderr.exr (the standard error per pixel). `name`
+/// must hold everything the truth depends on.
+PathTracedTruth cachedPathTraced(BenchmarkContext& bench, const std::string& name, const sss::Volume& volume,
+                                 const sss::TransferFunction& tf, const sss::DirectionalLight& light,
+                                 const sss::Camera& camera, int width, int height,
+                                 const sss::VolumePathTracerOptions& options);
 
 /// A GPU volume image and its median frame time.
 struct TimedImage {
