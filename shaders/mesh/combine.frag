@@ -8,13 +8,18 @@
 //                         and VertexEstimate)
 //   SURFACE_SHADOWS 0|1 : whether other meshes or volumes shadow this one (common/surface_shadows.glsl)
 //   TEXTURED_MATERIAL 0|1: a textured material (mesh/textured_material.glsl): the cached radiosity
-//                         is normalised and takes the pixel's texel; single scattering, the near
-//                         field and the environment follow the pixel's material
+//                         takes the rule's surroundings' part per pixel; single scattering follows
+//                         the pixel's material, the near field and the environment the whole rule
+//   VERTEX_EFFECTIVE 0|1: a textured vertex estimate: the rule's entries' part per vertex for
+//                         those (otherwise the pixel's own gathered stands in for the entries)
 #ifndef PER_VERTEX
 #define PER_VERTEX 0
 #endif
 #ifndef TEXTURED_MATERIAL
 #define TEXTURED_MATERIAL 0
+#endif
+#ifndef VERTEX_EFFECTIVE
+#define VERTEX_EFFECTIVE 0
 #endif
 #include "common/camera.glsl"
 #include "common/lights.glsl"
@@ -36,6 +41,9 @@ in vec2 texcoord;
 #endif
 
 in vec3 vertexRadiosity;     // the vertex-radiosity pass's value, interpolated
+#if VERTEX_EFFECTIVE
+in vec3 vertexEffective;
+#endif
 uniform float eta;
 uniform float specularStrength;
 uniform float shininess;
@@ -55,12 +63,19 @@ void main() {
 #endif
 
 #if TEXTURED_MATERIAL
-    vec3 albedo, gathered, entryWeight;
-    materialSurface(texcoord, textureQueryLod(materialReflectance, texcoord).y, albedo, gathered, entryWeight);
+    vec3 albedo, gathered;
+    float lod = textureQueryLod(materialReflectance, texcoord).y;
+    materialSurface(texcoord, lod, albedo, gathered);
     DirpoleParams profile = dipole;  // single scattering needs only the pixel's albedo
     profile.albedo = albedo;
-    radiosity *= gathered / entryWeight;
-    vec3 referenceScale = gathered / max(referenceGathered, vec3(1e-6));
+    vec3 surroundings = surroundingFactor(texcoord, materialSigmaTr(texcoord, lod, albedo));
+    radiosity *= surroundings;
+#if VERTEX_EFFECTIVE
+    vec3 entries = vertexEffective;
+#else
+    vec3 entries = entriesFactor(log(max(gathered, vec3(MIN_GATHERED))));
+#endif
+    vec3 referenceScale = entries * surroundings / max(referenceGathered, vec3(1e-6));
 #else
     DirpoleParams profile = dipole;
     vec3 referenceScale = vec3(1.0);

@@ -1,5 +1,5 @@
-// With TEXTURED_MATERIAL a third target holds the entry weight of a textured material, its
-// reflectance to the power ENTRY_REFLECTANCE_EXPONENT (shaders/mesh/textured_material.glsl).
+// With TEXTURED_MATERIAL a third target holds a textured material's ln gathered, by which the
+// radiosity estimate weighs the entry points (shaders/mesh/textured_material.glsl).
 #ifndef TEXTURED_MATERIAL
 #define TEXTURED_MATERIAL 0
 #endif
@@ -12,7 +12,7 @@ in vec2 texcoord;
 layout(location = 0) out vec4 outPosition;  // w = 1 marks a covered texel (cleared to 0)
 layout(location = 1) out vec4 outNormal;
 #if TEXTURED_MATERIAL
-layout(location = 2) out vec4 outEntryWeight;
+layout(location = 2) out vec4 outLogGathered;
 #endif
 void main() {
     vec3 n = normalize(worldNormal);
@@ -21,6 +21,7 @@ void main() {
     outPosition = vec4(worldPosition, 1.0);
     outNormal = vec4(n, 0.0);
 #if TEXTURED_MATERIAL
-    outEntryWeight = vec4(entryWeight(texcoord, textureQueryLod(materialReflectance, texcoord).y), 1.0);
+    // Level 0: a coarser level (grazing light) would average colours the texel does not hold.
+    outLogGathered = vec4(logGathered(texcoord, 0.0), 1.0);
 #endif
 }

@@ -23,7 +23,7 @@
 #include "common/surface_shadows.glsl"
 
 #if TEXTURED_MATERIAL
-uniform sampler2DArray lightEntryWeights;  // a textured material's entry weight per light-buffer texel
+uniform sampler2DArray lightLogGathered;  // a textured material's ln gathered per light-buffer texel
 #endif
 uniform DirpoleParams dipole;
 uniform float diskRadius;                 // R, scene units
@@ -41,13 +41,16 @@ uint pcg(inout uint state) {
 }
 float random01(inout uint state) { return float(pcg(state) >> 8) * (1.0 / 16777216.0); }
 
-// p: the profile at x_o (`dipole`, or a textured material's at the point: the exit point's
-// coefficients rule a pair, docs/textured-materials.md); xo, no: world-space point and unit
-// normal; state: the caller's random stream. The estimate comes in two parts: the light entering
-// within nearRadius of x_o on the disk (inner) and the rest (outer).
-void estimateRadiositySplit(DirpoleParams profile, vec3 xo, vec3 no, inout uint state, out vec3 inner, out vec3 outer) {
+// p: the profile at x_o (`dipole`, or a textured material's at the point,
+// docs/textured-materials.md); xo, no: world-space point and unit normal; state: the caller's
+// random stream. The estimate comes in two parts: the light entering within nearRadius of x_o on
+// the disk (inner) and the rest (outer). Textured, logWeighted sums each sample's value times its
+// entry texel's ln gathered (0 otherwise).
+void estimateRadiositySplit(DirpoleParams profile, vec3 xo, vec3 no, inout uint state, out vec3 inner, out vec3 outer,
+                            out vec3 logWeighted) {
     inner = vec3(0.0);
     outer = vec3(0.0);
+    logWeighted = vec3(0.0);
     const float twoPi = 6.28318531;
     for (int l = 0; l < lightCount; ++l) {
         bool point = lightVector[l].w != 0.0;
@@ -101,12 +104,12 @@ void estimateRadiositySplit(DirpoleParams profile, vec3 xo, vec3 no, inout uint 
             }
             vec4 xiTexel;
             vec3 ni;
-            vec3 entry = vec3(1.0);  // the entry point's weight (textured materials)
+            vec3 entryLog = vec3(0.0);  // the entry texel's ln gathered (textured materials)
             if (oneSurface) {
                 xiTexel = texture(lightPositions, layer);
                 ni = normalize(texture(lightNormals, layer).xyz);
 #if TEXTURED_MATERIAL
-                entry = texture(lightEntryWeights, layer).rgb;
+                entryLog = texture(lightLogGathered, layer).rgb;
 #endif
             } else {
                 // An edge, or a neighbour texel is empty: the nearest texel. Dropping the sample
@@ -117,7 +120,7 @@ void estimateRadiositySplit(DirpoleParams profile, vec3 xo, vec3 no, inout uint 
                 if (xiTexel.w < 0.5) continue;  // no surface there
                 ni = normalize(texelFetch(lightNormals, nearest, 0).xyz);
 #if TEXTURED_MATERIAL
-                entry = texelFetch(lightEntryWeights, nearest, 0).rgb;
+                entryLog = texelFetch(lightLogGathered, nearest, 0).rgb;
 #endif
             }
             vec3 xi = xiTexel.xyz;
@@ -141,17 +144,21 @@ void estimateRadiositySplit(DirpoleParams profile, vec3 xo, vec3 no, inout uint 
             // over the disk filter the shadow's edge).
             irradiance *= volumeTransmittance(l, xi, wi) * meshShadow(l, xi, dot(ni, wi) < 0.0 ? -ni : ni, wi, 0);
             float entryT = dirpoleFresnelT(profile.eta, dot(wi, ni));
-            vec3 value = dirpoleSd(profile, xi, ni, wi, xo, no) * (entryT / pdf) * irradiance * entry;
+            vec3 value = dirpoleSd(profile, xi, ni, wi, xo, no) * (entryT / pdf) * irradiance;
             if (r < nearRadius) inner += value;
             else outer += value;
+#if TEXTURED_MATERIAL
+            logWeighted += value * entryLog;
+#endif
         }
     }
     inner /= float(samplesPerLight);
     outer /= float(samplesPerLight);
+    logWeighted /= float(samplesPerLight);
 }
 
-vec3 estimateRadiosity(DirpoleParams profile, vec3 xo, vec3 no, inout uint state) {
+vec3 estimateRadiosity(DirpoleParams profile, vec3 xo, vec3 no, inout uint state, out vec3 logWeighted) {
     vec3 inner, outer;
-    estimateRadiositySplit(profile, xo, no, state, inner, outer);
+    estimateRadiositySplit(profile, xo, no, state, inner, outer, logWeighted);
     return inner + outer;
 }

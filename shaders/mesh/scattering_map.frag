@@ -1,7 +1,8 @@
 // Scattering maps (Dal Corso et al. 2017, pass 2): each texel adds one frame's estimate of the
 // radiosity at its surface point (shaders/mesh/radiosity_estimate.glsl).
 // With TEXTURED_MATERIAL each texel gathers with its own point's profile and stores the radiosity
-// divided by what that profile gathers under even light (shaders/mesh/textured_material.glsl).
+// times the textured rule's entries' part (shaders/mesh/textured_material.glsl), each frame's mean
+// taken over that frame's samples.
 #ifndef TEXTURED_MATERIAL
 #define TEXTURED_MATERIAL 0
 #endif
@@ -21,9 +22,13 @@ void main() {
     pcg(state);
 #if TEXTURED_MATERIAL
     SurfaceMaterial material = materialAt(dipole, texcoord, textureQueryLod(materialReflectance, texcoord).y);
-    vec3 radiosity = estimateRadiosity(material.params, worldPosition, normalize(worldNormal), state);
-    outRadiosity = vec4(radiosity / max(material.gathered, vec3(1e-9)), 1.0);
+    vec3 logWeighted;
+    vec3 radiosity = estimateRadiosity(material.params, worldPosition, normalize(worldNormal), state, logWeighted);
+    vec3 gathered = max(material.gathered, vec3(MIN_GATHERED));
+    vec3 meanLog = mix(log(gathered), logWeighted / max(radiosity, vec3(1e-30)), greaterThan(radiosity, vec3(0.0)));
+    outRadiosity = vec4(radiosity / gathered * entriesFactor(meanLog), 1.0);
 #else
-    outRadiosity = vec4(estimateRadiosity(dipole, worldPosition, normalize(worldNormal), state), 1.0);
+    vec3 logWeighted;
+    outRadiosity = vec4(estimateRadiosity(dipole, worldPosition, normalize(worldNormal), state, logWeighted), 1.0);
 #endif
 }

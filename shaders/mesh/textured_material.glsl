@@ -4,21 +4,23 @@
 // alpha'(R) alone: the calibration factors, alpha' itself and `gathered`, the radiosity a flat
 // surface of that material sends out per unit irradiance head-on (before exit Fresnel). Lengths
 // come from the mean free path: sigma_t' = 1 / (mfp * scale).
-// The passes that cache the radiosity (maps, vertices) store it divided by the point's
-// `gathered`: the irradiance weighted by the entry points' R^m, blurred by the point's normalised
-// profile, which varies smoothly whatever texel the point itself lies on. The combine multiplies
-// by the `gathered` of the texel under the pixel and divides by its R^m, so the texture keeps its
-// own resolution (docs/textured-materials.md).
+// The rule for points of different texels (mesh/reflectance_table.h, docs/textured-materials.md):
+// x_o's profile normalised to unit `gathered`, times the geometric mean of the entry points'
+// `gathered` weighted by the light each brings (share 1 - SURROUNDING_SHARE) and of the texture's
+// around x_o (SURROUNDING_SHARE). The light buffer holds ln gathered per entry texel; the passes
+// that cache the radiosity (maps, vertices) apply the entries' part, the combine the
+// surroundings' part per pixel from materialLogGathered's mip chain.
 #include "common/dirpole.glsl"
 
-// The rule for a pair of points (docs/textured-materials.md): the light from x_i reaching x_o is
-// x_o's profile times (R(x_i) / R(x_o))^ENTRY_REFLECTANCE_EXPONENT; 0 is the exit point's
-// material alone, 1 weights each entry point by its own reflectance.
-#ifndef ENTRY_REFLECTANCE_EXPONENT
-#define ENTRY_REFLECTANCE_EXPONENT 0.5  // detail::kEntryReflectanceExponent
+#ifndef MIN_GATHERED
+#define MIN_GATHERED 1e-6  // detail::kMinGathered
 #endif
-#ifndef MIN_ENTRY_REFLECTANCE
-#define MIN_ENTRY_REFLECTANCE 1e-3  // detail::kMinEntryReflectance
+#ifndef SURROUNDING_SHARE
+#define SURROUNDING_SHARE 0.5  // detail::kSurroundingShare
+#endif
+#ifndef SURROUNDING_NARROW
+#define SURROUNDING_NARROW 0.25  // detail::kSurroundingWidths
+#define SURROUNDING_WIDE 2.0
 #endif
 #ifndef TEXTURED_TABLE_ROWS
 #define TEXTURED_TABLE_ROWS 256  // kTexturedTableRows
@@ -28,6 +30,8 @@ uniform sampler2D materialReflectance;  // the base colour, decoded to linear re
 uniform sampler2D materialPathScale;    // red: factor on the mean free path
 uniform sampler2D materialTable;        // 4 texels per row, TEXTURED_TABLE_ROWS rows
 uniform vec3 materialSigmaT;            // 1 / mean free path, scene units^-1
+uniform sampler2D materialLogGathered;  // ln gathered per texel, mipmapped (detail::LogGatheredMips)
+uniform float materialTexelsPerUnit;    // texels per scene unit on the mesh (detail::meanTexelDensity)
 // What the untextured reference material (the near field's and the environment's) gathers under
 // even light: a point's own `gathered` over it scales those terms to the point.
 uniform vec3 referenceGathered;
@@ -35,14 +39,7 @@ uniform vec3 referenceGathered;
 struct SurfaceMaterial {
     DirpoleParams params;
     vec3 gathered;
-    vec3 entryWeight;  // R^ENTRY_REFLECTANCE_EXPONENT: the light buffer stores it per entry point
 };
-
-vec3 entryWeightOf(vec3 reflectance) {
-    return pow(max(reflectance, vec3(MIN_ENTRY_REFLECTANCE)), vec3(ENTRY_REFLECTANCE_EXPONENT));
-}
-
-vec3 entryWeight(vec2 uv, float lod) { return entryWeightOf(textureLod(materialReflectance, uv, lod).rgb); }
 
 vec4 materialRow(float reflectance, int column) {
     float y = (sqrt(clamp(reflectance, 0.0, 1.0)) * float(TEXTURED_TABLE_ROWS - 1) + 0.5) / float(TEXTURED_TABLE_ROWS);
@@ -51,14 +48,19 @@ vec4 materialRow(float reflectance, int column) {
 
 // What the combine pass needs per pixel, without the rest of the profile: the single-scattering
 // albedo and what the point gathers under even light (one table texel per channel).
-void materialSurface(vec2 uv, float lod, out vec3 albedo, out vec3 gathered, out vec3 entryWeight) {
+void materialSurface(vec2 uv, float lod, out vec3 albedo, out vec3 gathered) {
     vec3 reflectance = textureLod(materialReflectance, uv, lod).rgb;
-    entryWeight = entryWeightOf(reflectance);
     for (int c = 0; c < 3; ++c) {
         vec4 t3 = materialRow(reflectance[c], 3);
         albedo[c] = t3.y;
         gathered[c] = t3.z;
     }
+}
+
+// The effective transport coefficient of a point of that albedo (g = 0: reduced and unreduced agree).
+vec3 materialSigmaTr(vec2 uv, float lod, vec3 albedo) {
+    float scale = max(textureLod(materialPathScale, uv, lod).r, 1.0 / 255.0);
+    return materialSigmaT / scale * sqrt(3.0 * max(vec3(1.0) - albedo, vec3(0.0)));
 }
 
 // `base` supplies what the texture does not change (eta, the Fresnel constants, the disk's
@@ -67,7 +69,6 @@ SurfaceMaterial materialAt(DirpoleParams base, vec2 uv, float lod) {
     SurfaceMaterial m;
     m.params = base;
     vec3 reflectance = textureLod(materialReflectance, uv, lod).rgb;
-    m.entryWeight = entryWeightOf(reflectance);
     float scale = max(textureLod(materialPathScale, uv, lod).r, 1.0 / 255.0);
     for (int c = 0; c < 3; ++c) {
         vec4 t0 = materialRow(reflectance[c], 0), t1 = materialRow(reflectance[c], 1);
@@ -96,4 +97,31 @@ SurfaceMaterial materialAt(DirpoleParams base, vec2 uv, float lod) {
         m.gathered[c] = t3.z;
     }
     return m;
+}
+
+// ln gathered at a point: what the light buffer stores per entry texel.
+vec3 logGathered(vec2 uv, float lod) {
+    vec3 albedo, gathered;
+    materialSurface(uv, lod, albedo, gathered);
+    return log(max(gathered, vec3(MIN_GATHERED)));
+}
+
+// The entries' part of the rule, from their light-weighted mean ln gathered.
+vec3 entriesFactor(vec3 meanLog) { return exp((1.0 - SURROUNDING_SHARE) * meanLog); }
+
+float surroundingLevel(float width) {
+    float texels = width * materialTexelsPerUnit;
+    return texels > 1.0 ? log2(texels) : 0.0;
+}
+
+// The surroundings' part of the rule at a point of transport coefficient sigmaTr (per scene
+// unit): per channel the mean of the chain at two levels (detail::kSurroundingWidths).
+vec3 surroundingFactor(vec2 uv, vec3 sigmaTr) {
+    vec3 meanLog;
+    for (int c = 0; c < 3; ++c) {
+        float length = 1.0 / max(sigmaTr[c], 1e-12);
+        meanLog[c] = 0.5 * (textureLod(materialLogGathered, uv, surroundingLevel(SURROUNDING_NARROW * length))[c] +
+                            textureLod(materialLogGathered, uv, surroundingLevel(SURROUNDING_WIDE * length))[c]);
+    }
+    return exp(SURROUNDING_SHARE * meanLog);
 }

@@ -12,8 +12,10 @@
 // that, interpolation spreads it over the whole triangle, so the weight falls with the
 // triangles' width in diffusion lengths (src/mesh/near_field.h).
 // With TEXTURED_MATERIAL each vertex gathers with its own texel's profile and stores the
-// radiosity divided by what that profile gathers under even light; the near field, tabulated for
-// the untextured reference material, is scaled to the vertex's (textured_material.glsl).
+// radiosity times the textured rule's entries' part (textured_material.glsl), their mean over all
+// its frames; the near field, tabulated for the untextured reference material, is scaled to the
+// vertex's gathered. A second output holds the entries' part alone, by which the combine scales
+// the near field and the environment per pixel.
 layout(local_size_x = 64) in;
 
 #define VERTEX_SEQUENCE 1
@@ -28,8 +30,12 @@ layout(local_size_x = 64) in;
 
 // Model space, 8 floats per vertex (src/mesh/gpu_mesh.cpp): position, normal, texture coordinate.
 layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };
-layout(std430, binding = 1) buffer Sums { vec4 sums[]; };  // per vertex: inner, outer; rgb summed over frames, a: frames
+// Per vertex: inner, outer (rgb summed over frames, a: frames) and, textured, logWeighted.
+layout(std430, binding = 1) buffer Sums { vec4 sums[]; };
 layout(std430, binding = 2) writeonly buffer Radiosity { vec4 radiosityOut[]; };
+#if TEXTURED_MATERIAL
+layout(std430, binding = 3) writeonly buffer Effective { vec4 effectiveOut[]; };
+#endif
 uniform int vertexCount;
 uniform mat4 model;
 uniform mat3 normalMatrix;
@@ -45,21 +51,30 @@ void main() {
     uint state = uint(i) * 9277u + 0x9e3779b9u;  // the same per frame: the sequence continues
     pcg(state);
     vec3 x = (model * vec4(p, 1.0)).xyz;
-    vec3 inner, outer;
+    vec3 inner, outer, logWeighted;
 #if TEXTURED_MATERIAL
     SurfaceMaterial material = materialAt(dipole, vec2(vertexData[8 * i + 6], vertexData[8 * i + 7]), 0.0);
-    estimateRadiositySplit(material.params, x, n, state, inner, outer);
-    // The near field is inside `inner`, which carries the entry weights: scaled by the vertex's.
-    vec3 nearFieldScale = material.gathered * material.entryWeight / max(referenceGathered, vec3(1e-6));
-    vec3 normaliser = max(material.gathered, vec3(1e-9));
+    estimateRadiositySplit(material.params, x, n, state, inner, outer, logWeighted);
+    vec3 gathered = max(material.gathered, vec3(MIN_GATHERED));
+    vec3 nearFieldScale = gathered / max(referenceGathered, vec3(1e-6));
 #else
-    estimateRadiositySplit(dipole, x, n, state, inner, outer);
-    vec3 nearFieldScale = vec3(1.0), normaliser = vec3(1.0);
+    estimateRadiositySplit(dipole, x, n, state, inner, outer, logWeighted);
+    vec3 nearFieldScale = vec3(1.0);
 #endif
-    vec4 innerSum = (frameSeed == 0u ? vec4(0.0) : sums[2 * i]) + vec4(inner, 1.0);
-    vec4 outerSum = (frameSeed == 0u ? vec4(0.0) : sums[2 * i + 1]) + vec4(outer, 1.0);
-    sums[2 * i] = innerSum;
-    sums[2 * i + 1] = outerSum;
+    vec4 innerSum = (frameSeed == 0u ? vec4(0.0) : sums[3 * i]) + vec4(inner, 1.0);
+    vec4 outerSum = (frameSeed == 0u ? vec4(0.0) : sums[3 * i + 1]) + vec4(outer, 1.0);
+    sums[3 * i] = innerSum;
+    sums[3 * i + 1] = outerSum;
     vec3 difference = innerSum.rgb / innerSum.a - nearFieldScale * nearFieldRadiosity(x, n, dipole.eta);
-    radiosityOut[i] = vec4((outerSum.rgb / outerSum.a + nearFieldCorrection * difference) / normaliser, 1.0);
+    vec3 radiosity = outerSum.rgb / outerSum.a + nearFieldCorrection * difference;
+#if TEXTURED_MATERIAL
+    vec3 logSum = (frameSeed == 0u ? vec3(0.0) : sums[3 * i + 2].rgb) + logWeighted;
+    sums[3 * i + 2] = vec4(logSum, 0.0);
+    vec3 total = innerSum.rgb + outerSum.rgb;
+    vec3 meanLog = mix(log(gathered), logSum / max(total, vec3(1e-30)), greaterThan(total, vec3(0.0)));
+    radiosityOut[i] = vec4(radiosity / gathered * entriesFactor(meanLog), 1.0);
+    effectiveOut[i] = vec4(entriesFactor(meanLog), 1.0);
+#else
+    radiosityOut[i] = vec4(radiosity, 1.0);
+#endif
 }

@@ -18,6 +18,7 @@ inline constexpr int kVolumeShadows = 16;  // 16..31: volumeShadowLight[kMaxVolu
 inline constexpr int kMaterialReflectance = 8;
 inline constexpr int kMaterialPathScale = 9;
 inline constexpr int kMaterialTable = 10;
+inline constexpr int kMaterialLogGathered = 11;
 
 // Volume ray cast (shaders/volume/ray_cast.frag) and the eye pass's lit-colour compute.
 inline constexpr int kLightVolumes = 4;   // 4..11: lightVolumes[MAX_LIGHTS]

@@ -11,24 +11,27 @@
 
 namespace sss::detail {
 
-const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, bool textured) const {
-    std::optional<gl::Program>& slot = m_programs[(textured ? 4 : 0) + (perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
-    if (!slot)
+const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, bool textured, bool vertexEffective) const {
+    std::optional<gl::Program>& slot =
+        m_programs[(vertexEffective ? 8 : 0) + (textured ? 4 : 0) + (perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
+    if (!slot) {
+        ShaderDefines defines = texturedMaterialDefines(textured);
+        defines.insert(defines.end(), {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)},
+                                       {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
+                                       {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)},
+                                       {"PER_VERTEX", perVertex ? "1" : "0"},
+                                       {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"},
+                                       {"VERTEX_EFFECTIVE", vertexEffective ? "1" : "0"}});
         slot = gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
-                                 {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)},
-                                  {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
-                                  {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)},
-                                  {"PER_VERTEX", perVertex ? "1" : "0"},
-                                  {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"},
-                                  {"TEXTURED_MATERIAL", textured ? "1" : "0"},
-                                  {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
-                              {"ENTRY_REFLECTANCE_EXPONENT", std::to_string(kEntryReflectanceExponent)},
-                              {"MIN_ENTRY_REFLECTANCE", std::to_string(kMinEntryReflectance)}});
+                                 defines);
+    }
     return *slot;
 }
 
 void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
-    const gl::Program& p = program(s.perVertex, castsSurfaceShadows(in.shadows, in.lights.size()), s.material != nullptr);
+    const bool vertexEffective = s.material && in.vertexEffective;
+    const gl::Program& p =
+        program(s.perVertex, castsSurfaceShadows(in.shadows, in.lights.size()), s.material != nullptr, vertexEffective);
     p.set("model", in.model);
     p.set("viewProjection", in.camera.projection(in.aspect) * in.camera.view());
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
@@ -54,9 +57,10 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     setLightUniforms(p, in.lights);
     setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.id());
-
+    if (vertexEffective) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.vertexEffective->id());
     in.mesh.drawOpaque(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
 }
 
 }  // namespace sss::detail

@@ -30,7 +30,7 @@ struct CombineSettings {
     DipoleConstants dipole;       ///< the profile; its single-scattering term is added per pixel
     NearFieldTable nearField;     ///< added per pixel: what the vertex estimate left out (radius 0: none)
     bool perVertex = false;       ///< no map lookups, the vertices' radiosity (MeshCombine::PerVertex, VertexEstimate)
-    /// A textured material: the cached radiosity is normalised, each pixel takes its own texel.
+    /// A textured material: the cached radiosity takes each pixel's own texel (textured_material.glsl).
     const TexturedMaterialGpu* material = nullptr;
     double millimetresPerUnit = 1000.0;  ///< scales the textured material's mean free path
 };
@@ -46,6 +46,8 @@ struct CombineInputs {
     float aspect = 1.0f;
     const LightBufferPass& lightBuffer;       ///< self-shadowing of the single-scattering term
     const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes (specular and single scattering)
+    /// A textured vertex estimate's factor per vertex (VertexEstimatePass::effective), or none.
+    const gl::Buffer* vertexEffective = nullptr;
 };
 
 class CombinePass {
@@ -55,9 +57,9 @@ public:
 private:
     /// The program compiled for this frame's needs, linked the first time they occur: without
     /// map lookups for the per-vertex combines, without surface shadows where nothing casts them.
-    const gl::Program& program(bool perVertex, bool surfaceShadows, bool textured) const;
+    const gl::Program& program(bool perVertex, bool surfaceShadows, bool textured, bool vertexEffective) const;
 
-    mutable std::array<std::optional<gl::Program>, 8> m_programs;
+    mutable std::array<std::optional<gl::Program>, 16> m_programs;
 };
 
 }  // namespace sss::detail

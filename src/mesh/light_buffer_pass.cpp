@@ -55,10 +55,7 @@ namespace {
 
 gl::Program linkLightBufferProgram(bool textured) {
     return gl::Program::link({{GL_VERTEX_SHADER, "mesh/light_buffer.vert"}, {GL_FRAGMENT_SHADER, "mesh/light_buffer.frag"}},
-                             {{"TEXTURED_MATERIAL", textured ? "1" : "0"},
-                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
-                              {"ENTRY_REFLECTANCE_EXPONENT", std::to_string(kEntryReflectanceExponent)},
-                              {"MIN_ENTRY_REFLECTANCE", std::to_string(kMinEntryReflectance)}});
+                             texturedMaterialDefines(textured));
 }
 
 }  // namespace
@@ -70,14 +67,14 @@ void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std
     const int layers = std::max<int>(1, static_cast<int>(lights.size()));
     const bool textured = material != nullptr;
     if (!m_positions || m_positions.size() != glm::ivec3(resolution, resolution, layers) ||
-        static_cast<bool>(m_entryWeights) != textured) {
+        static_cast<bool>(m_logGathered) != textured) {
         m_positions = gl::Texture::create2DArray(GL_RGBA32F, resolution, resolution, layers, "light buffer positions");
         // Bilinear, so samples land on the surface between texel centres rather than snapping to
         // them; where the four texels are not all covered (w < 1) the sampler skips the sample.
         m_normals = gl::Texture::create2DArray(GL_RGBA16F, resolution, resolution, layers, "light buffer normals");
         m_depth = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, resolution, resolution, layers, "light buffer depth");
-        m_entryWeights = textured ? gl::Texture::create2DArray(GL_RGBA16F, resolution, resolution, layers,
-                                                               "light buffer entry weights")
+        m_logGathered = textured ? gl::Texture::create2DArray(GL_RGBA16F, resolution, resolution, layers,
+                                                               "light buffer ln gathered")
                                   : gl::Texture();
         m_layers.clear();
         for (int layer = 0; layer < layers; ++layer) {
@@ -86,7 +83,7 @@ void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std
             framebuffer.attachLayer(GL_COLOR_ATTACHMENT1, m_normals, layer);
             framebuffer.attachLayer(GL_DEPTH_ATTACHMENT, m_depth, layer);
             if (textured) {
-                framebuffer.attachLayer(GL_COLOR_ATTACHMENT2, m_entryWeights, layer);
+                framebuffer.attachLayer(GL_COLOR_ATTACHMENT2, m_logGathered, layer);
                 framebuffer.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
             } else {
                 framebuffer.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
@@ -97,7 +94,7 @@ void LightBufferPass::run(const GpuMesh& mesh, const glm::mat4& model, const std
     const auto [centre, radius] = worldSphere(mesh.bounds, model);
     if (textured && !m_texturedProgram) m_texturedProgram = linkLightBufferProgram(true);
     const gl::Program& program = textured ? *m_texturedProgram : m_program;
-    if (textured) material->bind(program, 1.0);  // the entry weights need the reflectance only
+    if (textured) material->bind(program, 1.0);  // ln gathered needs the reflectance and the table only
     program.set("model", model);
     program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
     const float zero[4] = {0, 0, 0, 0};

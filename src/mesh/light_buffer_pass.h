@@ -23,15 +23,15 @@ glm::mat4 lightViewProjection(const Light& light, glm::vec3 centre, float radius
 class LightBufferPass {
 public:
     LightBufferPass();
-    /// `material`: a textured material, whose entry weights then fill entryWeights().
+    /// `material`: a textured material, whose ln gathered then fills logGathered().
     void run(const GpuMesh& mesh, const glm::mat4& model, const std::vector<Light>& lights, int resolution,
              const TexturedMaterialGpu* material = nullptr);
 
     const gl::Texture& positions() const { return m_positions; }  ///< xyz world, w = 1 where covered
     const gl::Texture& normals() const { return m_normals; }
-    /// A textured material's entry weight per texel (shaders/mesh/textured_material.glsl); empty
+    /// A textured material's ln gathered per texel (shaders/mesh/textured_material.glsl); empty
     /// after a run without one.
-    const gl::Texture& entryWeights() const { return m_entryWeights; }
+    const gl::Texture& logGathered() const { return m_logGathered; }
     const std::vector<glm::mat4>& viewProjections() const { return m_viewProjections; }
     /// A texel's size at `mesh` placed by `model`, world units (the views frame its bounding sphere).
     float texelWorld(const GpuMesh& mesh, const glm::mat4& model) const;
@@ -39,7 +39,7 @@ public:
 private:
     gl::Program m_program;
     std::optional<gl::Program> m_texturedProgram;  // TEXTURED_MATERIAL 1, linked on first use
-    gl::Texture m_positions, m_normals, m_depth, m_entryWeights;
+    gl::Texture m_positions, m_normals, m_depth, m_logGathered;
     std::vector<gl::Framebuffer> m_layers;  // one per light: its layer of the three textures
     std::vector<glm::mat4> m_viewProjections;
 };

@@ -18,6 +18,9 @@
 #include "sss/option_table.h"
 #include "sss/timing.h"
 
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -91,6 +94,7 @@ struct MeshScatteringRenderer::Impl {
     std::optional<detail::TexturedMaterialGpu> texturedGpu;  // its textures, once a mesh is set
     std::shared_ptr<const Image8> meshBaseColour;
     bool meshHasTexcoords = false;
+    double texcoordDensity = 0.0;  // meanTexelDensity of a 1 x 1 texture, per model unit
     std::uint64_t materialGeneration = 1;
     std::vector<Light> lights{DirectionalLight{}};
     glm::mat4 model{1.0f};
@@ -143,6 +147,13 @@ struct MeshScatteringRenderer::Impl {
                                                         "\" has no reflectance texture and the mesh no base colour");
         texturedGpu.emplace(*texturedMaterial, *image, options.profile);
         ++materialGeneration;
+    }
+
+    // The textured material's texture density in world units under the current model transform.
+    void updateTexcoordDensity() {
+        if (!texturedGpu) return;
+        const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(glm::dmat4(model)))));
+        texturedGpu->setTexcoordDensity(scale > 0.0 ? texcoordDensity / scale : 0.0);
     }
 
     // The profile's constants and the disk sampling for the current inputs.
@@ -276,7 +287,7 @@ struct MeshScatteringRenderer::Impl {
                                                        sampling,
                                                        shadows ? &*shadows : nullptr,
                                                        texturedGpu ? &*texturedGpu : nullptr,
-                                                       &lightBuffer->entryWeights(),
+                                                       &lightBuffer->logGathered(),
                                                        options.millimetresPerUnit};
         if (inputs.vertexEstimate)
             timed("vertex-estimate", [&] {
@@ -309,6 +320,7 @@ void MeshScatteringRenderer::setMesh(const Mesh& mesh, const glm::mat4& model) {
     m_impl->model = model;
     m_impl->meshBaseColour = mesh.baseColour();
     m_impl->meshHasTexcoords = !mesh.texcoords().empty();
+    m_impl->texcoordDensity = detail::meanTexelDensity(mesh, glm::mat4(1.0f), 1, 1);
     m_impl->texturedGpu.reset();
     m_impl->updateTexturedMaterial();
 }
@@ -367,6 +379,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         return;
     }
     r.updateTexturedMaterial();
+    r.updateTexcoordDensity();
     r.updateScattering();
     if (!r.combine) r.combine.emplace();
     const MeshCombine combine = r.activeCombine();
@@ -401,7 +414,8 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         target.bindForDrawing();
         r.combine->run({*r.mesh, r.model, r.cameras, vertexEstimate ? nullptr : &*r.scatteringMaps,
                         vertexEstimate ? r.vertexEstimate->radiosity() : r.vertexRadiosity->radiosity(), r.lights,
-                        camera, target.aspect(), *r.lightBuffer, r.shadows ? &*r.shadows : nullptr},
+                        camera, target.aspect(), *r.lightBuffer, r.shadows ? &*r.shadows : nullptr,
+                        vertexEstimate ? r.vertexEstimate->effective() : nullptr},
                        settings);
     });
 }

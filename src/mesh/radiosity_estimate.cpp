@@ -23,8 +23,8 @@ void setRadiosityEstimateUniforms(const gl::Program& p, const RadiosityEstimateI
     p.set("frameSeed", frameSeed);
     if (in.material) {
         in.material->bind(p, in.millimetresPerUnit);
-        p.set("lightEntryWeights", 2);
-        in.lightEntryWeights->bind(2);
+        p.set("lightLogGathered", 2);
+        in.lightLogGathered->bind(2);
     }
     in.lightPositions.bind(0);
     in.lightNormals.bind(1);

@@ -35,7 +35,7 @@ struct RadiosityEstimateInputs {
     /// A textured material: each point gathers with its own profile (programs compiled with
     /// TEXTURED_MATERIAL 1); `dipole` is then its widest material, which chose the sampling.
     const TexturedMaterialGpu* material = nullptr;
-    const gl::Texture* lightEntryWeights = nullptr;  ///< LightBufferPass::entryWeights, with `material`
+    const gl::Texture* lightLogGathered = nullptr;  ///< LightBufferPass::logGathered, with `material`
     double millimetresPerUnit = 1000.0;  ///< scales the textured material's mean free path
 };
 

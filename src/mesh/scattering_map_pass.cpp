@@ -19,15 +19,12 @@ float radicalInverse(int index, int base) {
 }
 
 gl::Program linkMapProgram(const char* fragment, int cameras, bool textured = false) {
+    ShaderDefines defines = texturedMaterialDefines(textured);
+    defines.insert(defines.end(), {{"CAMERA_COUNT", std::to_string(cameras)}, {"MAX_LIGHTS", std::to_string(kMaxLights)}});
     return gl::Program::link({{GL_VERTEX_SHADER, "mesh/scattering_map.vert"},
                               {GL_GEOMETRY_SHADER, "mesh/scattering_map.geom"},
                               {GL_FRAGMENT_SHADER, fragment}},
-                             {{"CAMERA_COUNT", std::to_string(cameras)},
-                              {"MAX_LIGHTS", std::to_string(kMaxLights)},
-                              {"TEXTURED_MATERIAL", textured ? "1" : "0"},
-                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
-                              {"ENTRY_REFLECTANCE_EXPONENT", std::to_string(kEntryReflectanceExponent)},
-                              {"MIN_ENTRY_REFLECTANCE", std::to_string(kMinEntryReflectance)}});
+                             defines);
 }
 
 }  // namespace

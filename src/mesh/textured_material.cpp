@@ -8,6 +8,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace sss::detail {
@@ -78,6 +79,18 @@ gl::Texture uploadReflectance(const Image8& image, const char* label) {
     return t;
 }
 
+// LogGatheredMips's level 0; the GPU builds the same chain.
+gl::Texture uploadLogGathered(const Image8& reflectance, const ReflectanceTable& table) {
+    const LogGatheredMips mips(reflectance, table);
+    const int levels = std::bit_width(static_cast<unsigned>(std::max(mips.width(), mips.height())));
+    gl::Texture t = gl::Texture::create2D(GL_RGBA16F, mips.width(), mips.height(), "material ln gathered", levels);
+    t.upload(GL_RGBA, GL_FLOAT, mips.baseLevelRgba().data());
+    glGenerateTextureMipmap(t.id());
+    t.setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+    t.setWrap(GL_REPEAT);
+    return t;
+}
+
 gl::Texture uploadPathScale(const Image8* image) {
     if (!image) {
         gl::Texture t = gl::Texture::create2D(GL_R8, 1, 1, "material path scale (none)");
@@ -100,6 +113,15 @@ gl::Texture uploadPathScale(const Image8* image) {
 
 }  // namespace
 
+ShaderDefines texturedMaterialDefines(bool textured) {
+    return {{"TEXTURED_MATERIAL", textured ? "1" : "0"},
+            {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
+            {"MIN_GATHERED", std::to_string(kMinGathered)},
+            {"SURROUNDING_SHARE", std::to_string(kSurroundingShare)},
+            {"SURROUNDING_NARROW", std::to_string(kSurroundingWidths[0])},
+            {"SURROUNDING_WIDE", std::to_string(kSurroundingWidths[1])}};
+}
+
 TexturedMaterialGpu::TexturedMaterialGpu(const TexturedScattering& material, const Image8& reflectance,
                                          ScatteringProfile profile)
     : m_material(material), m_profile(profile) {
@@ -111,6 +133,9 @@ TexturedMaterialGpu::TexturedMaterialGpu(const TexturedScattering& material, con
     m_widest.name = material.name;
     m_reflectance = uploadReflectance(reflectance, "material reflectance");
     m_pathScale = uploadPathScale(material.meanFreePathScale.get());
+    m_logGathered = uploadLogGathered(reflectance, table);
+    m_width = reflectance.width();
+    m_height = reflectance.height();
     const std::vector<float> rows = tabulate(material.eta, profile);
     m_table = gl::Texture::create2D(GL_RGBA32F, kTableColumns, kTexturedTableRows, "material table");
     m_table.upload(GL_RGBA, GL_FLOAT, rows.data());
@@ -123,9 +148,12 @@ void TexturedMaterialGpu::bind(const gl::Program& p, double millimetresPerUnit) 
     p.set("materialTable", units::kMaterialTable);
     p.set("materialSigmaT", glm::vec3(millimetresPerUnit / m_material.meanFreePath));
     p.set("referenceGathered", glm::vec3(m_referenceGathered));
+    p.set("materialLogGathered", units::kMaterialLogGathered);
+    p.set("materialTexelsPerUnit", static_cast<float>(m_texelsPerUnit));
     m_reflectance.bind(units::kMaterialReflectance);
     m_pathScale.bind(units::kMaterialPathScale);
     m_table.bind(units::kMaterialTable);
+    m_logGathered.bind(units::kMaterialLogGathered);
 }
 
 }  // namespace sss::detail

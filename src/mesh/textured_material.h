@@ -5,6 +5,7 @@
 // (scattering maps, vertex estimate, combine) compile with TEXTURED_MATERIAL 1 and call
 // setTexturedMaterialUniforms.
 #include "gl/program.h"
+#include "gl/shader_source.h"
 #include "gl/texture.h"
 #include "mesh/reflectance_table.h"
 #include "sss/bssrdf.h"
@@ -13,11 +14,17 @@
 
 #include <glm/vec3.hpp>
 
+#include <cmath>
+
 namespace sss::detail {
 
 /// Rows of the table: reflectance (i / (kTexturedTableRows - 1))^2, i = 0..kTexturedTableRows - 1
 /// (squared: dense where dark texels' albedo changes fastest).
 inline constexpr int kTexturedTableRows = 256;
+
+/// The defines of shaders/mesh/textured_material.glsl (TEXTURED_MATERIAL 0 or 1 and its constants),
+/// for every pass that includes it.
+ShaderDefines texturedMaterialDefines(bool textured);
 
 /// What the CPU needs to know of a texture to choose the sampling and the Automatic combine.
 struct TexturedMaterialSummary {
@@ -42,6 +49,9 @@ public:
     /// What the widest material gathers under even light per channel (textured_material.glsl's
     /// referenceGathered: the near field and the environment are that material's).
     const glm::dvec3& referenceGathered() const { return m_referenceGathered; }
+    /// How densely the mesh it is drawn on holds texture coordinates: meanTexelDensity of a 1 x 1
+    /// texture, per world unit. The textured rule finds a point's surroundings in the texture by it.
+    void setTexcoordDensity(double perUnit) { m_texelsPerUnit = perUnit * std::sqrt(double(m_width) * m_height); }
     /// Binds the textures and sets textured_material.glsl's uniforms on `program`.
     void bind(const gl::Program& program, double millimetresPerUnit) const;
 
@@ -51,7 +61,9 @@ private:
     TexturedMaterialSummary m_summary;
     glm::dvec3 m_referenceGathered{1.0};
     ScatteringMaterial m_widest;
-    gl::Texture m_reflectance, m_pathScale, m_table;
+    double m_texelsPerUnit = 0.0;
+    int m_width = 1, m_height = 1;  // of the reflectance texture
+    gl::Texture m_reflectance, m_pathScale, m_table, m_logGathered;
 };
 
 }  // namespace sss::detail

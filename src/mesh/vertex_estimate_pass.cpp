@@ -13,14 +13,11 @@ namespace sss::detail {
 namespace {
 
 gl::Program linkEstimateProgram(bool textured) {
-    return gl::Program::link({{GL_COMPUTE_SHADER, "mesh/vertex_estimate.comp"}},
-                             {{"MAX_LIGHTS", std::to_string(kMaxLights)},
-                              {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
-                              {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)},
-                              {"TEXTURED_MATERIAL", textured ? "1" : "0"},
-                              {"TEXTURED_TABLE_ROWS", std::to_string(kTexturedTableRows)},
-                              {"ENTRY_REFLECTANCE_EXPONENT", std::to_string(kEntryReflectanceExponent)},
-                              {"MIN_ENTRY_REFLECTANCE", std::to_string(kMinEntryReflectance)}});
+    ShaderDefines defines = texturedMaterialDefines(textured);
+    defines.insert(defines.end(), {{"MAX_LIGHTS", std::to_string(kMaxLights)},
+                                   {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
+                                   {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)}});
+    return gl::Program::link({{GL_COMPUTE_SHADER, "mesh/vertex_estimate.comp"}}, defines);
 }
 
 }  // namespace
@@ -28,13 +25,16 @@ gl::Program linkEstimateProgram(bool textured) {
 VertexEstimatePass::VertexEstimatePass(std::size_t vertexCount)
     : m_program(linkEstimateProgram(false)), m_vertexCount(vertexCount) {
     const std::size_t bytes = std::max<std::size_t>(1, m_vertexCount) * sizeof(glm::vec4);
-    m_sums = gl::Buffer::create(2 * bytes, nullptr, 0, "vertex estimate (sums)");  // inner, outer
+    m_sums = gl::Buffer::create(3 * bytes, nullptr, 0, "vertex estimate (sums)");  // inner, outer, textured log
     m_radiosity = gl::Buffer::create(bytes, nullptr, 0, "vertex estimate (radiosity)");
 }
 
 void VertexEstimatePass::accumulate(const GpuMesh& mesh, const glm::mat4& model, const RadiosityEstimateInputs& in,
                                     const NearFieldTable& nearField, float lightTexelWorld) {
     if (in.material && !m_texturedProgram) m_texturedProgram = linkEstimateProgram(true);
+    if (in.material && !m_effective)
+        m_effective = gl::Buffer::create(std::max<std::size_t>(1, m_vertexCount) * sizeof(glm::vec4), nullptr, 0,
+                                         "vertex estimate (textured factor)");
     const gl::Program& program = in.material ? *m_texturedProgram : m_program;
     if (m_vertexCount > 0) {
         setRadiosityEstimateUniforms(program, in, static_cast<unsigned>(m_frames));
@@ -47,12 +47,13 @@ void VertexEstimatePass::accumulate(const GpuMesh& mesh, const glm::mat4& model,
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mesh.vertices.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_sums.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_radiosity.id());
+        if (in.material) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_effective.id());
         program.use();
         glDispatchCompute(static_cast<GLuint>((m_vertexCount + 63) / 64), 1, 1);
         // The combine pass reads the radiosity as vertex-shader storage.
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         glUseProgram(0);
-        for (GLuint b = 0; b < 3; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+        for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     }
     ++m_frames;
 }

@@ -30,11 +30,15 @@ public:
     int frames() const { return m_frames; }
     /// rgb: the mean radiosity per vertex so far (a = 1), for combine.vert's VertexRadiosity block.
     const gl::Buffer& radiosity() const { return m_radiosity; }
+    /// With a textured material: per vertex the textured rule's factor (shaders/mesh/
+    /// textured_material.glsl, cachedTexturedRadiosity of 1), for combine.vert's VertexEffective
+    /// block; null before a textured frame.
+    const gl::Buffer* effective() const { return m_effective ? &m_effective : nullptr; }
 
 private:
     gl::Program m_program;
     std::optional<gl::Program> m_texturedProgram;  // TEXTURED_MATERIAL 1, linked on first use
-    gl::Buffer m_sums, m_radiosity;
+    gl::Buffer m_sums, m_radiosity, m_effective;
     std::size_t m_vertexCount = 0;
     int m_frames = 0;
 };

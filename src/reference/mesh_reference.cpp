@@ -10,6 +10,7 @@
 #include "sss/materials.h"
 
 #include <glm/common.hpp>
+#include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -100,14 +101,16 @@ struct TriInfo {
 };
 
 // A textured material's coefficients per surface point (sss::TexturedScattering), by the rule the
-// GPU renderer follows (mesh/reflectance_table.h): x_o's own profile, each entry point weighted by
-// (R(x_i) / R(x_o))^kEntryReflectanceExponent.
+// GPU renderer follows (mesh/reflectance_table.h): x_o's own profile, times the geometric mean of
+// the entry points' `gathered` weighted by the light they bring, over x_o's own `gathered`.
 class TexturedSurface {
 public:
+    // `texelsPerUnit`: detail::meanTexelDensity of the mesh as placed.
     TexturedSurface(const TexturedScattering& material, const Image8& reflectance, ScatteringProfile profile,
-                    double millimetresPerUnit)
+                    double millimetresPerUnit, double texelsPerUnit)
         : m_material(material), m_profile(profile), m_millimetresPerUnit(millimetresPerUnit),
-          m_reflectance(reflectance, true) {
+          m_texelsPerUnit(texelsPerUnit), m_reflectance(reflectance, true),
+          m_table(detail::reflectanceTable(material.eta, profile)), m_mips(reflectance, m_table) {
         if (material.meanFreePathScale) m_pathScale.emplace(*material.meanFreePathScale, false);
     }
 
@@ -120,24 +123,41 @@ public:
         return deriveDipoleConstants(m, m_millimetresPerUnit, m_profile);
     }
 
-    static glm::dvec3 entryWeight(const glm::dvec3& reflectance) {
-        return glm::pow(glm::max(reflectance, glm::dvec3(detail::kMinEntryReflectance)),
-                        glm::dvec3(detail::kEntryReflectanceExponent));
+    /// ln of what the point's material gathers under even light (detail::ReflectanceTable).
+    glm::dvec3 logGathered(glm::dvec2 uv) const {
+        const glm::dvec3 r = reflectance(uv);
+        glm::dvec3 g;
+        for (int c = 0; c < 3; ++c) g[c] = detail::invertReflectance(m_table, r[c]).gathered;
+        return glm::log(glm::max(g, glm::dvec3(detail::kMinGathered)));
+    }
+
+    /// The texture's mean ln gathered around a point of transport coefficient `sigmaTr`.
+    glm::dvec3 surroundingLogGathered(glm::dvec2 uv, const glm::dvec3& sigmaTr) const {
+        glm::dvec3 mean(0.0);
+        for (int c = 0; c < 3; ++c)
+            for (double width : detail::kSurroundingWidths)
+                mean[c] += 0.5 * m_mips(uv, detail::surroundingLevel(width / std::max(sigmaTr[c], 1e-12), m_texelsPerUnit), c);
+        return mean;
     }
 
 private:
     TexturedScattering m_material;
     ScatteringProfile m_profile;
     double m_millimetresPerUnit;
+    double m_texelsPerUnit;
     detail::TextureSampler m_reflectance;
+    const detail::ReflectanceTable& m_table;
+    detail::LogGatheredMips m_mips;
     std::optional<detail::TextureSampler> m_pathScale;
 };
 
-// What the integrand needs of the exit point: its profile and, textured, its entry weight.
+// What the integrand needs of the exit point: its profile and, textured, its ln `gathered` and
+// its surroundings' mean of it.
 struct ExitPoint {
     glm::dvec3 x, n;
     const DipoleConstants& constants;
-    glm::dvec3 entryWeight{1.0};
+    glm::dvec3 logGathered{0.0};
+    glm::dvec3 surroundingLog{0.0};
 };
 
 // The planar normal-incidence S_d profile, each channel normalised to unit integral, summed:
@@ -441,13 +461,14 @@ private:
         const glm::dvec3 wo = -glm::normalize(ray.direction);
         const glm::dvec3 no = shadingNormal(hitTri, hit->u, hit->v, wo);
         std::optional<DipoleConstants> local;
-        glm::dvec3 entryWeight(1.0);
+        glm::dvec3 logGathered(0.0), surroundingLog(0.0);
         if (m_textured) {
             const glm::dvec2 uv = texcoordAt(hitTri, hit->u, hit->v);
             local = m_textured->constantsAt(uv);
-            entryWeight = TexturedSurface::entryWeight(m_textured->reflectance(uv));
+            logGathered = m_textured->logGathered(uv);
+            surroundingLog = m_textured->surroundingLogGathered(uv, local->sigmaTr);
         }
-        const ExitPoint exit{xo, no, local ? *local : m_constants, entryWeight};
+        const ExitPoint exit{xo, no, local ? *local : m_constants, logGathered, surroundingLog};
         const double exitT = fresnelTransmittance(exit.constants.eta, glm::dot(no, wo));
         if (!(exitT > 0.0) || m_lights.empty()) return result;
 
@@ -483,13 +504,15 @@ private:
         }
 
         Rng rng{mix64(m_options.seed * 0x9e3779b97f4a7c15ull ^ mix64(static_cast<uint64_t>(y) * m_width + x + 1))};
-        glm::dvec3 sumF(0.0), sumF2(0.0);
+        glm::dvec3 sumF(0.0), sumF2(0.0), sumLog(0.0);  // sumLog: textured, f times the entry's ln gathered
         int n = 0;
         const double target = m_options.targetRelativeError;
         const double absolute = m_options.absoluteError / exitT;  // errors are scaled by exitT at the end
         while (n < m_options.maxSamples) {
-            const glm::dvec3 f = sample(exit, cdf, rng, scratch);
+            glm::dvec3 entryLog(0.0);
+            const glm::dvec3 f = sample(exit, cdf, rng, scratch, entryLog);
             sumF += f;
+            sumLog += f * entryLog;
             sumF2 += f * f;
             ++n;
             if (n >= m_options.minSamples && (n % kCheckInterval == 0 || n == m_options.maxSamples)) {
@@ -505,12 +528,19 @@ private:
         }
         result.samples = n;
         result.converged = true;
+        // Textured: the rule's effective `gathered` over x_o's own (mesh/reflectance_table.h).
+        glm::dvec3 effective(1.0);
+        if (m_textured)
+            for (int c = 0; c < 3; ++c)
+                if (sumF[c] > 0.0)
+                    effective[c] = std::exp((1.0 - detail::kSurroundingShare) * sumLog[c] / sumF[c] +
+                                            detail::kSurroundingShare * exit.surroundingLog[c] - exit.logGathered[c]);
         for (int c = 0; c < 3; ++c) {
             const double mean = sumF[c] / n;
             const double var = std::max(0.0, (sumF2[c] / n - mean * mean)) * n / (n - 1);
             const double se = std::sqrt(var / n);
-            result.mean[c] = exitT * mean;
-            result.standardError[c] = exitT * se;
+            result.mean[c] = exitT * effective[c] * mean;
+            result.standardError[c] = exitT * effective[c] * se;
             if (se > std::max(target * std::abs(mean), absolute)) result.converged = false;
         }
         result.mean += singleScattering(exit, wo, hitTri);
@@ -522,7 +552,9 @@ private:
         return (1.0 - u - v) * tri.uv0 + u * tri.uv1 + v * tri.uv2;
     }
 
-    glm::dvec3 sample(const ExitPoint& exit, const std::vector<double>& cdf, Rng& rng, Scratch& scratch) const {
+    // `logGathered`: textured, the entry point's ln gathered.
+    glm::dvec3 sample(const ExitPoint& exit, const std::vector<double>& cdf, Rng& rng, Scratch& scratch,
+                      glm::dvec3& logGathered) const {
         const glm::dvec3& xo = exit.x;
         const glm::dvec3& no = exit.n;
         const size_t t = sampleCdf(cdf, rng.uniform());
@@ -566,7 +598,7 @@ private:
             f += sd * irradiance * (entryT * cosI);
         }
         if (m_textured && (f.x > 0.0 || f.y > 0.0 || f.z > 0.0))
-            f *= TexturedSurface::entryWeight(m_textured->reflectance(texcoordAt(tri, bary.x, bary.y))) / exit.entryWeight;
+            logGathered = m_textured->logGathered(texcoordAt(tri, bary.x, bary.y));
         return f / pdf;
     }
 
@@ -654,8 +686,9 @@ MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model
             mean += sampler({(x + 0.5) / reflectance->width(), (y + 0.5) / reflectance->height()});
     mean /= double(reflectance->width()) * reflectance->height();
     const ScatteringMaterial typical = materialFromReflectance(mean, material.meanFreePath, material.eta, options.profile);
+    const double texelsPerUnit = detail::meanTexelDensity(mesh, model, reflectance->width(), reflectance->height());
     Renderer renderer(mesh, model, typical, lights, camera, width, height, options,
-                      TexturedSurface(material, *reflectance, options.profile, options.millimetresPerUnit));
+                      TexturedSurface(material, *reflectance, options.profile, options.millimetresPerUnit, texelsPerUnit));
     return renderer.run();
 }
 
