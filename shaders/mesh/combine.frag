@@ -63,17 +63,18 @@ void main() {
 #endif
 
 #if TEXTURED_MATERIAL
-    vec3 albedo, gathered;
-    float lod = textureQueryLod(materialReflectance, texcoord).y;
-    materialSurface(texcoord, lod, albedo, gathered);
+    // At the reflectance texture's level of detail, as the passes that cache the radiosity read
+    // it; the surroundings, a blur themselves, only where the pixel is wider than that blur.
+    float lod = textureQueryLod(materialReflectance, texcoord).y + materialSurfaceRefine;
+    vec4 surface = textureLod(materialSurfaceAlbedo, texcoord, lod);
     DirpoleParams profile = dipole;  // single scattering needs only the pixel's albedo
-    profile.albedo = albedo;
-    vec3 surroundings = surroundingFactor(texcoord, materialSigmaTr(texcoord, lod, albedo));
+    profile.albedo = surface.rgb;
+    vec3 surroundings = textureLod(materialSurroundings, texcoord, max(lod - surface.a, 0.0)).rgb;
     radiosity *= surroundings;
 #if VERTEX_EFFECTIVE
     vec3 entries = vertexEffective;
 #else
-    vec3 entries = entriesFactor(log(max(gathered, vec3(MIN_GATHERED))));
+    vec3 entries = surroundings;  // stands in for the entries' part (the environment's light is even)
 #endif
     vec3 referenceScale = entries * surroundings / max(referenceGathered, vec3(1e-6));
 #else

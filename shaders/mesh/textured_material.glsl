@@ -32,6 +32,10 @@ uniform sampler2D materialTable;        // 4 texels per row, TEXTURED_TABLE_ROWS
 uniform vec3 materialSigmaT;            // 1 / mean free path, scene units^-1
 uniform sampler2D materialLogGathered;  // ln gathered per texel, mipmapped (detail::LogGatheredMips)
 uniform float materialTexelsPerUnit;    // texels per scene unit on the mesh (detail::meanTexelDensity)
+// Per texel, mipmapped (shaders/mesh/textured_surface.comp): what the combine reads.
+uniform sampler2D materialSurfaceAlbedo;  // rgb: the single-scattering albedo; a: the surroundings' blur level
+uniform sampler2D materialSurroundings;   // rgb: surroundingFactor at the texel's own sigma_tr
+uniform float materialSurfaceRefine;      // log2 of their texels per reflectance texel
 // What the untextured reference material (the near field's and the environment's) gathers under
 // even light: a point's own `gathered` over it scales those terms to the point.
 uniform vec3 referenceGathered;

@@ -19,6 +19,8 @@ inline constexpr int kMaterialReflectance = 8;
 inline constexpr int kMaterialPathScale = 9;
 inline constexpr int kMaterialTable = 10;
 inline constexpr int kMaterialLogGathered = 11;
+inline constexpr int kMaterialSurfaceAlbedo = 12;
+inline constexpr int kMaterialSurroundings = 13;
 
 // Volume ray cast (shaders/volume/ray_cast.frag) and the eye pass's lit-colour compute.
 inline constexpr int kLightVolumes = 4;   // 4..11: lightVolumes[MAX_LIGHTS]

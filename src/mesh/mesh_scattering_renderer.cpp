@@ -154,6 +154,7 @@ struct MeshScatteringRenderer::Impl {
         if (!texturedGpu) return;
         const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(glm::dmat4(model)))));
         texturedGpu->setTexcoordDensity(scale > 0.0 ? texcoordDensity / scale : 0.0);
+        texturedGpu->prepareSurface(options.millimetresPerUnit);
     }
 
     // The profile's constants and the disk sampling for the current inputs.

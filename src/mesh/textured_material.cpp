@@ -15,6 +15,7 @@ namespace sss::detail {
 namespace {
 
 constexpr int kTableColumns = 4;  // texels per row: see textured_material.glsl's materialRow
+constexpr int kMinSurfaceSize = 256;  // texels along the longer side of prepareSurface's textures
 
 TexturedMaterialSummary summarise(const Image8& reflectance, const Image8* pathScale) {
     TexturedMaterialSummary s;
@@ -136,10 +137,41 @@ TexturedMaterialGpu::TexturedMaterialGpu(const TexturedScattering& material, con
     m_logGathered = uploadLogGathered(reflectance, table);
     m_width = reflectance.width();
     m_height = reflectance.height();
+    // A small texture is magnified: its per-texel results are computed on a finer grid, so that
+    // they interpolate like the reflectance they come from.
+    const int refine = std::max(1, (kMinSurfaceSize + std::max(m_width, m_height) - 1) / std::max(m_width, m_height));
+    const int width = m_width * refine, height = m_height * refine;
+    const int levels = std::bit_width(static_cast<unsigned>(std::max(width, height)));
+    for (auto [texture, label] : {std::pair{&m_surfaceAlbedo, "material surface albedo"},
+                                  std::pair{&m_surroundings, "material surroundings"}}) {
+        *texture = gl::Texture::create2D(GL_RGBA16F, width, height, label, levels);
+        texture->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+        texture->setWrap(GL_REPEAT);
+    }
     const std::vector<float> rows = tabulate(material.eta, profile);
     m_table = gl::Texture::create2D(GL_RGBA32F, kTableColumns, kTexturedTableRows, "material table");
     m_table.upload(GL_RGBA, GL_FLOAT, rows.data());
     m_table.setFilter(GL_LINEAR, GL_LINEAR);
+}
+
+void TexturedMaterialGpu::prepareSurface(double millimetresPerUnit) {
+    const std::pair key{millimetresPerUnit, m_texelsPerUnit};
+    if (m_surfaceKey == key) return;
+    if (!m_surfaceProgram)
+        m_surfaceProgram = gl::Program::link({{GL_COMPUTE_SHADER, "mesh/textured_surface.comp"}}, texturedMaterialDefines(true));
+    bind(*m_surfaceProgram, millimetresPerUnit);
+    m_surfaceAlbedo.bindImage(0, GL_WRITE_ONLY);
+    m_surroundings.bindImage(1, GL_WRITE_ONLY);
+    m_surfaceProgram->use();
+    const glm::ivec3 size = m_surfaceAlbedo.size();
+    glDispatchCompute(static_cast<GLuint>((size.x + 7) / 8), static_cast<GLuint>((size.y + 7) / 8), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glUseProgram(0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glGenerateTextureMipmap(m_surfaceAlbedo.id());
+    glGenerateTextureMipmap(m_surroundings.id());
+    m_surfaceKey = key;
 }
 
 void TexturedMaterialGpu::bind(const gl::Program& p, double millimetresPerUnit) const {
@@ -154,6 +186,11 @@ void TexturedMaterialGpu::bind(const gl::Program& p, double millimetresPerUnit) 
     m_pathScale.bind(units::kMaterialPathScale);
     m_table.bind(units::kMaterialTable);
     m_logGathered.bind(units::kMaterialLogGathered);
+    p.set("materialSurfaceAlbedo", units::kMaterialSurfaceAlbedo);
+    p.set("materialSurroundings", units::kMaterialSurroundings);
+    p.set("materialSurfaceRefine", std::log2(static_cast<float>(m_surfaceAlbedo.size().x) / static_cast<float>(m_width)));
+    m_surfaceAlbedo.bind(units::kMaterialSurfaceAlbedo);
+    m_surroundings.bind(units::kMaterialSurroundings);
 }
 
 }  // namespace sss::detail

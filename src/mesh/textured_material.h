@@ -15,6 +15,8 @@
 #include <glm/vec3.hpp>
 
 #include <cmath>
+#include <utility>
+#include <optional>
 
 namespace sss::detail {
 
@@ -52,6 +54,9 @@ public:
     /// How densely the mesh it is drawn on holds texture coordinates: meanTexelDensity of a 1 x 1
     /// texture, per world unit. The textured rule finds a point's surroundings in the texture by it.
     void setTexcoordDensity(double perUnit) { m_texelsPerUnit = perUnit * std::sqrt(double(m_width) * m_height); }
+    /// Computes what the combine reads per texel (shaders/mesh/textured_surface.comp) if the
+    /// scale or the texture density changed since the last call.
+    void prepareSurface(double millimetresPerUnit);
     /// Binds the textures and sets textured_material.glsl's uniforms on `program`.
     void bind(const gl::Program& program, double millimetresPerUnit) const;
 
@@ -64,6 +69,9 @@ private:
     double m_texelsPerUnit = 0.0;
     int m_width = 1, m_height = 1;  // of the reflectance texture
     gl::Texture m_reflectance, m_pathScale, m_table, m_logGathered;
+    gl::Texture m_surfaceAlbedo, m_surroundings;         // prepareSurface's, mipmapped
+    std::optional<std::pair<double, double>> m_surfaceKey;  // millimetres per unit, texels per unit
+    std::optional<gl::Program> m_surfaceProgram;
 };
 
 }  // namespace sss::detail

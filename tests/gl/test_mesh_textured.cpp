@@ -193,11 +193,13 @@ TEST_CASE("a textured material needs texture coordinates and a texture", "[gl][m
 
 TEST_CASE("a textured slab matches the CPU reference of the same rule", "[gl][mesh][textured][reference]") {
     // A colourful texture on a thin slab (1 cm at 20 mm per unit, so light goes through and
-    // around its edges), lit obliquely: the GPU's normalised caches and per-pixel
-    // texels against renderMeshReference's per-point coefficients, by the same rule for pairs.
-    // Measured on llvmpipe: relRmse 0.0366 (maps) and 0.0361 (vertex estimate), the reference's
-    // own 0.0063; the same slab in one uniform colour measured 0.0216 and 0.0277. The bound is
-    // 1.5x the larger.
+    // around its edges), lit obliquely: the GPU's caches (the rule's entries' part) and per-pixel
+    // surroundings against renderMeshReference's per-point coefficients, by the same rule
+    // (mesh/reflectance_table.h). Measured on llvmpipe: relRmse 0.0338 (maps) and 0.0355 (vertex
+    // estimate), the reference's own 0.0057; the same slab in one uniform colour measured 0.0216
+    // and 0.0277. The bound is 1.5x the larger. (Filtering the surroundings over each pixel's
+    // footprint as well, at this 48 x 32 size, measured 0.0517 and 0.0548: the combine filters
+    // them only where a pixel is wider than their own blur.)
     test::GlTestScope gl;
     // Eight texels magnified over the slab: bilinear blends between strong colours, so both
     // renderers see the same smooth texture (hard edges would compare the GPU's mip filtering
@@ -227,7 +229,7 @@ TEST_CASE("a textured slab matches the CPU reference of the same rule", "[gl][me
         const ErrorMetrics m = computeErrorMetrics(gpu, ref.image);
         std::printf("[textured] texture vs CPU reference (%s): relRmse %.4f (reference's own %.4f)\n",
                     combine == MeshCombine::PerPixel ? "maps" : "vertex estimate", m.relRmse, ref.relativeRmseEstimate);
-        CHECK(m.relRmse < 0.055);
+        CHECK(m.relRmse < 0.053);
     }
     gl.requireNoErrors();
 }
