@@ -54,10 +54,11 @@ class Image8;
 /// the surface shows under even light, and a mean free path per channel. Each texel's
 /// coefficients are those of materialFromReflectance() for its reflectance, so a flat, evenly lit
 /// textured slab shows the texture's colour. The mesh needs texture coordinates.
-/// How points with different coefficients combine (docs/textured-materials.md): light entering
-/// at x_i and leaving at x_o follows x_o's profile, times (R(x_i) / R(x_o))^0.5 per channel. The
-/// renderers cache the part that varies smoothly and take the texel under each pixel, so the
-/// texture keeps its full resolution wherever the radiosity is cached (maps or vertices).
+/// How points with different coefficients combine (docs/textured-materials.md): the light leaving
+/// x_o follows x_o's profile, scaled to an effective medium, the geometric mean of the light's
+/// entry points' materials and of the texture around x_o. The renderers cache the entries' part
+/// (maps or vertices) and take the surroundings' part per pixel, so the texture keeps its detail
+/// down to a quarter of a diffusion length wherever the radiosity is cached.
 struct TexturedScattering {
     /// Reduced mean free path 1 / sigma_t' per channel, in mm, each finite and > 0 (default:
     /// potato's, as ScatteringMaterial's default).

@@ -140,9 +140,11 @@ MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model
 
 /// The same for a textured material (sss/materials.h): its reflectance texture, or else the
 /// mesh's base colour, gives each point its coefficients by materialFromReflectance(), sampled
-/// bilinearly (repeating) at the point's interpolated texture coordinates. A pair of points
-/// follows the exit point's profile, times (R(x_i) / R(x_o))^0.5 per channel (R floored at 1e-3):
-/// the rule the GPU renderer implements (docs/textured-materials.md). Single scattering is x_o's.
+/// bilinearly (repeating) at the point's interpolated texture coordinates. The light leaving x_o
+/// follows x_o's profile, scaled to an effective medium: the geometric mean of what the entry
+/// points' materials gather (weighted by the light each brings, from this renderer's own samples)
+/// and of the texture around x_o, over x_o's own. The rule the GPU renderer implements
+/// (docs/textured-materials.md). Single scattering is x_o's.
 /// @throws Error InvalidArgument as above, and when there is no texture or the mesh has no
 ///         texture coordinates.
 MeshReferenceResult renderMeshReference(const Mesh& mesh, const glm::mat4& model, const TexturedScattering& material,

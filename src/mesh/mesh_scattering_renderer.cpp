@@ -38,7 +38,7 @@ struct LightBufferInputs {
     glm::mat4 model{1.0f};
     std::vector<Light> lights;
     int resolution = 0;
-    std::uint64_t texturedMaterial = 0;  // the material's generation when textured (entry weights)
+    std::uint64_t texturedMaterial = 0;  // the material's generation when textured (ln gathered)
     bool operator==(const LightBufferInputs&) const = default;
 };
 
