@@ -132,7 +132,7 @@ TEST_CASE("two texels side by side: the textured rule against the random walk", 
     // rule: test_mesh_textured.cpp). Window: +-3 mm, about 4 diffusion lengths of the darker side
     // and 0.6 of the lighter one's widest channel, where the transition happens. Measured relRmse
     // over the window, all channels (4M paths, 12 bins): the exit point's material alone 0.316,
-    // the rule 0.054; the pair rules measured before it, x_o's profile times
+    // the rule 0.064; the pair rules measured before it, x_o's profile times
     // (R(x_i) / R(x_o))^m, 0.194 (m 0.5) and 0.136 (m 1) (docs/textured-materials.md).
     const glm::dvec3 light{0.75, 0.55, 0.35}, dark{0.12, 0.3, 0.06};
     const glm::dvec3 mfp{0.8, 0.8, 0.8};
