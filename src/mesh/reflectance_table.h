@@ -94,7 +94,7 @@ private:
 /// The surroundings of x_o in the textured rule: the mean of LogGatheredMips over two squares,
 /// kSurroundingWidths[k] / sigma_tr wide (sigma_tr of x_o's own material). Two widths stand for
 /// the profile's steep centre and long tail (one square sqrt(12) / sigma_tr wide, matching its
-/// second moment, measured 16.5 % on the two-texel slab; these two 6.2 %).
+/// second moment, measured 16.5 % on the two-texel slab; these two 6.4 %).
 inline constexpr double kSurroundingWidths[2] = {0.25, 2.0};
 
 /// The mip level at which LogGatheredMips averages over a square `width` world units wide at
