@@ -165,3 +165,43 @@ TEST_CASE("two texels side by side: the textured rule against the random walk", 
     CHECK(error[1] < 0.07);
     CHECK(error[1] < 0.25 * error[0]);
 }
+
+TEST_CASE("the textured rule's surroundings come from ln gathered's mip chain at a level set by the texel density",
+          "[textured-material]") {
+    // LogGatheredMips: level 0 is ln gathered of each texel; each level above is the mean of 2 x 2
+    // (a geometric mean of gathered), as glGenerateTextureMipmap builds it on the GPU.
+    Image8 image(4, 2);
+    const std::uint8_t values[8] = {10, 60, 120, 250, 200, 30, 90, 180};
+    for (int i = 0; i < 8; ++i) image.at(i % 4, i / 4) = glm::u8vec4(values[i], values[7 - i], 128, 255);
+    const detail::ReflectanceTable& table = detail::reflectanceTable(1.3, ScatteringProfile::Calibrated);
+    const detail::LogGatheredMips mips(image, table);
+    auto logOf = [&](std::uint8_t v) {
+        return std::log(std::max(detail::invertReflectance(table, detail::srgbToLinear(v)).gathered, detail::kMinGathered));
+    };
+    // Texture coordinate (0, 0) is the image's bottom-left: row 1 of the image is v in [0, 0.5].
+    CHECK(mips(glm::dvec2(0.125, 0.75), 0.0, 0) == Approx(logOf(values[0])).epsilon(1e-12));
+    CHECK(mips(glm::dvec2(0.875, 0.25), 0.0, 1) == Approx(logOf(values[0])).epsilon(1e-12));
+    // Level 1 (2 x 1): the left texel holds the mean of the image's left 2 x 2 block.
+    const double left = 0.25 * (logOf(values[0]) + logOf(values[1]) + logOf(values[4]) + logOf(values[5]));
+    CHECK(mips(glm::dvec2(0.25, 0.5), 1.0, 0) == Approx(left).epsilon(1e-12));
+    // Level 2 (1 x 1) is the mean of all; levels beyond the chain clamp to it, between levels linear.
+    double all = 0.0;
+    for (std::uint8_t v : values) all += logOf(v) / 8.0;
+    CHECK(mips(glm::dvec2(0.3, 0.6), 2.0, 0) == Approx(all).epsilon(1e-12));
+    CHECK(mips(glm::dvec2(0.3, 0.6), 9.0, 0) == Approx(all).epsilon(1e-12));
+    CHECK(mips(glm::dvec2(0.25, 0.5), 1.5, 0) == Approx(0.5 * (left + all)).epsilon(1e-12));
+    CHECK(mips.baseLevelRgba().size() == 4u * 8u);
+
+    // surroundingLevel: log2 of the width in texels, 0 below one texel.
+    CHECK(detail::surroundingLevel(2.0, 8.0) == Approx(4.0));
+    CHECK(detail::surroundingLevel(0.05, 8.0) == 0.0);
+
+    // meanTexelDensity: a 2 x 2 square mapped onto the whole of a 64 x 32 texture, scaled by 3.
+    const Mesh square = Mesh::fromArrays({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, {0, 1, 2, 0, 2, 3},
+                                         {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}}, "square",
+                                         {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+    const double density = detail::meanTexelDensity(square, glm::mat4(3.0f), 64, 32);  // w = 3 as well
+    CHECK(density == Approx(std::sqrt(64.0 * 32.0) / 6.0).epsilon(1e-9));
+    CHECK(detail::meanTexelDensity(Mesh::fromArrays({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, {}, "no uv"),
+                                   glm::mat4(1.0f), 64, 64) == 0.0);
+}
