@@ -123,9 +123,9 @@ float surroundingLevel(float width) {
 vec3 surroundingFactor(vec2 uv, vec3 sigmaTr) {
     vec3 meanLog;
     for (int c = 0; c < 3; ++c) {
-        float length = 1.0 / max(sigmaTr[c], 1e-12);
-        meanLog[c] = 0.5 * (textureLod(materialLogGathered, uv, surroundingLevel(SURROUNDING_NARROW * length))[c] +
-                            textureLod(materialLogGathered, uv, surroundingLevel(SURROUNDING_WIDE * length))[c]);
+        float diffusionLength = 1.0 / max(sigmaTr[c], 1e-12);
+        meanLog[c] = 0.5 * (textureLod(materialLogGathered, uv, surroundingLevel(SURROUNDING_NARROW * diffusionLength))[c] +
+                            textureLod(materialLogGathered, uv, surroundingLevel(SURROUNDING_WIDE * diffusionLength))[c]);
     }
     return exp(SURROUNDING_SHARE * meanLog);
 }
