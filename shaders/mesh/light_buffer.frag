@@ -22,6 +22,6 @@ void main() {
     outNormal = vec4(n, 0.0);
 #if TEXTURED_MATERIAL
     // Level 0: a coarser level (grazing light) would average colours the texel does not hold.
-    outLogGathered = vec4(logGathered(texcoord, 0.0), 1.0);
+    outLogGathered = vec4(logGathered(texcoord), 1.0);
 #endif
 }

@@ -103,12 +103,8 @@ SurfaceMaterial materialAt(DirpoleParams base, vec2 uv, float lod) {
     return m;
 }
 
-// ln gathered at a point: what the light buffer stores per entry texel.
-vec3 logGathered(vec2 uv, float lod) {
-    vec3 albedo, gathered;
-    materialSurface(uv, lod, albedo, gathered);
-    return log(max(gathered, vec3(MIN_GATHERED)));
-}
+// ln gathered at a point, from level 0 of the chain: what the light buffer stores per entry texel.
+vec3 logGathered(vec2 uv) { return textureLod(materialLogGathered, uv, 0.0).rgb; }
 
 // The entries' part of the rule, from their light-weighted mean ln gathered.
 vec3 entriesFactor(vec3 meanLog) { return exp((1.0 - SURROUNDING_SHARE) * meanLog); }

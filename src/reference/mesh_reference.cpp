@@ -131,6 +131,10 @@ public:
         return glm::log(glm::max(g, glm::dvec3(detail::kMinGathered)));
     }
 
+    /// ln gathered of an entry point: level 0 of the chain, as the GPU's light buffer reads it
+    /// (and cheaper per sample than inverting the reflectance).
+    glm::dvec3 entryLogGathered(glm::dvec2 uv) const { return {m_mips(uv, 0.0, 0), m_mips(uv, 0.0, 1), m_mips(uv, 0.0, 2)}; }
+
     /// The texture's mean ln gathered around a point of transport coefficient `sigmaTr`.
     glm::dvec3 surroundingLogGathered(glm::dvec2 uv, const glm::dvec3& sigmaTr) const {
         glm::dvec3 mean(0.0);
@@ -598,7 +602,7 @@ private:
             f += sd * irradiance * (entryT * cosI);
         }
         if (m_textured && (f.x > 0.0 || f.y > 0.0 || f.z > 0.0))
-            logGathered = m_textured->logGathered(texcoordAt(tri, bary.x, bary.y));
+            logGathered = m_textured->entryLogGathered(texcoordAt(tri, bary.x, bary.y));
         return f / pdf;
     }
 
