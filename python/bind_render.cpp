@@ -349,6 +349,10 @@ void bindOptions(py::module_& m) {
                              {{"AUTO", sss::RayCaster::Auto}, {"FRAGMENT", sss::RayCaster::Fragment},
                               {"COMPUTE", sss::RayCaster::Compute}},
                              "Which ray caster draws a volume (the same image either way).");
+    bindEnum<sss::VolumeReconstruction>(m, "VolumeReconstruction",
+                                        {{"TRILINEAR", sss::VolumeReconstruction::Trilinear},
+                                         {"CUBIC_B_SPLINE", sss::VolumeReconstruction::CubicBSpline}},
+                                        "How a volume's field is reconstructed between voxel centres.");
     bindEnum<sss::CropSpace>(m, "CropSpace", {{"DATA", sss::CropSpace::Data}, {"WORLD", sss::CropSpace::World}},
                              "Where a clip's crop box is given: normalised data coordinates or world coordinates.");
 

@@ -31,7 +31,7 @@ struct EnumName {
 
 /// Every value of `Enum` with its name, in declaration order. Specialized for MeshShading,
 /// MeshCombine, ScatteringProfile, VolumeShading, VolumeModel, LightVolumeFallback, RayCaster,
-/// CropSpace, ToneMap, Projection and VoxelType.
+/// CropSpace, ToneMap, Projection, VoxelType and VolumeReconstruction.
 template <class Enum>
 std::span<const EnumName<Enum>> enumNames();
 
@@ -73,6 +73,7 @@ template <> std::span<const EnumName<RayCaster>> enumNames<RayCaster>();
 template <> std::span<const EnumName<ToneMap>> enumNames<ToneMap>();
 template <> std::span<const EnumName<Projection>> enumNames<Projection>();
 template <> std::span<const EnumName<VoxelType>> enumNames<VoxelType>();
+template <> std::span<const EnumName<VolumeReconstruction>> enumNames<VolumeReconstruction>();
 
 }  // namespace sss
 

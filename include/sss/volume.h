@@ -24,6 +24,19 @@ namespace sss {
 /// .raw files); Int16 is two's complement (CT Hounsfield units), Float32 is IEEE 754.
 enum class VoxelType { UInt8, UInt16, Int16, Float32 };
 
+/// How a volume's field is reconstructed between voxel centres. Every renderer of a volume (the
+/// ray caster, the light volume, both path tracers, the CPU references) takes the same one, so
+/// a reference measures the field that is drawn.
+enum class VolumeReconstruction {
+    /// Trilinear interpolation, as the texture unit's GL_LINEAR (default): one fetch per sample.
+    Trilinear,
+    /// The cubic B-spline of the voxels, from eight trilinear fetches (docs/reconstruction.md).
+    /// Smooth where trilinear interpolation shows the voxel staircase as terraces (rings on a
+    /// coarse sphere under a steep transfer function, slice lines on CT with thick slices); it
+    /// does not pass through the voxel values, and blurs the data by about a voxel.
+    CubicBSpline,
+};
+
 /// Bytes per voxel of a type: 1, 2 or 4.
 constexpr std::size_t bytesPerVoxel(VoxelType type) {
     return type == VoxelType::UInt8 ? 1 : type == VoxelType::Float32 ? 4 : 2;

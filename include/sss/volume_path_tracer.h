@@ -52,7 +52,7 @@
 /// THE ESTIMATOR (adjoint paths from the eye; one path carries all three channels):
 ///  - Free paths by delta (Woodcock) tracking against a majorant grid: the box is divided into
 ///    majorantGridResolution cells along each axis (at most one per voxel), each with the
-///    largest sigma_t that the trilinear reconstruction can take in it (the TF's largest opacity
+///    largest sigma_t that the reconstruction can take in it (the TF's largest opacity
 ///    over the range of the voxels its interpolation reads, times 1 + 1e-6). The path's
 ///    ray walks the cells in order (3D DDA); a unit exponential optical depth is spent at each
 ///    cell's majorant; where it runs out a tentative collision is made, real with probability
@@ -142,6 +142,8 @@ struct VolumePathTracerOptions {
     bool jitterPixels = false;
     /// Clip planes and crop box, as VolumeScatteringRenderer::setClip (default: none).
     VolumeClip clip{};
+    /// The field between voxel centres, as VolumeRenderOptions::reconstruction (default: Trilinear).
+    VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
 };
 
 /// What renderVolumePathTraced() returns.

@@ -17,7 +17,9 @@
 /// Reconstruction. A voxel's normalised value (what the GPU texture holds) is v / 255 (UInt8),
 /// v / 65535 (UInt16), (v + 32768) / 65535 (Int16) or (v - min) / (max - min) over valueRange()
 /// (Float32); the field s(p) is the trilinear interpolation of these with voxel i's centre at
-/// texture coordinate (i + 0.5) / n and clamp-to-edge outside (GL_LINEAR on the 3D texture).
+/// texture coordinate (i + 0.5) / n and clamp-to-edge outside (GL_LINEAR on the 3D texture);
+/// with VolumeReconstruction::CubicBSpline it is their tensor-product cubic B-spline, per axis
+/// s = sum over k of B3(x - k) v_k, x = tc n - 0.5, the indices k clamped to the edge.
 /// With raw = s * k + m the inverse of that normalisation and (lo, hi) =
 /// Volume::transferFunctionRange(), the transfer-function coordinate is
 /// x(p) = clamp(s(p) * a + b, 0, 1), a = k / (hi - lo), b = (m - lo) / (hi - lo): for UInt8 with
@@ -139,6 +141,8 @@ struct VolumeReferenceOptions {
     int threads = 0;
     /// Clip planes and crop box, as VolumeScatteringRenderer::setClip (default: none).
     VolumeClip clip{};
+    /// The field between voxel centres, as VolumeRenderOptions::reconstruction (default: Trilinear).
+    VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
 };
 
 /// The light arriving at a point from one light (Scattering model).

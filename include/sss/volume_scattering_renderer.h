@@ -115,6 +115,10 @@ struct VolumeRenderOptions {
     /// by them. The samples taken, and so the image and the light volume, are the same as
     /// without it (default: on).
     bool emptySpaceSkipping = true;
+    /// The field between voxel centres, in every pass: trilinear, or the smooth cubic B-spline
+    /// that removes the voxel staircase's terraces at about 2.5x the cost of a ray-cast sample
+    /// (default: Trilinear; see VolumeReconstruction).
+    VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
     /// Entries of the transfer-function lookup table, 2..65536 (default: 256).
     int transferFunctionEntries = 256;
     // Shading (every mode but EmissionAbsorption):

@@ -202,7 +202,7 @@ vec4 propagateVoxel(ivec2 uv, int w, bool store) {
 #else
         bool present = lightSeesMedium(tcK);
 #endif
-        vec4 medium = present ? classify(texture(volumeTexture, tcK).r) : vec4(0.0);
+        vec4 medium = present ? classify(volumeValue(tcK)) : vec4(0.0);
 #if EYE_PASS
         vec3 source = texture(litColour, tcK).rgb;
 #else

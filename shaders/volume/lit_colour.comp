@@ -18,7 +18,7 @@ void main() {
     ivec3 voxel = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(voxel, dims))) return;
     vec3 tc = (vec3(voxel) + 0.5) / vec3(dims);
-    vec3 color = classify(texture(volumeTexture, tc).r).rgb;
+    vec3 color = classify(volumeValue(tc)).rgb;
     vec3 worldPosition = (modelToWorld * vec4(boxMin + (vec3(voxel) + 0.5) * voxelSize, 1.0)).xyz;
     vec3 lit = ambientStrength * color;
     for (int i = 0; i < LIGHT_COUNT; ++i) {

@@ -1,7 +1,8 @@
 // Delta tracking through a volume's medium in model space, shared by the path tracer
 // (path_trace.comp) and the fluence cache's photons (fluence_photons.comp): random numbers, the
-// float trilinear field, extinction from the transfer function, the Henyey-Greenstein phase
-// function, and a walk along a ray brick by brick against each brick's majorant.
+// field in float (trilinear or cubic, as volume/reconstruction.glsl), extinction from the
+// transfer function, the Henyey-Greenstein phase function, and a walk along a ray brick by
+// brick against each brick's majorant.
 // Needs volume/transfer_function.glsl, volume/clip.glsl and common/ray_box.glsl included first.
 
 uniform sampler3D majorants;  // per brick: an upper bound of sigma_t in it (per model unit)
@@ -34,6 +35,37 @@ float exponential() { return -log(1.0 - uniform01()); }  // 1 - u is in (0, 1]
 // filters 8-bit textures in 8-bit fixed point, and the rounded samples made the engine data
 // set's multiple scattering 3 % too bright (measured at 512 paths per pixel: mean ratio
 // 1.028 / 1.026 / 1.011 with texture(), 1.000 for the same field in a 16-bit texture).
+#if CUBIC_RECONSTRUCTION
+// The cubic B-spline of the 4^3 voxels around p, with float weights as below.
+float sampleVolume(vec3 p) {
+    ivec3 dims = textureSize(volumeTexture, 0);
+    vec3 x = (p - boxMin) / (boxMax - boxMin) * vec3(dims) - 0.5;
+    vec3 lo = floor(x);
+    vec3 f = x - lo;
+    vec3 f2 = f * f;
+    vec3 f3 = f2 * f;
+    vec3 w[4];
+    w[0] = (1.0 - 3.0 * f + 3.0 * f2 - f3) * (1.0 / 6.0);
+    w[1] = (4.0 - 6.0 * f2 + 3.0 * f3) * (1.0 / 6.0);
+    w[3] = f3 * (1.0 / 6.0);
+    w[2] = 1.0 - w[0] - w[1] - w[3];
+    ivec3 first = ivec3(clamp(lo, vec3(-4.0), vec3(dims) + 4.0)) - 1;
+    float sum = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        float plane = 0.0;
+        for (int j = 0; j < 4; ++j) {
+            float row = 0.0;
+            for (int i = 0; i < 4; ++i) {
+                ivec3 v = clamp(first + ivec3(i, j, k), ivec3(0), dims - 1);
+                row += w[i].x * texelFetch(volumeTexture, v, 0).r;
+            }
+            plane += w[j].y * row;
+        }
+        sum += w[k].z * plane;
+    }
+    return sum;
+}
+#else
 float sampleVolume(vec3 p) {
     ivec3 dims = textureSize(volumeTexture, 0);
     vec3 x = (p - boxMin) / (boxMax - boxMin) * vec3(dims) - 0.5;
@@ -53,6 +85,7 @@ float sampleVolume(vec3 p) {
     float c01 = mix(c001, c101, w.x), c11 = mix(c011, c111, w.x);
     return mix(mix(c00, c10, w.y), mix(c01, c11, w.y), w.z);
 }
+#endif
 
 // sigma_t (per model unit) of a TF opacity per voxel, capped (sss::kMaxOpticalDepthPerVoxel).
 float extinctionOf(float alpha) {

@@ -116,12 +116,12 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
     vec3 g = shadedDifferences * (0.5 * valueScaleOffset.x);
 #elif GRADIENT_VOLUME
     // Precomputed: the trilinear interpolation of per-voxel differences is the same gradient.
-    vec3 g = (texture(gradientVolume, tc).xyz * 2.0 - 1.0) * (0.5 * valueScaleOffset.x);
+    vec3 g = (reconstruct(gradientVolume, tc).xyz * 2.0 - 1.0) * (0.5 * valueScaleOffset.x);
 #else
     vec3 h = 1.0 / vec3(volumeDims);
-    vec3 g = vec3(texture(volumeTexture, tc + vec3(h.x, 0, 0)).r - texture(volumeTexture, tc - vec3(h.x, 0, 0)).r,
-                  texture(volumeTexture, tc + vec3(0, h.y, 0)).r - texture(volumeTexture, tc - vec3(0, h.y, 0)).r,
-                  texture(volumeTexture, tc + vec3(0, 0, h.z)).r - texture(volumeTexture, tc - vec3(0, 0, h.z)).r) *
+    vec3 g = vec3(volumeValue(tc + vec3(h.x, 0, 0)) - volumeValue(tc - vec3(h.x, 0, 0)),
+                  volumeValue(tc + vec3(0, h.y, 0)) - volumeValue(tc - vec3(0, h.y, 0)),
+                  volumeValue(tc + vec3(0, 0, h.z)) - volumeValue(tc - vec3(0, 0, h.z))) *
              0.5 * valueScaleOffset.x;
 #endif
     // Surfaces face from high to low values; the matrix also scales the gradient by the box so
@@ -139,11 +139,11 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
 // The data value at texture coordinate tc (xyz: its central differences with COMBINED_FETCH).
 #if COMBINED_FETCH
 vec4 sampleVolume(vec3 tc) {
-    vec4 s = texture(gradientVolume, tc);
+    vec4 s = reconstruct(gradientVolume, tc);
     return vec4(s.xyz * 2.0 - 1.0, s.w);
 }
 #else
-vec4 sampleVolume(vec3 tc) { return vec4(0.0, 0.0, 0.0, texture(volumeTexture, tc).r); }
+vec4 sampleVolume(vec3 tc) { return vec4(0.0, 0.0, 0.0, volumeValue(tc)); }
 #endif
 
 #if PREINTEGRATED
@@ -292,9 +292,9 @@ vec4 carriedBack(vec4 light, vec3 tc, vec3 reach, float reachVoxels) {
     // Each piece classified as a segment between its two ends (the data linear between them), as
     // the eye ray's: point samples a voxel apart miss most of a thin opaque layer's steep rise,
     // and let too much light through to a sample just inside it.
-    float far = texture(volumeTexture, tc + reach).r;
+    float far = volumeValue(tc + reach);
     for (int k = pieces - 1; k >= 0; --k) {
-        float near = texture(volumeTexture, tc + reach * (float(k) / float(pieces))).r;
+        float near = volumeValue(tc + reach * (float(k) / float(pieces)));
         Segment piece = classifySegment(far, near);
         far = near;
         float a = piece.premultiplied.a;
@@ -306,7 +306,7 @@ vec4 carriedBack(vec4 light, vec3 tc, vec3 reach, float reachVoxels) {
 #else
     for (int k = pieces - 1; k >= 0; --k) {
         vec3 tcK = tc + reach * ((float(k) + 0.5) / float(pieces));
-        vec4 medium = lightSeesMedium(tcK) ? classify(texture(volumeTexture, tcK).r) : vec4(0.0);
+        vec4 medium = lightSeesMedium(tcK) ? classify(volumeValue(tcK)) : vec4(0.0);
         float a = correctOpacity(medium.a, pieceVoxels, 1.0);
         light = vec4((1.0 - a) * light.rgb + a * medium.rgb, (1.0 - a) * light.a);
     }

@@ -11,6 +11,11 @@ float transferFunctionCoordinate(float value, float entries) {
     return (x * (entries - 1.0) + 0.5) / entries;
 }
 
+#include "volume/reconstruction.glsl"
+
+// The data's normalised value at texture coordinate tc, as the options reconstruct it.
+float volumeValue(vec3 tc) { return reconstruct(volumeTexture, tc).r; }
+
 vec4 classify(float value) {
     return texture(transferFunction, vec2(transferFunctionCoordinate(value, transferFunctionEntries), 0.5));
 }

@@ -49,6 +49,13 @@ std::span<const EnumName<LightVolumeFallback>> enumNames<LightVolumeFallback>() 
 }
 
 template <>
+std::span<const EnumName<VolumeReconstruction>> enumNames<VolumeReconstruction>() {
+    static constexpr EnumName<VolumeReconstruction> names[] = {{VolumeReconstruction::Trilinear, "trilinear"},
+                                                               {VolumeReconstruction::CubicBSpline, "cubic"}};
+    return names;
+}
+
+template <>
 std::span<const EnumName<RayCaster>> enumNames<RayCaster>() {
     static constexpr EnumName<RayCaster> names[] = {
         {RayCaster::Auto, "auto"}, {RayCaster::Fragment, "fragment"}, {RayCaster::Compute, "compute"}};

@@ -5,6 +5,7 @@
 
 #include "volume/box_clip.h"
 #include "core/voxel_storage.h"
+#include "core/volume_reconstruction.h"
 
 #include "util/format.h"
 #include "reference/cpu_lights.h"
@@ -30,7 +31,7 @@ namespace sss {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Majorants are raised by this factor so that rounding in the trilinear reconstruction can
+// Majorants are raised by this factor so that rounding in the reconstruction can
 // never put sigma_t above its cell's bound (a larger majorant costs lookups, not accuracy).
 constexpr double kMajorantSlack = 1.0 + 1e-6;
 // Ratio tracking is rouletted below this transmittance (survivors continue at this value).
@@ -126,7 +127,7 @@ class PathTracer {
 public:
     PathTracer(const Volume& volume, const TransferFunction& tf, int tfEntries, const glm::mat4& model,
                const std::vector<Light>& lights, const VolumePathTracerOptions& options)
-        : m_reference(volume, tf, tfEntries, model, lights, VolumeReferenceOptions{.clip = options.clip}),
+        : m_reference(volume, tf, tfEntries, model, lights, VolumeReferenceOptions{.clip = options.clip, .reconstruction = options.reconstruction}),
           m_options(options) {
         const Bounds box = volume.worldBounds();
         m_boxMin = glm::dvec3(box.min);
@@ -237,12 +238,13 @@ private:
                                       (static_cast<std::size_t>(y) + static_cast<std::size_t>(dims.y) * z);
             return detail::storedValue(bytes.data(), volume.type(), i, storage);
         };
-        // Voxels the trilinear interpolation reads anywhere in cell c along an axis: texel
-        // centres at (i + 0.5) / n, so the cell [c / R, (c + 1) / R] reads floor(c n / R - 0.5)
-        // up to floor((c + 1) n / R - 0.5) + 1, clamped to the edge.
-        auto footprint = [](int c, int cells, int n, int& first, int& lastVoxel) {
-            first = std::clamp(static_cast<int>(std::floor(double(c) * n / cells - 0.5)), 0, n - 1);
-            lastVoxel = std::clamp(static_cast<int>(std::floor(double(c + 1) * n / cells - 0.5)) + 1, 0, n - 1);
+        // Voxels the reconstruction reads anywhere in cell c along an axis: texel centres at
+        // (i + 0.5) / n, so the cell [c / R, (c + 1) / R] reads from floor(c n / R - 0.5) - reach + 1
+        // up to floor((c + 1) n / R - 0.5) + reach (reach 1 trilinear, 2 cubic), clamped to the edge.
+        const int reach = detail::reconstructionReach(m_options.reconstruction);
+        auto footprint = [reach](int c, int cells, int n, int& first, int& lastVoxel) {
+            first = std::clamp(static_cast<int>(std::floor(double(c) * n / cells - 0.5)) - reach + 1, 0, n - 1);
+            lastVoxel = std::clamp(static_cast<int>(std::floor(double(c + 1) * n / cells - 0.5)) + reach, 0, n - 1);
         };
         m_majorant.assign(static_cast<std::size_t>(m_cells.x) * m_cells.y * m_cells.z, 0.0);
         for (int cz = 0; cz < m_cells.z; ++cz) {

@@ -7,6 +7,7 @@
 #include "volume/box_clip.h"
 #include "volume/light_sweep_plan.h"
 #include "core/voxel_storage.h"
+#include "core/volume_reconstruction.h"
 
 #include "sss/error.h"
 #include "sss/image_compare.h"
@@ -16,6 +17,7 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -160,8 +162,43 @@ struct VolumeReference::Impl {
         }
     }
 
-    // s(p) at texture coordinate tc: GL_LINEAR with clamp-to-edge, texel centres at (i+0.5)/n.
+    // s(p) at texture coordinate tc, texel centres at (i+0.5)/n, clamp-to-edge.
     double field(glm::dvec3 tc) const {
+        return options.reconstruction == VolumeReconstruction::CubicBSpline ? cubicField(tc) : trilinearField(tc);
+    }
+
+    double voxelAt(int x, int y, int z) const {
+        return static_cast<double>(raw[static_cast<std::size_t>(x) +
+                                       static_cast<std::size_t>(dims.x) *
+                                           (static_cast<std::size_t>(y) + static_cast<std::size_t>(dims.y) * z)]);
+    }
+
+    // The tensor-product cubic B-spline over the 4^3 voxels around tc.
+    double cubicField(glm::dvec3 tc) const {
+        int first[3];
+        std::array<double, 4> w[3];
+        for (int a = 0; a < 3; ++a) {
+            const double x = tc[a] * dims[a] - 0.5;
+            const double fl = std::floor(x);
+            w[a] = detail::cubicBSplineWeights(x - fl);
+            first[a] = static_cast<int>(std::clamp(fl, -4.0, static_cast<double>(dims[a]) + 4.0)) - 1;
+        }
+        auto index = [&](int a, int k) { return std::clamp(first[a] + k, 0, dims[a] - 1); };
+        double sum = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            double plane = 0.0;
+            for (int j = 0; j < 4; ++j) {
+                double row = 0.0;
+                for (int i = 0; i < 4; ++i) row += w[0][i] * voxelAt(index(0, i), index(1, j), index(2, k));
+                plane += w[1][j] * row;
+            }
+            sum += w[2][k] * plane;
+        }
+        return sum * normalise;
+    }
+
+    // GL_LINEAR.
+    double trilinearField(glm::dvec3 tc) const {
         int i0[3], i1[3];
         double w[3];
         for (int a = 0; a < 3; ++a) {

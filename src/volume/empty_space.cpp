@@ -1,6 +1,7 @@
 #include "volume/empty_space.h"
 
 #include "core/voxel_storage.h"
+#include "core/volume_reconstruction.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,13 +13,16 @@ OccupancyGrid::OccupancyGrid(const Volume& volume) {
     const glm::ivec3 dims = volume.dims();
     m_bricks = (dims + kBrickVoxels - 1) / kBrickVoxels;
     const size_t count = static_cast<size_t>(m_bricks.x) * m_bricks.y * m_bricks.z;
-    m_min.assign(count, 1.0f);
-    m_max.assign(count, 0.0f);
+    for (Ranges& r : m_ranges) {
+        r.min.assign(count, 1.0f);
+        r.max.assign(count, 0.0f);
+    }
     // The texture's samples (voxel_storage.h), as the shader's classify() sees them.
     const float scale = 1.0f / static_cast<float>(storedPerSample(volume.type()));
     const StorageToRaw storage = storageToRaw(volume);
-    // A trilinear sample inside brick b mixes voxels up to one beyond the brick on each side, so
-    // each voxel widens the range of every brick whose extended footprint contains it.
+    // A sample inside brick b mixes voxels up to `reach` beyond the brick on each side (one
+    // trilinear, two cubic: volume_reconstruction.h), so each voxel widens the range of every
+    // brick whose extended footprint contains it.
     for (int z = 0; z < dims.z; ++z)
         for (int y = 0; y < dims.y; ++y)
             for (int x = 0; x < dims.x; ++x) {
@@ -26,15 +30,19 @@ OccupancyGrid::OccupancyGrid(const Volume& volume) {
                 const float value =
                     static_cast<float>(storedValue(volume.bytes().data(), volume.type(), index, storage)) * scale;
                 const glm::ivec3 v(x, y, z);
-                const glm::ivec3 lo = glm::max(glm::ivec3(0), (v - 1) / kBrickVoxels);
-                const glm::ivec3 hi = glm::min(m_bricks - 1, (v + 1) / kBrickVoxels);
-                for (int bz = lo.z; bz <= hi.z; ++bz)
-                    for (int by = lo.y; by <= hi.y; ++by)
-                        for (int bx = lo.x; bx <= hi.x; ++bx) {
-                            const size_t i = (static_cast<size_t>(bz) * m_bricks.y + by) * m_bricks.x + bx;
-                            m_min[i] = std::min(m_min[i], value);
-                            m_max[i] = std::max(m_max[i], value);
-                        }
+                for (const VolumeReconstruction r : {VolumeReconstruction::Trilinear, VolumeReconstruction::CubicBSpline}) {
+                    const int reach = reconstructionReach(r);
+                    Ranges& ranges = m_ranges[static_cast<int>(r)];
+                    const glm::ivec3 lo = glm::max(glm::ivec3(0), (v - reach) / kBrickVoxels);
+                    const glm::ivec3 hi = glm::min(m_bricks - 1, (v + reach) / kBrickVoxels);
+                    for (int bz = lo.z; bz <= hi.z; ++bz)
+                        for (int by = lo.y; by <= hi.y; ++by)
+                            for (int bx = lo.x; bx <= hi.x; ++bx) {
+                                const size_t i = (static_cast<size_t>(bz) * m_bricks.y + by) * m_bricks.x + bx;
+                                ranges.min[i] = std::min(ranges.min[i], value);
+                                ranges.max[i] = std::max(ranges.max[i], value);
+                            }
+                }
             }
     m_texture = gl::Texture::create3D(GL_R8, m_bricks, "empty-space occupancy");
     m_texture.setFilter(GL_NEAREST, GL_NEAREST);
@@ -69,7 +77,12 @@ std::vector<std::uint8_t> dilateByOneBrick(std::vector<std::uint8_t> marks, glm:
 
 }  // namespace
 
-void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueScaleOffset) {
+void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueScaleOffset,
+                           VolumeReconstruction reconstruction) {
+    m_reconstruction = reconstruction;
+    const Ranges& ranges = m_ranges[static_cast<int>(reconstruction)];
+    const std::vector<float>& rangeMin = ranges.min;
+    const std::vector<float>& rangeMax = ranges.max;
     const int entries = static_cast<int>(table.size());
     // Largest opacity over table entries [a, b]: a prefix structure is overkill for 256 entries.
     auto maxOpacity = [&](int a, int b) {
@@ -77,23 +90,23 @@ void OccupancyGrid::update(const std::vector<glm::vec4>& table, glm::vec2 valueS
         for (int i = a; i <= b; ++i) m = std::max(m, table[static_cast<size_t>(i)].a);
         return m;
     };
-    std::vector<std::uint8_t> occupied(m_min.size());
-    m_maxOpacity.assign(m_min.size(), 0.0f);
+    std::vector<std::uint8_t> occupied(rangeMin.size());
+    m_maxOpacity.assign(rangeMin.size(), 0.0f);
     size_t count = 0;
-    for (size_t i = 0; i < m_min.size(); ++i) {
+    for (size_t i = 0; i < rangeMin.size(); ++i) {
         // TF coordinates of the range (clamped as classify() does), then the table entries the
         // linear lookup can blend: the ones around each end.
-        const float lo = std::clamp(m_min[i] * valueScaleOffset.x + valueScaleOffset.y, 0.0f, 1.0f);
-        const float hi = std::clamp(m_max[i] * valueScaleOffset.x + valueScaleOffset.y, 0.0f, 1.0f);
+        const float lo = std::clamp(rangeMin[i] * valueScaleOffset.x + valueScaleOffset.y, 0.0f, 1.0f);
+        const float hi = std::clamp(rangeMax[i] * valueScaleOffset.x + valueScaleOffset.y, 0.0f, 1.0f);
         const int a = std::max(0, static_cast<int>(std::floor(lo * static_cast<float>(entries - 1))));
         const int b = std::min(entries - 1, static_cast<int>(std::ceil(hi * static_cast<float>(entries - 1))));
-        m_maxOpacity[i] = m_min[i] <= m_max[i] ? maxOpacity(a, b) : 0.0f;
+        m_maxOpacity[i] = rangeMin[i] <= rangeMax[i] ? maxOpacity(a, b) : 0.0f;
         occupied[i] = m_maxOpacity[i] > 0.0f ? 255 : 0;
         count += occupied[i] ? 1 : 0;
     }
     m_texture.upload(GL_RED, GL_UNSIGNED_BYTE, occupied.data());
     m_neighbourhoods.upload(GL_RED, GL_UNSIGNED_BYTE, dilateByOneBrick(occupied, m_bricks).data());
-    m_occupiedFraction = m_min.empty() ? 0.0 : static_cast<double>(count) / static_cast<double>(m_min.size());
+    m_occupiedFraction = rangeMin.empty() ? 0.0 : static_cast<double>(count) / static_cast<double>(rangeMin.size());
 }
 
 }  // namespace sss::detail

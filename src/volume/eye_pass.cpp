@@ -9,9 +9,13 @@ namespace sss::detail {
 
 void EyePass::run(const EyePassInputs& in) {
     const glm::ivec3 dims = in.lightVolumes.front().size();
-    if (!m_litColourProgram || m_litColourLights != in.lights.size()) {
-        m_litColourProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}},
-                                               {{"LIGHT_COUNT", std::to_string(in.lights.size())}});
+    if (!m_litColourProgram || m_litColourLights != in.lights.size() ||
+        m_litColourReconstruction != in.settings.reconstruction) {
+        m_litColourProgram =
+            gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}},
+                              {{"LIGHT_COUNT", std::to_string(in.lights.size())},
+                               {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(in.settings.reconstruction)}});
+        m_litColourReconstruction = in.settings.reconstruction;
         m_litColourLights = in.lights.size();
     }
     if (!m_litColour || m_litColour.size() != dims)

@@ -41,6 +41,7 @@ public:
 private:
     std::optional<gl::Program> m_litColourProgram;
     std::size_t m_litColourLights = 0;  // LIGHT_COUNT m_litColourProgram was built for
+    VolumeReconstruction m_litColourReconstruction = VolumeReconstruction::Trilinear;  // and its field
     std::optional<LightVolumePass> m_sweep;
     gl::Texture m_litColour, m_eyeVolume;
 };

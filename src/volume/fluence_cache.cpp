@@ -84,10 +84,13 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution)
     return cells;
 }
 
-FluenceCache::FluenceCache()
-    : m_photonProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_photons.comp"}},
-                                        {{"MAX_LIGHTS", std::to_string(kMaxLights)}})),
-      m_densityProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_density.comp"}})),
+FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
+    : m_reconstruction(reconstruction),
+      m_photonProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_photons.comp"}},
+                                        {{"MAX_LIGHTS", std::to_string(kMaxLights)},
+                                         {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
+      m_densityProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_density.comp"}},
+                                         {{"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
       m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})) {
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");

@@ -45,7 +45,8 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution)
 
 class FluenceCache {
 public:
-    FluenceCache();
+    explicit FluenceCache(VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear);
+    VolumeReconstruction reconstruction() const { return m_reconstruction; }
     /// Empties the cache for new inputs, at `cells` cells. `sameMedium`: the volume, transfer
     /// function, model transform and clip are those of the last restart (only the lights or the
     /// scattering changed), so the cells' weights are kept.
@@ -83,6 +84,7 @@ private:
     void dispatchPhotons(int invocations);
     void resolve();
 
+    VolumeReconstruction m_reconstruction;
     gl::Program m_photonProgram;
     gl::Program m_densityProgram;
     gl::Program m_resolveProgram;

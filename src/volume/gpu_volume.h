@@ -19,4 +19,9 @@ struct GpuVolume {
     static GpuVolume upload(const Volume& volume);
 };
 
+/// The value of the shaders' CUBIC_RECONSTRUCTION (volume/reconstruction.glsl) for `r`.
+inline const char* cubicReconstructionDefine(VolumeReconstruction r) {
+    return r == VolumeReconstruction::CubicBSpline ? "1" : "0";
+}
+
 }  // namespace sss::detail

@@ -152,13 +152,14 @@ int deviceSlicesPerDispatch(bool softwareDevice, bool chromaticity) {
 
 LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass), m_softwareDevice(gl::currentDeviceIsSoftware()) {}
 
-const gl::Program& LightVolumePass::program(bool chromaticity, bool slab) {
-    std::optional<gl::Program>& p = m_programs[chromaticity ? 1 : 0][slab ? 1 : 0];
+const gl::Program& LightVolumePass::program(bool chromaticity, bool slab, VolumeReconstruction reconstruction) {
+    std::optional<gl::Program>& p = m_programs[chromaticity ? 1 : 0][slab ? 1 : 0][static_cast<int>(reconstruction)];
     if (!p)
         p = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
                               {{"EYE_PASS", m_eyePass ? "1" : "0"},
                                {"CHROMATICITY", chromaticity ? "1" : "0"},
                                {"SLAB", slab ? "1" : "0"},
+                               {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)},
                                {"TILE", std::to_string(kSweepTile)},
                                {"SLAB_SIDE", std::to_string(kSweepSlabSide)}});
     return *p;
@@ -206,7 +207,7 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
                                                              : deviceSlicesPerDispatch(m_softwareDevice, chromaticity);
     const std::vector<SweepSlab> slabs = planSlabs(sweeps, lookups, voxelSize, maxSlices);
 
-    const gl::Program& p = program(chromaticity, !slabs.empty());
+    const gl::Program& p = program(chromaticity, !slabs.empty(), settings.reconstruction);
     if (m_eyePass) p.set("litColour", units::kLitColour);
     p.set("volumeTexture", 0);
     p.set("transferFunction", 1);

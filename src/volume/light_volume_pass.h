@@ -51,6 +51,8 @@ struct LightVolumeSettings {
     /// light volume texel for texel. Fewer are used where the light's sideways reach per slice
     /// leaves no room in shared memory (docs/light-volume-sweep.md).
     int maxSlicesPerDispatch = 0;
+    /// The field the medium samples read (VolumeRenderOptions::reconstruction).
+    VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
     bool operator==(const LightVolumeSettings&) const = default;
 };
 
@@ -92,8 +94,8 @@ private:
     /// Mixes the blended sweep's volume `blended` into `output` with `weight`.
     void blend(const gl::Texture& blended, float weight, const gl::Texture& output);
     /// The propagation program for this pass, `chromaticity` and `slab`, linked on first use.
-    const gl::Program& program(bool chromaticity, bool slab);
-    std::optional<gl::Program> m_programs[2][2];  // [chromaticity][slab]
+    const gl::Program& program(bool chromaticity, bool slab, VolumeReconstruction reconstruction);
+    std::optional<gl::Program> m_programs[2][2][2];  // [chromaticity][slab][reconstruction]
     std::optional<gl::Program> m_blendProgram;
     bool m_eyePass = false;
     bool m_softwareDevice = false;  // the device's choice of maxSlicesPerDispatch

@@ -45,13 +45,15 @@ gl::Texture brickMajorants(const OccupancyGrid& grid, float voxelLength) {
     return texture;
 }
 
-PathTracePass::PathTracePass(PathTraceBounds bounds)
+PathTracePass::PathTracePass(PathTraceBounds bounds, VolumeReconstruction reconstruction)
     : m_trace(gl::Program::link({{GL_COMPUTE_SHADER, "volume/path_trace.comp"}},
-                                {{"MAX_LIGHTS", std::to_string(kMaxLights)}})),
+                                {{"MAX_LIGHTS", std::to_string(kMaxLights)},
+                                 {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
       m_resolve(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/path_trace_resolve.frag"}})),
       m_emptyVertexArray(gl::VertexArray::create()),
-      m_bounds(bounds) {
+      m_bounds(bounds),
+      m_reconstruction(reconstruction) {
     if (bounds.stepsPerDispatch < 1 || bounds.stepsPerDispatch > kPathTraceMaxStepsPerDispatch)
         throw Error(ErrorKind::InvalidArgument, "PathTracePass: stepsPerDispatch must be in [1, " +
                                                     std::to_string(kPathTraceMaxStepsPerDispatch) + "], got " +

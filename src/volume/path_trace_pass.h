@@ -72,7 +72,9 @@ struct PathTraceBounds {
 class PathTracePass {
 public:
     /// @throws Error InvalidArgument for bounds out of range.
-    explicit PathTracePass(PathTraceBounds bounds = {});
+    explicit PathTracePass(PathTraceBounds bounds = {},
+                           VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear);
+    VolumeReconstruction reconstruction() const { return m_reconstruction; }
     ~PathTracePass();  // the status fence and mapping
     PathTracePass(const PathTracePass&) = delete;
     PathTracePass& operator=(const PathTracePass&) = delete;
@@ -101,6 +103,7 @@ private:
     gl::Program m_resolve;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
     PathTraceBounds m_bounds;
+    VolumeReconstruction m_reconstruction;
     gl::Buffer m_paths;   // one PathState (path_trace.comp) per pixel of a band
     gl::Buffer m_status;  // (unfinished invocations, abandoned paths)
     bool m_resumable = true;

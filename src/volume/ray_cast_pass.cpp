@@ -75,6 +75,7 @@ RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std:
         v.integerShininess = static_cast<int>(shininess);
     v.compute = usesComputeRayCaster(options.rayCaster, softwareDevice);
     v.scatteringCache = usesScatteringCache(options);
+    v.reconstruction = options.reconstruction;
     return v;
 }
 
@@ -95,7 +96,8 @@ RayCastPass::RayCastPass(const RayCastVariant& variant)
                                    {"PREINTEGRATED", variant.preintegration ? "1" : "0"},
                                    {"DIRECTIONAL_LIGHTS_ONLY", variant.directionalLightsOnly ? "1" : "0"},
                                    {"INTEGER_SHININESS", std::to_string(variant.integerShininess)},
-                                   {"SCATTERING_CACHE", variant.scatteringCache ? "1" : "0"}})),
+                                   {"SCATTERING_CACHE", variant.scatteringCache ? "1" : "0"},
+                                   {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(variant.reconstruction)}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
 void RayCastPass::run(const RayCastInputs& in) const {

@@ -96,6 +96,8 @@ struct RayCastVariant {
     bool compute = false;
     /// Samples add what they scatter of the multiple-scattering cache.
     bool scatteringCache = false;
+    /// The field between voxel centres (VolumeRenderOptions::reconstruction).
+    VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
 
     static RayCastVariant of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
                              GradientSource gradients, bool preintegration, bool softwareDevice);

@@ -60,6 +60,7 @@ struct PathTraceInputsKey {
     float anisotropy = 0.0f;
     int maxBounces = 0;
     VolumeClip clip;
+    VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
     bool operator==(const PathTraceInputsKey&) const = default;
 };
 
@@ -74,6 +75,7 @@ struct FluenceCacheKey {
     int maxBounces = 0;
     VolumeClip clip;
     glm::ivec3 cells{0};
+    VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
     bool operator==(const FluenceCacheKey&) const = default;
 };
 
@@ -198,10 +200,11 @@ struct VolumeScatteringRenderer::Impl {
     int pathSamples = 0;                                    // paths per pixel in pathSums
     std::optional<PathTraceInputsKey> pathKey;
     gl::Texture majorants;                                  // per brick, for the current TF
-    std::optional<std::tuple<std::uint64_t, std::uint64_t, int>> majorantKey;
+    std::optional<std::tuple<std::uint64_t, std::uint64_t, int, VolumeReconstruction>> majorantKey;
 
     void updateMajorants() {
-        const auto tableKey = std::make_tuple(volumeGeneration, transferFunction.revision(), options.transferFunctionEntries);
+        const auto tableKey = std::make_tuple(volumeGeneration, transferFunction.revision(),
+                                              options.transferFunctionEntries, options.reconstruction);
         if (majorantKey == tableKey) return;
         majorants = detail::brickMajorants(*occupancy, volume->voxelLength);
         majorantKey = tableKey;
@@ -214,12 +217,15 @@ struct VolumeScatteringRenderer::Impl {
     void updateFluenceCache() {
         const glm::ivec3 cells = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution);
         FluenceCacheKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
-                            model, options.anisotropy, options.maxBounces, clip, cells};
+                            model, options.anisotropy, options.maxBounces, clip, cells, options.reconstruction};
         const auto photons = static_cast<std::uint64_t>(options.cachePhotons);
         if (fluenceKey == key && fluenceCache->photons() >= photons) return;  // refined: nothing to trace
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         updateMajorants();
-        if (!fluenceCache) fluenceCache.emplace();
+        if (!fluenceCache || fluenceCache->reconstruction() != options.reconstruction) {
+            fluenceCache.emplace(options.reconstruction);
+            fluenceKey.reset();
+        }
         const detail::FluenceCacheInputs inputs{.volume = *volume,
                                                 .transferFunction = transferFunctionTable,
                                                 .majorants = majorants,
@@ -231,7 +237,7 @@ struct VolumeScatteringRenderer::Impl {
         if (fluenceKey != key) {
             const auto medium = [](const FluenceCacheKey& k) {
                 return std::tie(k.volumeGeneration, k.transferFunctionRevision, k.transferFunctionEntries, k.model, k.clip,
-                                k.cells);
+                                k.cells, k.reconstruction);
             };
             fluenceCache->restart(inputs, cells, fluenceKey && medium(*fluenceKey) == medium(key));
             fluenceKey = std::move(key);
@@ -247,7 +253,7 @@ struct VolumeScatteringRenderer::Impl {
         PathTraceInputsKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
                                model, camera.view(), camera.projection(target.aspect()),
                                glm::ivec2(target.width(), target.height()), options.anisotropy, options.maxBounces,
-                               clip};
+                               clip, options.reconstruction};
         if (pathKey != key) {
             if (!pathSums || pathSums.size() != glm::ivec3(key.size, 1))
                 pathSums = gl::Texture::create2D(GL_RGBA32F, key.size.x, key.size.y, "path-tracer sums");
@@ -256,7 +262,8 @@ struct VolumeScatteringRenderer::Impl {
             pathSamples = 0;
             pathKey = std::move(key);
         }
-        if (!pathTrace) pathTrace.emplace();
+        if (!pathTrace || pathTrace->reconstruction() != options.reconstruction)
+            pathTrace.emplace(detail::PathTraceBounds{}, options.reconstruction);
         copyDepth(target);
         pathTrace->accumulate({.volume = *volume,
                                .transferFunction = transferFunctionTable,
@@ -295,7 +302,8 @@ struct VolumeScatteringRenderer::Impl {
         const detail::LightVolumeSettings asked{.resolutionScale = options.lightVolumeScale,
                                                 .anisotropy = options.anisotropy,
                                                 .chromaticity = options.model != VolumeModel::Physical,
-                                                .maxSlicesPerDispatch = options.lightSweepSlices};
+                                                .maxSlicesPerDispatch = options.lightSweepSlices,
+                                                .reconstruction = options.reconstruction};
         const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
                                        lights, model, asked, lightClip() ? clip : VolumeClip{}};
         if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
@@ -349,7 +357,7 @@ struct VolumeScatteringRenderer::Impl {
         eyePass->run({*volume, transferFunctionTable, lightVolumes, lights, model, camera.forward(),
                       options.ambient + options.emission, options.diffuse,
                       {.resolutionScale = lightVolumeScaleInUse, .anisotropy = options.anisotropy,
-                       .maxSlicesPerDispatch = options.lightSweepSlices},
+                       .maxSlicesPerDispatch = options.lightSweepSlices, .reconstruction = options.reconstruction},
                       options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr, clipOrNull()});
         passTimer.end("eye-pass", mark, passTiming());
         eyeInputs = inputs;
@@ -370,7 +378,7 @@ struct VolumeScatteringRenderer::Impl {
             transferFunctionTable = gl::Texture::create2D(GL_RGBA32F, static_cast<int>(table.size()), 1, "transfer function");
         }
         transferFunctionTable.upload(GL_RGBA, GL_FLOAT, table.data());
-        if (occupancy) occupancy->update(table, volume->valueScaleOffset);
+        if (occupancy) occupancy->update(table, volume->valueScaleOffset, options.reconstruction);
         updatePreintegration();
     }
 };
@@ -417,7 +425,9 @@ const VolumeClip& VolumeScatteringRenderer::clip() const { return m_impl->clip; 
 
 void VolumeScatteringRenderer::setOptions(const VolumeRenderOptions& options) {
     validate(options);
-    const bool tableChanged = options.transferFunctionEntries != m_impl->options.transferFunctionEntries;
+    // The table, and the occupancy derived with it, depend on the reconstruction too.
+    const bool tableChanged = options.transferFunctionEntries != m_impl->options.transferFunctionEntries ||
+                              options.reconstruction != m_impl->options.reconstruction;
     m_impl->options = options;
     if (tableChanged) m_impl->uploadTransferFunction();
     m_impl->updatePreintegration();  // the step or the switch may have changed

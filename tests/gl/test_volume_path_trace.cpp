@@ -301,7 +301,7 @@ PassRun traceDense(detail::PathTraceBounds bounds) {
     gl::Texture tfTexture = gl::Texture::create2D(GL_RGBA32F, 256, 1, "test transfer function");
     tfTexture.upload(GL_RGBA, GL_FLOAT, table.data());
     detail::OccupancyGrid grid(volume);
-    grid.update(table, gpu.valueScaleOffset);
+    grid.update(table, gpu.valueScaleOffset, VolumeReconstruction::Trilinear);
     const gl::Texture majorants = detail::brickMajorants(grid, gpu.voxelLength);
     gl::Texture depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, kDenseWidth, kDenseHeight, "test depth");
     depth.setFilter(GL_NEAREST, GL_NEAREST);

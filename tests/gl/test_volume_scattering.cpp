@@ -93,7 +93,8 @@ LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, 
     std::optional<detail::OccupancyGrid> occupancy;
     if (skipping.on) {
         occupancy.emplace(volume);
-        occupancy->update(skipping.skipTf ? skipping.skipTf->table(256) : table, gpu.valueScaleOffset);
+        occupancy->update(skipping.skipTf ? skipping.skipTf->table(256) : table, gpu.valueScaleOffset,
+                          VolumeReconstruction::Trilinear);
     }
     detail::LightVolumePass pass;
     gl::Texture output;
@@ -148,7 +149,7 @@ TEST_CASE("empty-space skipping leaves the light volume unchanged texel for texe
     const Volume volume = twoBlobsVolume();
     const TransferFunction tf = twoBlobsTf();
     detail::OccupancyGrid grid(volume);
-    grid.update(tf.table(256), detail::GpuVolume::upload(volume).valueScaleOffset);
+    grid.update(tf.table(256), detail::GpuVolume::upload(volume).valueScaleOffset, VolumeReconstruction::Trilinear);
     INFO("occupied bricks " << grid.occupiedFraction());
     REQUIRE(grid.occupiedFraction() > 0.05);
     REQUIRE(grid.occupiedFraction() < 0.6);
