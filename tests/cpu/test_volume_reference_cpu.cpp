@@ -330,3 +330,35 @@ TEST_CASE("volume reference: bad inputs are rejected with the parameter's name",
     const VolumeReference ref(volume, tf, 256, glm::mat4(1.0f), {});
     REQUIRE_SSS_ERROR(ref.incidentLight(glm::dvec3(0), 0), K::InvalidArgument, Contains("light 0 is out of range"));
 }
+
+TEST_CASE("volume reference: the cubic B-spline keeps a linear ramp and spreads one voxel over its neighbours",
+          "[cpu]") {
+    // A TF whose opacity is its coordinate reads the field back through classify(). The cubic
+    // B-spline reproduces linear data exactly (away from the clamped edges) and weights a voxel
+    // 2/3 at its own centre and 1/6 at each neighbour's, per axis.
+    const int n = 12;
+    const TransferFunction identity({{0.0f, {1, 1, 1}, 0.0f}, {1.0f, {1, 1, 1}, 1.0f}});
+    auto reference = [&](const Volume& volume, VolumeReconstruction r) {
+        return VolumeReference(volume, identity, 4096, glm::mat4(1.0f), {DirectionalLight{}},
+                               VolumeReferenceOptions{.reconstruction = r});
+    };
+    std::vector<uint8_t> ramp(static_cast<size_t>(n) * n * n), spike(ramp.size(), 0);
+    for (size_t i = 0; i < ramp.size(); ++i) ramp[i] = static_cast<uint8_t>(20 * (i % n));
+    spike[(static_cast<size_t>(6) * n + 6) * n + 6] = 216;
+    const Volume rampVolume = Volume::fromData({n, n, n}, VoxelType::UInt8, std::move(ramp));
+    const Volume spikeVolume = Volume::fromData({n, n, n}, VoxelType::UInt8, std::move(spike));
+    const VolumeReference rampCubic = reference(rampVolume, VolumeReconstruction::CubicBSpline);
+    const VolumeReference rampLinear = reference(rampVolume, VolumeReconstruction::Trilinear);
+    for (double x : {2.0, 3.3, 5.5, 7.91, 8.5})
+        CHECK(rampCubic.classify(voxelCentre(n, x, 4.2, 6.7)).a ==
+              Approx(rampLinear.classify(voxelCentre(n, x, 4.2, 6.7)).a).margin(1e-3));
+    const VolumeReference spikeCubic = reference(spikeVolume, VolumeReconstruction::CubicBSpline);
+    const VolumeReference spikeLinear = reference(spikeVolume, VolumeReconstruction::Trilinear);
+    const double peak = 216.0 / 255.0;
+    CHECK(spikeLinear.classify(voxelCentre(n, 6, 6, 6)).a == Approx(peak).margin(1e-3));
+    CHECK(spikeCubic.classify(voxelCentre(n, 6, 6, 6)).a == Approx(peak * 8.0 / 27.0).margin(1e-3));
+    CHECK(spikeCubic.classify(voxelCentre(n, 7, 6, 6)).a == Approx(peak * 2.0 / 27.0).margin(1e-3));
+    CHECK(spikeLinear.classify(voxelCentre(n, 7, 6, 6)).a == Approx(0.0).margin(1e-6));
+    // Two voxels away the spike reaches neither.
+    CHECK(spikeCubic.classify(voxelCentre(n, 8, 6, 6)).a == Approx(0.0).margin(1e-6));
+}
