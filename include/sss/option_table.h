@@ -126,7 +126,7 @@ struct OptionTable<VolumeRenderOptions> {
         OptionField<O, bool>{&O::emptySpaceSkipping, "emptySpaceSkipping",
                              "skip transparent bricks (same image, faster)", {}, "--no-skipping"},
         OptionField<O, VolumeReconstruction>{&O::reconstruction, "reconstruction",
-            "the field between voxels: trilinear, or cubic (the smooth cubic B-spline: no voxel terraces, about 2.5x "
+            "the field between voxels: trilinear, or cubic (the smooth cubic B-spline: no voxel terraces, about 3x "
             "the ray-cast cost)", {}, "--reconstruction"},
         OptionField<O, int>{&O::transferFunctionEntries, "transferFunctionEntries",
                             "entries of the transfer-function table", between(2, 65536)},

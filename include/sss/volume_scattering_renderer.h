@@ -116,7 +116,7 @@ struct VolumeRenderOptions {
     /// without it (default: on).
     bool emptySpaceSkipping = true;
     /// The field between voxel centres, in every pass: trilinear, or the smooth cubic B-spline
-    /// that removes the voxel staircase's terraces at about 2.5x the cost of a ray-cast sample
+    /// that removes the voxel staircase's terraces at about 3x the cost of a ray-cast frame
     /// (default: Trilinear; see VolumeReconstruction).
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
     /// Entries of the transfer-function lookup table, 2..65536 (default: 256).
