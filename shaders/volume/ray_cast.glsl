@@ -115,7 +115,8 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
 #if COMBINED_FETCH
     vec3 g = shadedDifferences * (0.5 * valueScaleOffset.x);
 #elif GRADIENT_VOLUME
-    // Precomputed: the trilinear interpolation of per-voxel differences is the same gradient.
+    // Precomputed: the per-voxel differences reconstructed as the field is (trilinear or cubic)
+    // are the central differences of the field, the gradient the on-the-fly path computes.
     vec3 g = (reconstruct(gradientVolume, tc).xyz * 2.0 - 1.0) * (0.5 * valueScaleOffset.x);
 #else
     vec3 h = 1.0 / vec3(volumeDims);

@@ -127,7 +127,8 @@ class PathTracer {
 public:
     PathTracer(const Volume& volume, const TransferFunction& tf, int tfEntries, const glm::mat4& model,
                const std::vector<Light>& lights, const VolumePathTracerOptions& options)
-        : m_reference(volume, tf, tfEntries, model, lights, VolumeReferenceOptions{.clip = options.clip, .reconstruction = options.reconstruction}),
+        : m_reference(volume, tf, tfEntries, model, lights,
+                      VolumeReferenceOptions{.clip = options.clip, .reconstruction = options.reconstruction}),
           m_options(options) {
         const Bounds box = volume.worldBounds();
         m_boxMin = glm::dvec3(box.min);

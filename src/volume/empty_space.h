@@ -1,7 +1,7 @@
 #pragma once
 // Empty-space skipping: a coarse grid of bricks (kBrickVoxels^3 voxels each) that records, per
-// brick, the range of values a sample inside it can take (trilinear or cubic). When the transfer function
-// changes, each brick is marked occupied if the TF gives any opacity over its range; the ray
+// brick, the range of values a sample inside it can take (trilinear or cubic). When the transfer
+// function changes, each brick is marked occupied if the TF gives any opacity over its range; the ray
 // caster jumps over unoccupied bricks in whole steps, so its samples (and image) are exactly
 // those of a caster without skipping.
 #include "gl/texture.h"
@@ -52,7 +52,7 @@ private:
     struct Ranges {
         std::vector<float> min, max;  // per brick
     };
-    Ranges m_ranges[2];  // trilinear, cubic
+    Ranges m_ranges[2];  // indexed by VolumeReconstruction: trilinear, cubic
     VolumeReconstruction m_reconstruction = VolumeReconstruction::Trilinear;
     std::vector<float> m_maxOpacity;  // per brick, from the last update()
     gl::Texture m_texture;            // R8, 1 = occupied
