@@ -4,8 +4,8 @@
 // so the light always travels towards +w. A light's sweeps (two blended ones, or six from a light
 // inside) advance together: workgroup z is the sweep. For each voxel of slice w:
 //   - the light arriving there is looked up where the light ray through the voxel crosses slice
-//     w-1: intensity l bilinearly (hard shadows), chromaticity c gathered over a cone whose
-//     aperture follows the Henyey-Greenstein g;
+//     w-1: (c, l) by a clamped Catmull-Rom lookup (sharp shadows), then chromaticity c
+//     gathered over a cone whose aperture follows the Henyey-Greenstein g;
 //   - along the ray across the voxel's slab the medium is sampled at data resolution, and each
 //     piece changes the light as c' = (1-a) c + a rgb, l' = (1-a) l, with the TF opacity a
 //     corrected for the piece's length;
@@ -14,17 +14,18 @@
 //     leaving the slab goes to the next slice.
 // Outside the volume the light is unattenuated white: (1, 1, 1, 1).
 //
-// SLAB 0: one slice per dispatch, the lookups filtered by the texture unit from the slice
-// texture. SLAB 1, several slices per dispatch (docs/light-volume-sweep.md): each workgroup owns
-// a TILE x TILE square of its sweep's slices and advances it `slabSlices` slices through shared
-// memory. A slice's lookups reach at most `slabHalo` texels beyond the voxel (bounded on the
-// CPU), so the workgroup first loads the previous slice over the tile and slices x halo texels
-// around it, then computes each slice over a square that shrinks by the halo per slice, down to
-// the tile itself. The margins are computed twice, by neighbouring workgroups; in exchange a
-// light costs a few dispatches instead of one per slice (each a GPU-wide wait), and the cone's
-// taps read shared memory. Shared memory and the slice texture hold the same half floats, so any
-// number of slices per dispatch gives the same light volume; SLAB 0 differs from it by the
-// texture unit's bilinear weights alone.
+// SLAB 0: one slice per dispatch, the lookups read from the slice texture. SLAB 1, several
+// slices per dispatch (docs/light-volume-sweep.md): each workgroup owns a TILE x TILE square of
+// its sweep's slices and advances it `slabSlices` slices through shared memory. A slice's
+// lookups reach at most `slabHalo` texels beyond the voxel (bounded on the CPU), so the
+// workgroup first loads the previous slice over the tile and slices x halo texels around it,
+// then computes each slice over a square that shrinks by the halo per slice, down to the tile
+// itself. The margins are computed twice, by neighbouring workgroups; in exchange a light costs
+// a few dispatches instead of one per slice (each a GPU-wide wait), and the cone's taps read
+// shared memory. Shared memory and the slice texture hold the same half floats, rounded alike,
+// and both variants weight the centre lookup's taps in the shader, so any number of slices per
+// dispatch gives the same intensity l texel for texel; SLAB 0's cone taps are filtered by the
+// texture unit.
 //
 // EYE_PASS 1 (the optional second pass, towards the viewer): the same sweep carries the light the
 // voxels scatter (litColour, from lit_colour.comp) instead of the TF colour, starting from no
@@ -55,9 +56,10 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #define MAX_SWEEPS 6
 // Layer 2 s + parity holds the light leaving sweep s's last slice of the previous (parity =
-// pass % 2) or of this dispatch. SLAB 1 reads it by texelFetch (texels beyond a sweep's slice
-// are outsideLight, whatever the layer holds there); SLAB 0 filters it, with the layers cleared
-// to outsideLight and a border of it.
+// pass % 2) or of this dispatch. Its texels are read by texelFetch (texels beyond a sweep's
+// slice are outsideLight, whatever the layer holds there; SLAB 0's first pass reads layers
+// cleared to it); SLAB 0's cone taps are filtered by the texture unit, with a border of
+// outsideLight.
 uniform sampler2DArray previousSlices;
 uniform vec2 slicesTextureSize;  // SLAB 0
 layout(rgba16f) uniform writeonly image2DArray currentSlices;
@@ -104,16 +106,17 @@ uniform sampler3D litColour;
 int sweep;
 ivec3 dims;
 
+bool inSlice(ivec2 texel) { return all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, dims.xy)); }
+
+// Half floats rounded as packHalf2x16 rounds: a store to the slice texture may round otherwise.
+uvec2 packLight(vec4 light) { return uvec2(packHalf2x16(light.rg), packHalf2x16(light.ba)); }
+vec4 unpackLight(uvec2 halves) { return vec4(unpackHalf2x16(halves.x), unpackHalf2x16(halves.y)); }
+
 #if SLAB
 // The previous slice around this workgroup's tile, as half floats (c.rg, c.b l).
 shared uvec2 slab[SLAB_SIDE * SLAB_SIDE];
 ivec2 slabOrigin;  // slice texel at slab[0]
 int slabSide;      // texels of the slab the workgroup loaded, per side
-
-uvec2 packLight(vec4 light) { return uvec2(packHalf2x16(light.rg), packHalf2x16(light.ba)); }
-vec4 unpackLight(uvec2 halves) { return vec4(unpackHalf2x16(halves.x), unpackHalf2x16(halves.y)); }
-
-bool inSlice(ivec2 texel) { return all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, dims.xy)); }
 
 int slabIndex(ivec2 texel) {
     ivec2 local = clamp(texel - slabOrigin, ivec2(0), ivec2(slabSide - 1));
@@ -122,8 +125,20 @@ int slabIndex(ivec2 texel) {
 
 vec4 previousTexel(ivec2 texel) { return inSlice(texel) ? unpackLight(slab[slabIndex(texel)]) : outsideLight; }
 
-// The previous slice's light at `position` (slice texels, centres at + 0.5), bilinear.
+#else
+vec4 previousTexel(ivec2 texel) {
+    return inSlice(texel) ? texelFetch(previousSlices, ivec3(texel, 2 * sweep + pass % 2), 0) : outsideLight;
+}
+#endif
+
+// The previous slice's light at `position` (slice texels, centres at + 0.5), bilinear: the
+// chromaticity cone's ring taps, which blur on purpose. SLAB 0 lets the texture unit filter them
+// (eight of its lookups cost a third of eight by hand on llvmpipe), so its colours differ from
+// the slabs' by the unit's 8-bit weights.
 vec4 previousLight(vec2 position) {
+#if !SLAB
+    return texture(previousSlices, vec3(position / slicesTextureSize, float(2 * sweep + pass % 2)));
+#endif
     vec2 corner = position - 0.5;
     ivec2 i = ivec2(floor(corner));
     vec2 f = corner - vec2(i);
@@ -131,11 +146,43 @@ vec4 previousLight(vec2 position) {
     vec4 top = mix(previousTexel(i + ivec2(0, 1)), previousTexel(i + ivec2(1, 1)), f.x);
     return mix(bottom, top, f.y);
 }
-#else
-vec4 previousLight(vec2 position) {
-    return texture(previousSlices, vec3(position / slicesTextureSize, float(2 * sweep + pass % 2)));
+
+// Catmull-Rom weights of the four texels around a fraction f of the way between the middle two.
+vec4 catmullRomWeights(float f) {
+    float f2 = f * f, f3 = f2 * f;
+    return vec4(-0.5 * f3 + f2 - 0.5 * f, 1.5 * f3 - 2.5 * f2 + 1.0, -1.5 * f3 + 2.0 * f2 + 0.5 * f,
+                0.5 * f3 - 0.5 * f2);
 }
-#endif
+
+// The texels of a 4x4 Catmull-Rom footprint outside its middle 2x2, as offsets from its corner
+// texel i (the middle 2x2 is i to i + (1, 1)).
+const ivec2 kOuterTaps[12] = ivec2[12](ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(2, -1), ivec2(-1, 0),
+                                       ivec2(2, 0), ivec2(-1, 1), ivec2(2, 1), ivec2(-1, 2), ivec2(0, 2),
+                                       ivec2(1, 2), ivec2(2, 2));
+
+// The light arriving along the ray: Catmull-Rom over 4x4 texels, clamped to the range of the
+// middle 2x2. A bilinear lookup at a fractional shift blurs a shadow at every slice (by f(1-f)
+// texels squared), so shadows cast from far away arrived smeared over several voxels
+// (docs/light-volume-sweep.md); the cubic keeps their edges and the clamp keeps it monotone.
+// Where the middle 2x2 agree (empty space, full shadow) the clamp returns their value whatever
+// the outer taps hold, so those twelve are not fetched.
+vec4 arrivingAlongRay(vec2 position) {
+    vec2 corner = position - 0.5;
+    ivec2 i = ivec2(floor(corner));
+    vec2 f = corner - vec2(i);
+    vec4 wx = catmullRomWeights(f.x), wy = catmullRomWeights(f.y);
+    vec4 t00 = previousTexel(i), t10 = previousTexel(i + ivec2(1, 0));
+    vec4 t01 = previousTexel(i + ivec2(0, 1)), t11 = previousTexel(i + ivec2(1, 1));
+    vec4 low = min(min(t00, t10), min(t01, t11)), high = max(max(t00, t10), max(t01, t11));
+    vec4 sum = wy[1] * (wx[1] * t00 + wx[2] * t10) + wy[2] * (wx[1] * t01 + wx[2] * t11);
+    // A loop bound rather than a branch: llvmpipe skips a loop no lane enters, not a branch.
+    int outerTaps = all(equal(low, high)) ? 0 : 12;
+    for (int k = 0; k < outerTaps; ++k) {
+        ivec2 tap = kOuterTaps[k];
+        sum += wx[tap.x + 1] * wy[tap.y + 1] * previousTexel(i + tap);
+    }
+    return clamp(sum, low, high);
+}
 
 // Propagates the light across voxel (uv, w) of the sweep; stores the light arriving at its
 // centre in the light volume when `store`, and returns the light leaving its slab.
@@ -156,7 +203,7 @@ vec4 propagateVoxel(ivec2 uv, int w, bool store) {
 
     // Where the light ray through this voxel crosses the previous slice, in slice texels.
     vec2 previous = vec2(uv) + 0.5 - d.xy / dz * s.z / s.xy;
-    vec4 centre = previousLight(previous);
+    vec4 centre = arrivingAlongRay(previous);
 #if CHROMATICITY
     vec3 chromaticity = centre.rgb;
     vec2 ringRadius = coneTangent * pathLength / s.xy;  // texels
@@ -293,6 +340,7 @@ void main() {
     ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
     int w = firstSlice[sweep] + pass;
     if (uv.x >= dims.x || uv.y >= dims.y || w >= dims.z) return;
-    imageStore(currentSlices, ivec3(uv, 2 * sweep + 1 - pass % 2), propagateVoxel(uv, w, true));
+    // Rounded as the slabs round, so the next slice's lookups read what theirs do.
+    imageStore(currentSlices, ivec3(uv, 2 * sweep + 1 - pass % 2), unpackLight(packLight(propagateVoxel(uv, w, true))));
 }
 #endif

@@ -35,9 +35,9 @@ struct LookupGeometry {
 };
 
 // The farthest, in slice texels along u or v, that any voxel's lookups into the previous slice
-// reach from the voxel: the light's sideways shift between slices plus the cone's ring radius,
-// plus one texel of bilinear footprint. nullopt where some voxel's light runs (nearly) along the
-// slice. Both terms are largest at a corner of the box of voxel centres (a perspective map of a
+// reach from the voxel: the light's sideways shift between slices, plus the cone's ring radius
+// and one texel of its bilinear taps, or two texels of the Catmull-Rom lookup's footprint.
+// nullopt where some voxel's light runs (nearly) along the slice. Both terms are largest at a corner of the box of voxel centres (a perspective map of a
 // box is convex), so the corners bound a point light's sweep.
 std::optional<int> lookupReach(const LookupGeometry& g, int u, int v, const LightSweep& sweep, glm::vec3 s) {
     std::vector<glm::vec3> directions;
@@ -61,7 +61,7 @@ std::optional<int> lookupReach(const LookupGeometry& g, int u, int v, const Ligh
         shift = glm::max(shift, sideways * s.z / glm::vec2(s));
         ring = glm::max(ring, g.coneTangent * (length / d.z) * s.z / glm::vec2(s));
     }
-    const glm::vec2 reach = shift + ring;
+    const glm::vec2 reach = glm::max(shift + ring, shift + 1.0f);
     const float farthest = std::max(reach.x, reach.y) + 1e-3f;  // CPU and GPU round apart
     if (farthest > static_cast<float>(kSweepSlabSide)) return std::nullopt;
     return static_cast<int>(std::floor(farthest)) + 1;
@@ -253,8 +253,9 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
         m_slices.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume (SLAB 0)
     }
     if (!layout.slab) {
-        // Filtered lookups see the unlit value in each sweep's first slice and beyond a smaller
-        // sweep's slice; the slabs take outsideLight there instead.
+        // One slice per dispatch reads each sweep's first slice from the texture, and filters
+        // beyond a slice's edge: the unlit value, cleared and as the border. The slabs take
+        // outsideLight there instead.
         m_slices.setBorderColor(outside);
         const float unlit[4] = {outside.r, outside.g, outside.b, outside.a};
         glClearTexImage(m_slices.id(), 0, GL_RGBA, GL_FLOAT, unlit);
