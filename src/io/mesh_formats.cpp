@@ -9,6 +9,7 @@
 #include "sss/log.h"
 
 #if SSS_WITH_ASSIMP
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/mesh.h>
@@ -32,6 +33,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -611,9 +613,25 @@ private:
         if (!problem.empty()) fail(problem);
     }
 
+    // Where the readers of a file's extension all decline it, Assimp tries every other reader
+    // whose signature test matches (a ".gltf" that was not JSON went to the PLY reader, which
+    // hung on it: tests/fuzz). Only the chosen format's readers stay registered, so the
+    // structure checks above cover whatever reads the file. Assimp does not delete readers it
+    // no longer holds; m_otherReaders does.
+    void keepOnlyReadersOfFormat() {
+        for (std::size_t i = m_importer.GetImporterCount(); i-- > 0;) {
+            Assimp::BaseImporter* reader = m_importer.GetImporter(i);
+            std::set<std::string> extensions;
+            reader->GetExtensionList(extensions);
+            if (extensions.count(assimpHint(m_format)) > 0) continue;
+            if (m_importer.UnregisterLoader(reader) == aiReturn_SUCCESS) m_otherReaders.emplace_back(reader);
+        }
+    }
+
     // From the path where Assimp's choice by extension agrees (glTF buffers beside the file are
     // found then); from memory with a hint otherwise.
     void readScene() {
+        keepOnlyReadersOfFormat();
         try {
             const std::optional<MeshFormat> byExtension = meshFormatFromExtension(m_path);
             const bool gltfEither = (m_format == MeshFormat::Gltf || m_format == MeshFormat::Glb) &&
@@ -878,6 +896,7 @@ private:
     std::string_view m_bytes;
     MeshFormat m_format;
     Assimp::Importer m_importer;
+    std::vector<std::unique_ptr<Assimp::BaseImporter>> m_otherReaders;  // unregistered from m_importer
     const aiScene* m_scene = nullptr;
     bool m_smooth = false, m_keepTexcoords = false;
     std::vector<glm::vec3> m_positions, m_normals;

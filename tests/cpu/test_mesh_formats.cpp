@@ -342,6 +342,13 @@ TEST_CASE("Mesh::load rejects corrupted PLY, STL, glTF and OFF files naming the 
     std::string longGlb = glb(tetraGltfJson("{\"mesh\":0}", "0", ""), tetraGltfBuffer());
     longGlb.resize(longGlb.size() - 8);
     rejects("cut.glb", longGlb, "(truncated or corrupt)");
+    // Not JSON, so Assimp's glTF readers decline it; Assimp then tried its other readers, and the
+    // PLY reader, finding "ply" in the first bytes, hung on it (the fuzzer's reproducer,
+    // tests/fuzz/corpus/mesh_formats/repro_gltf_not_json_ply_reader_hang). Only the glTF readers
+    // may read a glTF file.
+    const char notJson[] = "plyly\nformat ascii 1.0\ne.\0\0\0%\xff 0 0\n1 0 0\n0 t1loa\nformat ascii 1.0\ne.\0\0\0"
+                           "%\xff 0 0\n1 0 0\n0 t1loat  x\np0";
+    rejects("ply_inside.gltf", std::string(notJson, sizeof notJson - 1), "cannot read glTF (Assimp)");
 }
 
 // ---- texture coordinates and base-colour textures -------------------------------------------
