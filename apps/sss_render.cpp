@@ -49,8 +49,10 @@ blinn-phong only the surfaces are drawn. Write negative values as --isosurface=-
 
 --clip-plane and --crop cut the volume (its rays, light volume and path tracer); meshes are not
 cut. The cut matter casts no shadows, so a cut face is lit like the inside it exposes, unless
---clip-shadows. Planes are in world space, where the volume's box is 1 unit on its longest side
-and centred on the origin (before --volume-offset); write a leading minus as --clip-plane=-0.1,...
+--clip-shadows. A plane NX,NY,NZ,D keeps the points p with n.p + d >= 0 in the volume's normalised
+data coordinates (0..1, like --crop); a plane PX,PY,PZ,NX,NY,NZ is in world space, where the
+volume's box is 1 unit on its longest side and centred on the origin (before --volume-offset).
+Write a leading minus as --clip-plane=-0.1,...
 )";
 
 /// Everything the command line says.
@@ -66,7 +68,7 @@ struct Args {
     sss::HybridOptions hybrid;
     std::optional<float> meshSize;
     std::vector<std::string> isosurfaces;  // --isosurface VALUE[:MATERIAL], repeatable
-    std::vector<std::string> clipPlanes;   // --clip-plane PX,PY,PZ,NX,NY,NZ, repeatable
+    std::vector<std::string> clipPlanes;   // --clip-plane NX,NY,NZ,D or PX,PY,PZ,NX,NY,NZ, repeatable
     std::string crop;                      // --crop X0,Y0,Z0,X1,Y1,Z1
     bool clipShadows = false;              // --clip-shadows
     sss::CropSpace cropSpace = sss::CropSpace::Data;  // --crop-space
@@ -193,7 +195,7 @@ sss::SceneDescription sceneFromFlags(const CLI::App& app, Args& a) {
         volume.options.shading = meshMode ? sss::VolumeShading::Scattering
                                           : volumeShading(a.mode).value_or(sss::VolumeShading::Scattering);
         volume.visible = !meshMode;  // a mesh mode with --isosurface draws the surfaces alone
-        for (const std::string& plane : a.clipPlanes) volume.clip.planes.push_back(parseClipPlane("--clip-plane", plane));
+        addClipPlanes("--clip-plane", a.clipPlanes, volume.clip);
         volume.clip.cropSpace = a.cropSpace;
         if (!a.crop.empty()) std::tie(volume.clip.cropMin, volume.clip.cropMax) = parseCrop("--crop", a.crop, a.cropSpace);
         volume.clip.clippedMatterCastsShadows = a.clipShadows;
@@ -567,9 +569,10 @@ int main(int argc, char** argv) {
             ->allow_extra_args(false)
             ->group("input");
         app.add_option("--clip-plane", a.clipPlanes,
-                       "cut the volume by a world-space plane through P, keeping the side the normal N points to "
-                       "(repeatable, up to 6)")
-            ->type_name("PX,PY,PZ,NX,NY,NZ")
+                       "cut the volume by a plane, keeping n.p + d >= 0 in normalised data coordinates (NX,NY,NZ,D), "
+                       "or the side the normal N points to of a world-space plane through P (PX,PY,PZ,NX,NY,NZ); "
+                       "repeatable, up to 6, all in one form")
+            ->type_name("NX,NY,NZ,D|PX,PY,PZ,NX,NY,NZ")
             ->allow_extra_args(false)
             ->group("clipping");
         app.add_option("--crop", a.crop,

@@ -281,10 +281,11 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
                                "photons in the multiple-scattering cache (0 when it is off)")
         .def("set_clip",
              [](W& w, const std::vector<std::pair<glm::vec3, glm::vec3>>& planes, glm::vec3 cropMin, glm::vec3 cropMax,
-                bool clippedMatterCastsShadows, sss::CropSpace cropSpace) {
+                bool clippedMatterCastsShadows, sss::CropSpace cropSpace, sss::CropSpace planeSpace) {
                  sss::VolumeClip clip;
                  clip.cropSpace = cropSpace;
                  for (const auto& [point, normal] : planes) clip.planes.push_back({point, normal});
+                 clip.planeSpace = planeSpace;
                  clip.cropMin = cropMin;
                  clip.cropMax = cropMax;
                  clip.clippedMatterCastsShadows = clippedMatterCastsShadows;
@@ -292,9 +293,10 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
              },
              py::arg("planes") = std::vector<std::pair<glm::vec3, glm::vec3>>{}, py::arg("crop_min") = glm::vec3(0.0f),
              py::arg("crop_max") = glm::vec3(1.0f), py::arg("clipped_matter_casts_shadows") = false,
-             py::arg("crop_space") = sss::CropSpace::Data,
-             "Cuts the volume (sss::VolumeClip): planes as (point, normal) pairs in world space, keeping the side "
-             "the normal points to (up to 6); the crop box in normalised data coordinates, or world coordinates with "
+             py::arg("crop_space") = sss::CropSpace::Data, py::arg("plane_space") = sss::CropSpace::World,
+             "Cuts the volume (sss::VolumeClip): planes as (point, normal) pairs, keeping the side the normal "
+             "points to (up to 6), in world space or, with plane_space=\"data\", in normalised data coordinates; "
+             "the crop box in normalised data coordinates, or world coordinates with "
              "crop_space=\"world\"; cut matter casts no shadows unless clipped_matter_casts_shadows. No arguments: "
              "nothing cut.")
         .def_property_readonly("clip",
@@ -308,6 +310,7 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
                                    d["crop_max"] = c.cropMax;
                                    d["clipped_matter_casts_shadows"] = c.clippedMatterCastsShadows;
                                    d["crop_space"] = c.cropSpace;
+                                   d["plane_space"] = c.planeSpace;
                                    return d;
                                },
                                "the clip as set_clip's keyword arguments")

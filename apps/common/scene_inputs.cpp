@@ -71,11 +71,30 @@ std::vector<float> parseSix(const std::string& option, const std::string& text, 
 
 }  // namespace
 
-sss::ClipPlane parseClipPlane(const std::string& option, const std::string& text) {
-    const std::vector<float> v = parseSix(option, text, "PX,PY,PZ,NX,NY,NZ (a point, then the normal of the side kept)");
-    const sss::ClipPlane plane{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
-    if (plane.normal == glm::vec3(0.0f)) throw UsageError(option + ": the normal must be non-zero, got \"" + text + "\"");
-    return plane;
+ParsedClipPlane parseClipPlane(const std::string& option, const std::string& text) {
+    const auto parts = split(text, ',');
+    if (parts.size() != 4 && parts.size() != 6)
+        throw UsageError(option + ": expected NX,NY,NZ,D (normalised data coordinates) or PX,PY,PZ,NX,NY,NZ (world: a "
+                                  "point, then the normal of the side kept), got \"" + text + "\"");
+    std::vector<float> v;
+    for (const auto& part : parts) v.push_back(parseFloat(option, part));
+    const bool data = v.size() == 4;
+    const glm::vec3 normal = data ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[3], v[4], v[5]);
+    if (normal == glm::vec3(0.0f)) throw UsageError(option + ": the normal must be non-zero, got \"" + text + "\"");
+    // n . p + d >= 0 is the plane through -d n / |n|^2 with normal n.
+    const glm::vec3 point = data ? -v[3] * normal / glm::dot(normal, normal) : glm::vec3(v[0], v[1], v[2]);
+    return {{point, normal}, data ? sss::CropSpace::Data : sss::CropSpace::World};
+}
+
+void addClipPlanes(const std::string& option, const std::vector<std::string>& texts, sss::VolumeClip& clip) {
+    for (std::size_t i = 0; i < texts.size(); ++i) {
+        const ParsedClipPlane parsed = parseClipPlane(option, texts[i]);
+        if (i > 0 && parsed.space != clip.planeSpace)
+            throw UsageError(option + ": give every plane in one form, NX,NY,NZ,D (data) or PX,PY,PZ,NX,NY,NZ (world); "
+                                      "\"" + texts[i] + "\" differs from \"" + texts[0] + "\"");
+        clip.planeSpace = parsed.space;
+        clip.planes.push_back(parsed.plane);
+    }
 }
 
 std::pair<glm::vec3, glm::vec3> parseCrop(const std::string& option, const std::string& text, sss::CropSpace space) {

@@ -54,8 +54,16 @@ int parseInt(const std::string& option, const std::string& text);
 std::vector<std::string> split(const std::string& text, char separator);
 glm::vec3 parseVec3(const std::string& option, const std::string& text);  ///< "X,Y,Z"
 glm::ivec3 parseDims(const std::string& option, const std::string& text);  ///< "XxYxZ"
-/// "PX,PY,PZ,NX,NY,NZ": a point on the plane and the normal of the side kept (world space).
-sss::ClipPlane parseClipPlane(const std::string& option, const std::string& text);
+/// A plane and where it is given.
+struct ParsedClipPlane {
+    sss::ClipPlane plane;
+    sss::CropSpace space;
+};
+/// "PX,PY,PZ,NX,NY,NZ": a point on the plane and the normal of the side kept (world space); or
+/// "NX,NY,NZ,D": the points p of the volume's normalised data coordinates with n . p + d >= 0.
+ParsedClipPlane parseClipPlane(const std::string& option, const std::string& text);
+/// Every plane of `texts` (parseClipPlane) into `clip`, all in one space.
+void addClipPlanes(const std::string& option, const std::vector<std::string>& texts, sss::VolumeClip& clip);
 /// "X0,Y0,Z0,X1,Y1,Z1": the crop box's corners, min below max on each axis; in `space` Data,
 /// normalised data coordinates in [0, 1].
 std::pair<glm::vec3, glm::vec3> parseCrop(const std::string& option, const std::string& text, sss::CropSpace space);

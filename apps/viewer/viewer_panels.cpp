@@ -289,9 +289,12 @@ void Panels::clipSection() {
     if (ImGui::Checkbox("clip plane", &plane)) {
         clip.planes.clear();
         if (plane) clip.planes.push_back({glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f)});
+        clip.planeSpace = sss::CropSpace::World;
         changed = true;
     }
-    if (plane) {
+    if (plane && clip.planeSpace == sss::CropSpace::Data) {  // a scene file's: kept, the reset removes them
+        ImGui::Text("%zu plane(s) in normalised data coordinates", clip.planes.size());
+    } else if (plane) {
         // The normal as azimuth and elevation; the plane through centre + offset * normal.
         sss::ClipPlane& p = clip.planes.front();
         const glm::vec3 n = glm::normalize(p.normal);

@@ -240,6 +240,11 @@ def test_clip_cuts_the_volume_and_refuses_bad_planes(gl):
     renderer.set_clip(planes=[((0.0, 0.0, 0.0), (-1.0, 0.0, 0.0))])
     planes = renderer.render(camera, width=64, height=48)
     assert np.abs(planes - cropped).max() <= 2.0 / 255.0
+    # The same plane in normalised data coordinates: x <= 0.5 of the volume.
+    renderer.set_clip(planes=[((0.5, 0.0, 0.0), (-1.0, 0.0, 0.0))], plane_space="data")
+    assert renderer.clip["plane_space"] == sss.CropSpace.DATA
+    data_planes = renderer.render(camera, width=64, height=48)
+    assert np.abs(data_planes - cropped).max() <= 2.0 / 255.0
     with pytest.raises(ValueError, match=r"planes\[0\]\.normal must be non-zero"):
         renderer.set_clip(planes=[((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))])
     renderer.set_clip(crop_min=(-5.0, -5.0, -5.0), crop_max=(0.0, 5.0, 5.0), crop_space="world")

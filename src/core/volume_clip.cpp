@@ -89,7 +89,11 @@ TextureClip textureClip(const VolumeClip& clip, const glm::mat4& model, const Bo
         const glm::dvec3 n = glm::transpose(linear) * glm::dvec3(p.normal);
         return glm::dvec4(n * size, glm::dot(n, origin) + glm::dot(glm::dvec3(p.normal), translation - glm::dvec3(p.point)));
     };
-    for (const ClipPlane& p : clip.planes) t.planes.push_back(toTexture(p));
+    for (const ClipPlane& p : clip.planes) {
+        const glm::dvec3 n(p.normal);
+        t.planes.push_back(clip.planeSpace == CropSpace::Data ? glm::dvec4(n, -glm::dot(n, glm::dvec3(p.point)))
+                                                              : toTexture(p));
+    }
     constexpr double open = std::numeric_limits<double>::infinity();
     if (clip.cropSpace == CropSpace::World) {
         // A world box is six planes in texture space, and the texture-space box stays open.

@@ -349,6 +349,7 @@ VolumeClip readClip(const json& j, const std::string& path, const std::string& f
             r.finish();
         }
     }
+    reader("planeSpace", clip.planeSpace);
     reader("cropMin", clip.cropMin);
     reader("cropMax", clip.cropMax);
     reader("cropSpace", clip.cropSpace);
@@ -365,6 +366,7 @@ json writeClip(const VolumeClip& clip) {
         for (const ClipPlane& p : clip.planes)
             planes.push_back({{"point", {p.point.x, p.point.y, p.point.z}}, {"normal", {p.normal.x, p.normal.y, p.normal.z}}});
         j["planes"] = planes;
+        if (clip.planeSpace != CropSpace::World) j["planeSpace"] = std::string(enumName(clip.planeSpace));
     }
     if (clip.cropMin != glm::vec3(0.0f)) j["cropMin"] = {clip.cropMin.x, clip.cropMin.y, clip.cropMin.z};
     if (clip.cropMax != glm::vec3(1.0f)) j["cropMax"] = {clip.cropMax.x, clip.cropMax.y, clip.cropMax.z};

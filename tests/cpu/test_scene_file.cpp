@@ -65,6 +65,8 @@ SceneDescription everyKindOfField() {
     fromFile.clip.cropSpace = CropSpace::World;
     fromFile.clip.cropMin = {-2.0f, -0.5f, 0.0f};
     fromFile.clip.cropMax = {0.0f, 3.0f, 1.5f};
+    fromFile.clip.planeSpace = CropSpace::Data;
+    fromFile.clip.planes = {{{0.5f, 0.0f, 0.0f}, {-1.0f, 0.0f, 0.0f}}};
     scene.volumes.push_back(fromFile);
 
     scene.lights = {DirectionalLight{{-1.0f, -2.0f, 0.5f}, {1.0f, 0.9f, 0.8f}, 2.0f},
@@ -127,6 +129,8 @@ TEST_CASE("a scene survives a JSON round trip field for field", "[scene]") {
     CHECK(back.volumes[0].clip == scene.volumes[0].clip);
     CHECK(back.volumes[1].clip == scene.volumes[1].clip);
     CHECK(back.volumes[1].clip.cropSpace == CropSpace::World);
+    CHECK(back.volumes[1].clip.planeSpace == CropSpace::Data);
+    CHECK(back.volumes[0].clip.planeSpace == CropSpace::World);
     CHECK(back.volumes[1].transferFunction.file == "maps/ember.json");
     CHECK(back.lights == scene.lights);
     CHECK(back.camera == scene.camera);

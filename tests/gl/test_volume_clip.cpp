@@ -123,7 +123,8 @@ TEST_CASE("a crop box hides what it cuts and leaves the rest as it was", "[gl][v
     gl.requireNoErrors();
 }
 
-TEST_CASE("a clip plane cuts what the crop box cuts, in world space under any placement", "[gl][volume][clip]") {
+TEST_CASE("a clip plane cuts what the crop box cuts, in world or data space, under any placement",
+          "[gl][volume][clip]") {
     test::GlTestScope gl;
     const Volume volume = ballVolume();
     for (const float angle : {0.0f, 35.0f}) {
@@ -145,6 +146,15 @@ TEST_CASE("a clip plane cuts what the crop box cuts, in world space under any pl
         INFO("rotated " << angle << " degrees: largest difference " << largestDifference(a, b));
         CHECK(largestDifference(a, b) <= 1.5f / 255.0f);
         CHECK(largestDifference(a, whole) > 0.1f);  // the cut is visible
+        // The same faces as planes in normalised data coordinates: n . p + d >= 0 with n (-1, 0, 0),
+        // d 0.5 and n (0, 0, -1), d 0.7 (sss-render --clip-plane=-1,0,0,0.5), whatever the placement.
+        Render dataPlanes = planes;
+        dataPlanes.clip.planeSpace = CropSpace::Data;
+        dataPlanes.clip.planes = {{.point = {0.5f, 0.0f, 0.0f}, .normal = {-1.0f, 0.0f, 0.0f}},
+                                  {.point = {0.0f, 0.0f, 0.7f}, .normal = {0.0f, 0.0f, -1.0f}}};
+        const Image e = render(volume, dataPlanes, camera);
+        INFO("data-space planes against the crop box: largest difference " << largestDifference(a, e));
+        CHECK(largestDifference(a, e) <= 1.5f / 255.0f);
         // A world-space crop box that only cuts at world x = 0.1 is that world plane, whatever
         // the placement.
         Render worldBox = unclipped, worldPlane = unclipped;
