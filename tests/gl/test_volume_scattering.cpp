@@ -9,6 +9,7 @@
 #include "volume/light_volume_pass.h"
 
 #include <catch2/catch.hpp>
+#include <sss/volume_clip.h>
 #include <sss/image_compare.h>
 #include <sss/procedural.h>
 #include <sss/volume_path_tracer.h>
@@ -85,7 +86,7 @@ const SweepCase kSweepCases[] = {{DirectionalLight{.direction = {0.8f, -0.5f, 0.
 
 LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, const Light& light,
                               detail::LightVolumeSettings settings = {}, Skipping skipping = {},
-                              int* slicesPerDispatch = nullptr) {
+                              int* slicesPerDispatch = nullptr, const VolumeClip* clip = nullptr) {
     const detail::GpuVolume gpu = detail::GpuVolume::upload(volume);
     const std::vector<glm::vec4> table = tf.table(256);
     gl::Texture tfTexture = gl::Texture::create2D(GL_RGBA32F, 256, 1, "test transfer function");
@@ -100,7 +101,8 @@ LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, 
     gl::Texture output;
     pass.run({.volume = gpu,
               .transferFunction = tfTexture,
-              .occupiedNeighbourhoods = occupancy ? &occupancy->occupiedNeighbourhoods() : nullptr},
+              .occupiedNeighbourhoods = occupancy ? &occupancy->occupiedNeighbourhoods() : nullptr,
+              .clip = clip},
              light, glm::mat4(1.0f), settings, output);
     if (slicesPerDispatch) *slicesPerDispatch = pass.lastLayout().slicesPerPass;
     LightVolumeReadback r{output.size(), std::vector<glm::vec4>(static_cast<size_t>(output.size().x * output.size().y * output.size().z))};
@@ -276,6 +278,58 @@ TEST_CASE("any number of slices per dispatch gives the same light volume", "[gl]
             const bool fallsBack = &c == &cases[1] || &c == &cases[2];
             CHECK((fallsBack ? slicesUsed == 1 : slicesUsed >= 2));
         }
+    }
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a light volume with cut matter is the light volume without that matter, texel for texel",
+          "[gl][volume][scattering][clip]") {
+    // A block (x in [4, 12)) behind a wall (x in [24, 28)) for light travelling towards -x, a
+    // little slanted. Cut at data x = 0.6 (voxel 19.2, empty space between them), the wall casts
+    // no shadow, so the light volume is the one of the data without the wall, everywhere and
+    // exactly; with clippedMatterCastsShadows it is the one with the wall. In the data and in
+    // world space, by planes and by the crop box, slabs of slices and one slice per dispatch.
+    test::GlTestScope gl;
+    constexpr int n = 32;
+    const auto blockAndWall = [](bool wall) {
+        return makeVolume(n, [wall](int x, int y, int z) {
+            const bool inner = y >= 6 && y < 26 && z >= 6 && z < 26;
+            if (inner && x >= 4 && x < 12) return uint8_t(200);
+            if (wall && x >= 24 && x < 28) return uint8_t(255);
+            return uint8_t(0);
+        });
+    };
+    const Volume withWall = blockAndWall(true), withoutWall = blockAndWall(false);
+    const TransferFunction tf = stepTf(0.6f, {0.9f, 0.6f, 0.3f});
+    const DirectionalLight light{.direction = {-1.0f, -0.15f, 0.1f}};
+    VolumeClip dataPlane;
+    dataPlane.planeSpace = CropSpace::Data;
+    dataPlane.planes = {{.point = {0.6f, 0.0f, 0.0f}, .normal = {-1.0f, 0.0f, 0.0f}}};
+    VolumeClip worldPlane;  // the volume's box spans [-0.5, 0.5]: data x 0.6 is world x 0.1
+    worldPlane.planes = {{.point = {0.1f, 0.0f, 0.0f}, .normal = {-1.0f, 0.0f, 0.0f}}};
+    VolumeClip crop;
+    crop.cropMax = {0.6f, 1.0f, 1.0f};
+    VolumeClip shadowing = dataPlane;
+    shadowing.clippedMatterCastsShadows = true;
+    const auto differing = [](const LightVolumeReadback& a, const LightVolumeReadback& b) {
+        size_t count = 0;
+        for (size_t i = 0; i < a.texels.size(); ++i) count += a.texels[i] != b.texels[i] ? 1 : 0;
+        return count;
+    };
+    for (const int slices : {1, 4}) {
+        detail::LightVolumeSettings settings;
+        settings.maxSlicesPerDispatch = slices;
+        const LightVolumeReadback noWall = propagate(withoutWall, tf, light, settings);
+        const LightVolumeReadback wall = propagate(withWall, tf, light, settings);
+        const size_t shadowed = differing(wall, noWall);
+        INFO(slices << " slices per dispatch: the wall changes " << shadowed << " texels");
+        CHECK(shadowed > 1000);  // the wall does shadow the block
+        for (const VolumeClip* clip : {&dataPlane, &worldPlane, &crop}) {
+            const LightVolumeReadback cut = propagate(withWall, tf, light, settings, {}, nullptr, clip);
+            INFO("clip " << (clip == &dataPlane ? "data plane" : clip == &worldPlane ? "world plane" : "crop box"));
+            CHECK(differing(cut, noWall) == 0);
+        }
+        CHECK(differing(propagate(withWall, tf, light, settings, {}, nullptr, &shadowing), wall) == 0);
     }
     gl.requireNoErrors();
 }
