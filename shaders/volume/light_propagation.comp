@@ -154,18 +154,12 @@ vec4 catmullRomWeights(float f) {
                 0.5 * f3 - 0.5 * f2);
 }
 
-// The texels of a 4x4 Catmull-Rom footprint outside its middle 2x2, as offsets from its corner
-// texel i (the middle 2x2 is i to i + (1, 1)).
-const ivec2 kOuterTaps[12] = ivec2[12](ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(2, -1), ivec2(-1, 0),
-                                       ivec2(2, 0), ivec2(-1, 1), ivec2(2, 1), ivec2(-1, 2), ivec2(0, 2),
-                                       ivec2(1, 2), ivec2(2, 2));
-
 // The light arriving along the ray: Catmull-Rom over 4x4 texels, clamped to the range of the
 // middle 2x2. A bilinear lookup at a fractional shift blurs a shadow at every slice (by f(1-f)
 // texels squared), so shadows cast from far away arrived smeared over several voxels
 // (docs/light-volume-sweep.md); the cubic keeps their edges and the clamp keeps it monotone.
-// Where the middle 2x2 agree (empty space, full shadow) the clamp returns their value whatever
-// the outer taps hold, so those twelve are not fetched.
+// Written out tap by tap: on llvmpipe a loop over the taps or a branch that skips them where
+// the middle four agree measured 5-10 % slower.
 vec4 arrivingAlongRay(vec2 position) {
     vec2 corner = position - 0.5;
     ivec2 i = ivec2(floor(corner));
@@ -174,14 +168,15 @@ vec4 arrivingAlongRay(vec2 position) {
     vec4 t00 = previousTexel(i), t10 = previousTexel(i + ivec2(1, 0));
     vec4 t01 = previousTexel(i + ivec2(0, 1)), t11 = previousTexel(i + ivec2(1, 1));
     vec4 low = min(min(t00, t10), min(t01, t11)), high = max(max(t00, t10), max(t01, t11));
-    vec4 sum = wy[1] * (wx[1] * t00 + wx[2] * t10) + wy[2] * (wx[1] * t01 + wx[2] * t11);
-    // A loop bound rather than a branch: llvmpipe skips a loop no lane enters, not a branch.
-    int outerTaps = all(equal(low, high)) ? 0 : 12;
-    for (int k = 0; k < outerTaps; ++k) {
-        ivec2 tap = kOuterTaps[k];
-        sum += wx[tap.x + 1] * wy[tap.y + 1] * previousTexel(i + tap);
-    }
-    return clamp(sum, low, high);
+    vec4 above = wx.x * previousTexel(i + ivec2(-1, -1)) + wx.y * previousTexel(i + ivec2(0, -1)) +
+                 wx.z * previousTexel(i + ivec2(1, -1)) + wx.w * previousTexel(i + ivec2(2, -1));
+    vec4 row0 = wx.x * previousTexel(i + ivec2(-1, 0)) + wx.y * t00 + wx.z * t10 +
+                wx.w * previousTexel(i + ivec2(2, 0));
+    vec4 row1 = wx.x * previousTexel(i + ivec2(-1, 1)) + wx.y * t01 + wx.z * t11 +
+                wx.w * previousTexel(i + ivec2(2, 1));
+    vec4 below = wx.x * previousTexel(i + ivec2(-1, 2)) + wx.y * previousTexel(i + ivec2(0, 2)) +
+                 wx.z * previousTexel(i + ivec2(1, 2)) + wx.w * previousTexel(i + ivec2(2, 2));
+    return clamp(wy.x * above + wy.y * row0 + wy.z * row1 + wy.w * below, low, high);
 }
 
 // Propagates the light across voxel (uv, w) of the sweep; stores the light arriving at its
