@@ -133,8 +133,8 @@ vec4 previousTexel(ivec2 texel) {
 
 // The previous slice's light at `position` (slice texels, centres at + 0.5), bilinear: the
 // chromaticity cone's ring taps, which blur on purpose. SLAB 0 lets the texture unit filter them
-// (eight of its lookups cost a third of eight by hand on llvmpipe), so its colours differ from
-// the slabs' by the unit's 8-bit weights.
+// (by hand they made the paper model's change frame 1.4x slower on llvmpipe), so its colours
+// differ from the slabs' by the unit's 8-bit weights.
 vec4 previousLight(vec2 position) {
 #if !SLAB
     return texture(previousSlices, vec3(position / slicesTextureSize, float(2 * sweep + pass % 2)));
