@@ -37,8 +37,9 @@ struct LookupGeometry {
 // The farthest, in slice texels along u or v, that any voxel's lookups into the previous slice
 // reach from the voxel: the light's sideways shift between slices, plus the cone's ring radius
 // and one texel of its bilinear taps, or two texels of the Catmull-Rom lookup's footprint.
-// nullopt where some voxel's light runs (nearly) along the slice. Both terms are largest at a corner of the box of voxel centres (a perspective map of a
-// box is convex), so the corners bound a point light's sweep.
+// nullopt where some voxel's light runs (nearly) along the slice. Both terms are largest at a
+// corner of the box of voxel centres (a perspective map of a box is convex), so the corners bound
+// a point light's sweep.
 std::optional<int> lookupReach(const LookupGeometry& g, int u, int v, const LightSweep& sweep, glm::vec3 s) {
     std::vector<glm::vec3> directions;
     if (const auto* d = std::get_if<DirectionalLight>(&g.light)) {

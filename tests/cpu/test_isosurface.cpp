@@ -24,60 +24,57 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// Float32 voxels holding radius - (physical distance from the grid's centre): above the iso
-// value 0 inside a sphere of `radius` (mm), below it outside.
-Volume sphereVolume(glm::ivec3 dims, glm::vec3 spacing, float radius) {
+// A Float32 volume of `dims` whose voxel (x, y, z) holds value(x, y, z).
+template <typename Value>
+Volume floatVolume(glm::ivec3 dims, glm::vec3 spacing, Value value) {
     std::vector<std::uint8_t> bytes(static_cast<std::size_t>(dims.x) * dims.y * dims.z * 4);
-    const glm::vec3 centre = 0.5f * glm::vec3(dims - 1) * spacing;
     std::size_t i = 0;
     for (int z = 0; z < dims.z; ++z)
         for (int y = 0; y < dims.y; ++y)
             for (int x = 0; x < dims.x; ++x, i += 4) {
-                const float value = radius - glm::length(glm::vec3(x, y, z) * spacing - centre);
-                std::memcpy(&bytes[i], &value, 4);
+                const float v = static_cast<float>(value(x, y, z));
+                std::memcpy(&bytes[i], &v, 4);
             }
     return Volume::fromData(dims, VoxelType::Float32, std::move(bytes), spacing);
 }
 
-// Float32 voxels holding minorRadius - (distance from the torus's core circle in the z = centre
-// plane, radius majorRadius): a torus, above 0 inside.
+// radius - (physical distance from the grid's centre): above the iso value 0 inside a sphere of
+// `radius` (mm), below it outside.
+Volume sphereVolume(glm::ivec3 dims, glm::vec3 spacing, float radius) {
+    const glm::vec3 centre = 0.5f * glm::vec3(dims - 1) * spacing;
+    return floatVolume(dims, spacing, [&](int x, int y, int z) {
+        return radius - glm::length(glm::vec3(x, y, z) * spacing - centre);
+    });
+}
+
+// minorRadius - (distance from the torus's core circle in the z = centre plane, radius
+// majorRadius): a torus, above 0 inside.
 Volume torusVolume(int n, float majorRadius, float minorRadius) {
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(n) * n * n * 4);
     const glm::vec3 centre(0.5f * static_cast<float>(n - 1));
-    std::size_t i = 0;
-    for (int z = 0; z < n; ++z)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x, i += 4) {
-                const glm::vec3 p = glm::vec3(x, y, z) - centre;
-                const float ring = glm::length(glm::vec2(p.x, p.y)) - majorRadius;
-                const float value = minorRadius - glm::length(glm::vec2(ring, p.z));
-                std::memcpy(&bytes[i], &value, 4);
-            }
-    return Volume::fromData({n, n, n}, VoxelType::Float32, std::move(bytes));
+    return floatVolume({n, n, n}, glm::vec3(1.0f), [&](int x, int y, int z) {
+        const glm::vec3 p = glm::vec3(x, y, z) - centre;
+        const float ring = glm::length(glm::vec2(p.x, p.y)) - majorRadius;
+        return minorRadius - glm::length(glm::vec2(ring, p.z));
+    });
 }
 
 // `volume`'s trilinear field sampled `factor` times finer, as Float32 at spacing / factor: the
 // same field, so its isosurface is the coarse one's reference at a finer resolution.
 Volume trilinearlyRefined(const Volume& volume, int factor) {
-    const glm::ivec3 coarse = volume.dims(), dims = (coarse - 1) * factor + 1;
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(dims.x) * dims.y * dims.z * 4);
-    std::size_t i = 0;
-    for (int z = 0; z < dims.z; ++z)
-        for (int y = 0; y < dims.y; ++y)
-            for (int x = 0; x < dims.x; ++x, i += 4) {
-                const glm::ivec3 fine(x, y, z);
-                const glm::ivec3 low = glm::min(fine / factor, coarse - 2);
-                const glm::dvec3 f = glm::dvec3(fine - low * factor) / static_cast<double>(factor);
-                double value = 0.0;
-                for (int corner = 0; corner < 8; ++corner) {
-                    const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-                    const glm::dvec3 w = glm::mix(1.0 - f, f, glm::dvec3(o));
-                    value += w.x * w.y * w.z * volume.valueAt(low.x + o.x, low.y + o.y, low.z + o.z);
-                }
-                const float v = static_cast<float>(value);
-                std::memcpy(&bytes[i], &v, 4);
-            }
-    return Volume::fromData(dims, VoxelType::Float32, std::move(bytes), volume.spacing() / static_cast<float>(factor));
+    const glm::ivec3 coarse = volume.dims();
+    return floatVolume((coarse - 1) * factor + 1, volume.spacing() / static_cast<float>(factor),
+                       [&](int x, int y, int z) {
+                           const glm::ivec3 fine(x, y, z);
+                           const glm::ivec3 low = glm::min(fine / factor, coarse - 2);
+                           const glm::dvec3 f = glm::dvec3(fine - low * factor) / static_cast<double>(factor);
+                           double value = 0.0;
+                           for (int corner = 0; corner < 8; ++corner) {
+                               const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+                               const glm::dvec3 w = glm::mix(1.0 - f, f, glm::dvec3(o));
+                               value += w.x * w.y * w.z * volume.valueAt(low.x + o.x, low.y + o.y, low.z + o.z);
+                           }
+                           return value;
+                       });
 }
 
 // What a surface is made of: its area, its Euler characteristic V - E + F (2 per sphere,

@@ -39,17 +39,6 @@ Volume ballVolume() {
     });
 }
 
-// A block (x in [4, 12)) the light reaches through an occluding wall (x in [24, 28)) when the
-// light travels towards -x; `wall` false leaves the wall out.
-Volume blockAndWall(bool wall) {
-    return makeVolume([wall](int x, int y, int z) {
-        const bool inner = y >= 6 && y < 26 && z >= 6 && z < 26;
-        if (inner && x >= 4 && x < 12) return uint8_t(200);
-        if (wall && x >= 24 && x < 28) return uint8_t(255);
-        return uint8_t(0);
-    });
-}
-
 TransferFunction greyTf() {
     return TransferFunction({{0.0f, {0.9f, 0.9f, 0.9f}, 0.0f}, {0.3f, {0.9f, 0.9f, 0.9f}, 0.02f},
                              {0.8f, {0.9f, 0.9f, 0.9f}, 0.3f}, {1.0f, {0.9f, 0.9f, 0.9f}, 0.9f}});
@@ -172,7 +161,7 @@ TEST_CASE("a clip plane cuts what the crop box cuts, in world or data space, und
 
 TEST_CASE("cut matter casts no shadows unless asked, in the light volume and the path tracer", "[gl][volume][clip]") {
     test::GlTestScope gl;
-    const Volume withWall = blockAndWall(true), withoutWall = blockAndWall(false);
+    const Volume withWall = test::blockAndWallVolume(true), withoutWall = test::blockAndWallVolume(false);
     const Camera camera = test::orbitCamera(withWall.worldBounds(), 0.0f, 0.0f);
     VolumeClip cutWall;  // keeps data x <= 0.6 (voxel 19): the wall goes, the block stays
     cutWall.planes = {{.point = {0.1f, 0.0f, 0.0f}, .normal = {-1.0f, 0.0f, 0.0f}}};

@@ -290,16 +290,7 @@ TEST_CASE("a light volume with cut matter is the light volume without that matte
     // exactly; with clippedMatterCastsShadows it is the one with the wall. In the data and in
     // world space, by planes and by the crop box, slabs of slices and one slice per dispatch.
     test::GlTestScope gl;
-    constexpr int n = 32;
-    const auto blockAndWall = [](bool wall) {
-        return makeVolume(n, [wall](int x, int y, int z) {
-            const bool inner = y >= 6 && y < 26 && z >= 6 && z < 26;
-            if (inner && x >= 4 && x < 12) return uint8_t(200);
-            if (wall && x >= 24 && x < 28) return uint8_t(255);
-            return uint8_t(0);
-        });
-    };
-    const Volume withWall = blockAndWall(true), withoutWall = blockAndWall(false);
+    const Volume withWall = test::blockAndWallVolume(true), withoutWall = test::blockAndWallVolume(false);
     const TransferFunction tf = stepTf(0.6f, {0.9f, 0.6f, 0.3f});
     const DirectionalLight light{.direction = {-1.0f, -0.15f, 0.1f}};
     VolumeClip dataPlane;

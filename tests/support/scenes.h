@@ -4,6 +4,11 @@
 #include <sss/camera.h>
 #include <sss/image.h>
 #include <sss/transfer_function.h>
+#include <sss/volume.h>
+
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace sss::test {
 
@@ -43,6 +48,21 @@ inline double meanRatio(const Image& test, const Image& reference) {
                 b += reference.at(x, y)[c];
             }
     return a / b;
+}
+
+/// 32^3 uint8: a block (x in [4, 12), y and z in [6, 26)) of 200 and, when `wall`, a wall
+/// (x in [24, 28)) of 255 between it and a light travelling towards -x; 0 elsewhere.
+inline Volume blockAndWallVolume(bool wall) {
+    constexpr int n = 32;
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(n * n * n));
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const bool inner = y >= 6 && y < 26 && z >= 6 && z < 26;
+                std::uint8_t& v = bytes[static_cast<std::size_t>((z * n + y) * n + x)];
+                v = inner && x >= 4 && x < 12 ? 200 : (wall && x >= 24 && x < 28 ? 255 : 0);
+            }
+    return Volume::fromData({n, n, n}, VoxelType::UInt8, std::move(bytes));
 }
 
 }  // namespace sss::test
