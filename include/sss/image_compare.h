@@ -37,6 +37,11 @@ struct ErrorMetrics {
     /// Specks: the share of the reference's covered pixels (alpha > 0, luminance > 0) where the
     /// test's luminance is below half the reference's: visibility failures, black spots.
     double speckShare = 0.0;
+    /// Specks a viewer can see: the same share among the covered pixels whose reference
+    /// luminance is at least 1 % of the covered pixels' 99th percentile. speckShare also counts
+    /// pixels deep in shadow, where both images are nearly black and a reference's own noise
+    /// decides.
+    double visibleSpeckShare = 0.0;
 };
 
 /// Error of `test` against `reference` over RGB. Non-finite test values make the metrics

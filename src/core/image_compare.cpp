@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace sss {
 namespace {
@@ -79,6 +80,39 @@ Image8 diffImage(const Image8& actual, const Image8& expected, int perPixelThres
     return out;
 }
 
+namespace {
+
+double luminance(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+// The covered pixels' luminance at quantile q of their sorted values (0 if none is covered).
+double coveredLuminancePercentile(const std::vector<float>& reference, double q) {
+    std::vector<double> covered;
+    for (std::size_t i = 0; i < reference.size(); i += 4)
+        if (reference[i + 3] > 0.0f) covered.push_back(luminance(&reference[i]));
+    if (covered.empty()) return 0.0;
+    const auto at = covered.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(covered.size() - 1));
+    std::nth_element(covered.begin(), at, covered.end());
+    return *at;
+}
+
+// Below this share of the 99th percentile a pixel's speck is not counted as visible.
+constexpr double kVisibleSpeckFloor = 0.01;
+
+// The share of the covered pixels with a reference luminance above `floor` (and above 0) where
+// the test's is below half of it.
+double speckShare(const std::vector<float>& test, const std::vector<float>& reference, double floor) {
+    std::size_t counted = 0, specks = 0;
+    for (std::size_t i = 0; i < test.size(); i += 4) {
+        const double ref = luminance(&reference[i]);
+        if (!(reference[i + 3] > 0.0f) || !(ref > 0.0) || ref < floor) continue;
+        ++counted;
+        specks += luminance(&test[i]) < 0.5 * ref ? 1 : 0;
+    }
+    return counted ? double(specks) / double(counted) : 0.0;
+}
+
+}  // namespace
+
 ErrorMetrics computeErrorMetrics(const Image& test, const Image& reference) {
     checkSameSize("computeErrorMetrics", test, reference, "test", "reference");
     const std::vector<float>& t = test.data();
@@ -102,15 +136,8 @@ ErrorMetrics computeErrorMetrics(const Image& test, const Image& reference) {
     if (peak <= 0.0) peak = 1.0;
     m.psnr = mse == 0.0 ? inf : 10.0 * std::log10(peak * peak / mse);
     m.maxAbsError = maxAbs;
-    auto luminance = [](const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
-    std::size_t covered = 0, specks = 0;
-    for (std::size_t i = 0; i < t.size(); i += 4) {
-        const double ref = luminance(&r[i]);
-        if (!(r[i + 3] > 0.0f) || !(ref > 0.0)) continue;
-        ++covered;
-        specks += luminance(&t[i]) < 0.5 * ref ? 1 : 0;
-    }
-    m.speckShare = covered ? double(specks) / double(covered) : 0.0;
+    m.speckShare = speckShare(t, r, 0.0);
+    m.visibleSpeckShare = speckShare(t, r, kVisibleSpeckFloor * coveredLuminancePercentile(r, 0.99));
     return m;
 }
 

@@ -148,3 +148,23 @@ TEST_CASE("computeErrorMetrics over RGB", "[cpu]") {
     REQUIRE_SSS_ERROR(sss::computeErrorMetrics(Image(1, 2), ref), ErrorKind::InvalidArgument,
                       Contains("1x2") && Contains("1x1"));
 }
+
+TEST_CASE("computeErrorMetrics: specks, and those bright enough to see", "[cpu]") {
+    // 100 covered pixels: 90 lit at 1, 10 in deep shadow at 1e-3 (0.1 % of the 99th percentile).
+    // The test is dark (below half the reference) at 3 lit and 6 shadowed pixels; the background
+    // pixel and a pixel whose reference is black never count.
+    Image ref(102, 1, {1.0f, 1.0f, 1.0f, 1.0f});
+    for (int x = 90; x < 100; ++x) ref.at(x, 0) = {1e-3f, 1e-3f, 1e-3f, 1.0f};
+    ref.at(100, 0) = {0.0f, 0.0f, 0.0f, 1.0f};
+    ref.at(101, 0) = {1.0f, 1.0f, 1.0f, 0.0f};
+    Image test = ref;
+    for (int x : {0, 1, 2, 90, 91, 92, 93, 94, 95}) test.at(x, 0) *= glm::vec4(0.4f, 0.4f, 0.4f, 1.0f);
+    test.at(3, 0) *= glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);  // above half: no speck
+    test.at(101, 0) = {0.0f, 0.0f, 0.0f, 0.0f};
+    const auto m = sss::computeErrorMetrics(test, ref);
+    CHECK(m.speckShare == Approx(9.0 / 100.0));
+    CHECK(m.visibleSpeckShare == Approx(3.0 / 90.0));
+    const auto same = sss::computeErrorMetrics(ref, ref);
+    CHECK(same.speckShare == 0.0);
+    CHECK(same.visibleSpeckShare == 0.0);
+}
