@@ -8,9 +8,9 @@
 // vertex keeps the light from beyond its radius (outer) plus, weighted per channel by
 // nearFieldCorrection, how much the light from within it (inner) differs from the near field's
 // flat-surface value at the vertex: creases, shadow edges and thin parts there. Such a
-// difference lives within a few diffusion lengths of the vertex; on triangles much wider than
-// that, interpolation spreads it over the whole triangle, so the weight falls with the
-// triangles' width in diffusion lengths (src/mesh/near_field.h).
+// difference lives within a few mean free paths of the vertex, where most of the profile's light
+// enters; on triangles much wider than that, interpolation spreads it over the whole triangle,
+// so the weight falls with the triangles' width in mean free paths (src/mesh/near_field.h).
 // With TEXTURED_MATERIAL each vertex gathers with its own texel's profile and stores the
 // radiosity times the textured rule's entries' part (textured_material.glsl), their mean over all
 // its frames; the near field, tabulated for the untextured reference material, is scaled to the

@@ -103,15 +103,15 @@ float nearFieldRadius(float nearFieldEdges, double edgeLength, double edgeRatio,
     return std::min(diskRadius, static_cast<float>(nearFieldEdges * edgeLength));
 }
 
-float nearFieldCorrection(double edgeRatio) {
-    const double k = kNearFieldCorrectionEdges;
-    return edgeRatio > k ? static_cast<float>(k / edgeRatio) : 1.0f;
+float nearFieldCorrection(double edgeFreePaths) {
+    const double k = kNearFieldCorrectionFreePaths;
+    return edgeFreePaths > k ? static_cast<float>((k / edgeFreePaths) * (k / edgeFreePaths)) : 1.0f;
 }
 
 NearFieldTable tabulateNearField(const DipoleConstants& c, double radius, double edgeLength) {
     NearFieldTable table;
     table.radius = static_cast<float>(std::max(radius, 0.0));
-    for (int ch = 0; ch < 3; ++ch) table.correction[ch] = nearFieldCorrection(edgeLength * c.sigmaTr[ch]);
+    for (int ch = 0; ch < 3; ++ch) table.correction[ch] = nearFieldCorrection(edgeLength * c.sigmaTPrime[ch]);
     if (!(radius > 0.0)) return table;
     placeVisibilityTaps(c, radius, table);
     for (int i = 0; i < kNearFieldNodes; ++i) {

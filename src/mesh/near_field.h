@@ -23,7 +23,7 @@ struct NearFieldTable {
     float radius = 0.0f;  ///< rho, scene units (0: no near field)
     /// Per channel, how much of the difference between the light sampled within rho and the
     /// near field the vertex estimate interpolates (shaders/mesh/vertex_estimate.comp):
-    /// nearFieldCorrection() of the channel's edge length in diffusion lengths.
+    /// nearFieldCorrection() of the channel's edge length in reduced mean free paths.
     glm::vec3 correction{1.0f};
     /// Per node i (cos theta_i = i / 32): T(eta, cos theta) times the integral of S_d over the
     /// flat surface points whose light-facing disk offset is within rho, per unit irradiance on
@@ -66,11 +66,14 @@ inline constexpr double kNearFieldMinEdgeRatio = 0.5;
 /// `diskRadius`; 0 (no near field) below kNearFieldMinEdgeRatio diffusion lengths per edge.
 float nearFieldRadius(float nearFieldEdges, double edgeLength, double edgeRatio, float diskRadius);
 
-/// The weight of the vertices' near-field difference for edges `edgeRatio` diffusion lengths
-/// long: 1 up to kNearFieldCorrectionEdges, then kNearFieldCorrectionEdges / edgeRatio
-/// (measured: docs/near-field.md).
-inline constexpr double kNearFieldCorrectionEdges = 0.7;
-float nearFieldCorrection(double edgeRatio);
+/// The weight of the vertices' near-field difference for edges `edgeFreePaths` reduced mean free
+/// paths (1 / sigma_t') long: 1 up to kNearFieldCorrectionFreePaths, then the square of
+/// kNearFieldCorrectionFreePaths / edgeFreePaths, the share of a triangle's area within that
+/// reach of its corners. Most of the profile's light enters within a few mean free paths, so
+/// that is how far a vertex's difference reaches, whatever the diffusion length (measured:
+/// docs/near-field.md).
+inline constexpr double kNearFieldCorrectionFreePaths = 8.0;
+float nearFieldCorrection(double edgeFreePaths);
 
 /// The table for `radius` (scene units, the constants' length unit); radius 0 gives zeros.
 /// `edgeLength`: the mesh's edge (scene units), against each channel's diffusion length.
