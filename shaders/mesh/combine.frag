@@ -77,9 +77,11 @@ void main() {
     vec3 entries = surroundings;  // stands in for the entries' part (the environment's light is even)
 #endif
     vec3 referenceScale = entries * surroundings / max(referenceGathered, vec3(1e-6));
+    // The near field also by the pixel's material's share within its radius, as the vertices.
+    vec3 nearFieldScale = referenceScale * nearFieldShareAt(textureLod(materialReflectance, texcoord, lod).rgb);
 #else
     DirpoleParams profile = dipole;
-    vec3 referenceScale = vec3(1.0);
+    vec3 referenceScale = vec3(1.0), nearFieldScale = vec3(1.0);
 #endif
     vec3 nWorld = normalize(worldNormal);
     if (!gl_FrontFacing) nWorld = -nWorld;
@@ -98,7 +100,7 @@ void main() {
             vec3 nearVisible, nearCovered;
             if (nearFieldOn != 0) {
                 nearFieldTaps(i, worldPosition, nWorld, l, nearVisible, nearCovered);
-                color += exitT * radiance * referenceScale *
+                color += exitT * radiance * nearFieldScale *
                          nearFieldBehindRadiosity(i, worldPosition, nWorld, l, eta, nearCovered);
             }
             float nDotL = dot(nWorld, l);
@@ -109,7 +111,7 @@ void main() {
                 if (visible > 0.0) color += visible * radiance * dirpoleSingleScattering(profile, nWorld, l, wo);
             }
             if (nearFieldOn != 0)
-                color += exitT * radiance * nearVisible * nearFieldAt(nDotL) * referenceScale;
+                color += exitT * radiance * nearVisible * nearFieldAt(nDotL) * nearFieldScale;
             if (specular) {
                 vec3 h = normalize(l + wo);
                 // The surface reflects what it does not transmit: 1 - T at the viewing angle.

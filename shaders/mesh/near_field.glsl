@@ -5,6 +5,9 @@
 #ifndef NEAR_FIELD_NODES
 #define NEAR_FIELD_NODES 33  // kNearFieldNodes
 #endif
+#ifndef TEXTURED_MATERIAL
+#define TEXTURED_MATERIAL 0
+#endif
 #ifndef NEAR_FIELD_TAPS
 #define NEAR_FIELD_TAPS 8  // kNearFieldTaps
 #endif
@@ -18,6 +21,21 @@ uniform float nearFieldTapRadius[NEAR_FIELD_TAPS];  // on the light's disk, worl
 uniform vec3 nearFieldTapWeight[NEAR_FIELD_TAPS];   // per channel, summing to 1
 uniform vec3 nearFieldBehind[NEAR_FIELD_NODES];     // per unit irradiance at depth behindDepth (i / (N - 1))^2
 uniform float nearFieldBehindDepth;                 // scene units; nothing from there on
+#if TEXTURED_MATERIAL
+// Per reflectance (i / (N - 1))^2: the share of a flat surface's light within the near field's
+// radius for that reflectance's material over the table's (the widest) material.
+uniform vec3 nearFieldTexturedShare[NEAR_FIELD_NODES];
+
+vec3 nearFieldShareAt(vec3 reflectance) {
+    vec3 f = sqrt(clamp(reflectance, 0.0, 1.0)) * float(NEAR_FIELD_NODES - 1);
+    vec3 share;
+    for (int c = 0; c < 3; ++c) {
+        int i = min(int(f[c]), NEAR_FIELD_NODES - 2);
+        share[c] = mix(nearFieldTexturedShare[i][c], nearFieldTexturedShare[i + 1][c], f[c] - float(i));
+    }
+    return share;
+}
+#endif
 
 // The depth a surface must lie in front of x to hide it: lightBufferBias where x faces the light;
 // a surface facing away is never what the light sees.

@@ -199,6 +199,10 @@ struct MeshScatteringRenderer::Impl {
         const double edge = surfaceEdgeLength * detail::largestScale(model);
         sampling.nearRadius = detail::nearFieldRadius(options.nearField, edge, edgeToDiffusionLength(), sampling.diskRadius);
         nearField = detail::tabulateNearField(dipole, sampling.nearRadius, edge);
+        if (texturedGpu)
+            detail::tabulateTexturedNearFieldShare(nearField, texturedGpu->material().meanFreePath,
+                                                   texturedGpu->material().eta, texturedGpu->summary().maxReflectance,
+                                                   options.millimetresPerUnit, options.profile);
         environmentReflectance = options.profile == ScatteringProfile::Calibrated
                                      ? profileDiffuseReflectanceUniform(dipole)
                                      : dipoleDiffuseReflectance(dipole);

@@ -1,5 +1,7 @@
 #include "mesh/near_field.h"
 
+#include "sss/materials.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -131,6 +133,30 @@ NearFieldTable tabulateNearField(const DipoleConstants& c, double radius, double
     return table;
 }
 
+void tabulateTexturedNearFieldShare(NearFieldTable& table, const glm::dvec3& meanFreePath, double eta,
+                                    const glm::dvec3& widestReflectance, double millimetresPerUnit,
+                                    ScatteringProfile profile) {
+    table.texturedShare.fill(glm::vec3(1.0f));
+    if (!(table.radius > 0.0f)) return;
+    // The share of the flat surface's light (head-on) entering within rho, per channel.
+    auto nearShare = [&](const glm::dvec3& reflectance) {
+        const DipoleConstants c = deriveDipoleConstants(materialFromReflectance(reflectance, meanFreePath, eta, profile),
+                                                        millimetresPerUnit, profile);
+        const glm::dvec3 near = dipoleDiskIntegral(c, 1.0, table.radius), whole = dipolePlaneIntegral(c, 1.0);
+        glm::dvec3 share(1.0);
+        for (int ch = 0; ch < 3; ++ch)
+            if (whole[ch] > 0.0) share[ch] = near[ch] / whole[ch];
+        return share;
+    };
+    const glm::dvec3 widest = nearShare(widestReflectance);
+    for (int i = 0; i < kNearFieldNodes; ++i) {
+        const double t = static_cast<double>(i) / (kNearFieldNodes - 1);
+        const glm::dvec3 share = nearShare(glm::dvec3(std::max(t * t, 1e-4)));
+        for (int ch = 0; ch < 3; ++ch)
+            table.texturedShare[i][ch] = widest[ch] > 0.0 ? static_cast<float>(share[ch] / widest[ch]) : 1.0f;
+    }
+}
+
 void setNearFieldUniforms(const gl::Program& p, const NearFieldTable& table) {
     p.set("nearFieldOn", table.radius > 0.0f ? 1 : 0);
     glProgramUniform3fv(p.id(), p.uniformLocation("nearField[0]"), kNearFieldNodes, &table.reflectance[0].x);
@@ -138,6 +164,8 @@ void setNearFieldUniforms(const gl::Program& p, const NearFieldTable& table) {
     glProgramUniform3fv(p.id(), p.uniformLocation("nearFieldTapWeight[0]"), kNearFieldTaps, &table.tapWeight[0].x);
     glProgramUniform3fv(p.id(), p.uniformLocation("nearFieldBehind[0]"), kNearFieldNodes, &table.behind[0].x);
     p.set("nearFieldBehindDepth", table.behindDepth);
+    if (const GLint at = p.uniformLocation("nearFieldTexturedShare[0]"); at >= 0)
+        glProgramUniform3fv(p.id(), at, kNearFieldNodes, &table.texturedShare[0].x);
 }
 
 }  // namespace sss::detail

@@ -115,3 +115,44 @@ TEST_CASE("near field: its radius is the edges asked for, within the disk, and n
     CHECK(detail::nearFieldRadius(1.0f, 2.0, detail::kNearFieldMinEdgeRatio, 10.0f) == Approx(2.0f));
     CHECK(detail::nearFieldRadius(1.0f, 2.0, 0.99 * detail::kNearFieldMinEdgeRatio, 10.0f) == 0.0f);
 }
+
+TEST_CASE("near field: the correction's weight is 1 within its reach and falls as the area within it", "[cpu][near-field]") {
+    const double k = detail::kNearFieldCorrectionFreePaths;
+    CHECK(detail::nearFieldCorrection(0.5 * k) == 1.0f);
+    CHECK(detail::nearFieldCorrection(k) == 1.0f);
+    CHECK(detail::nearFieldCorrection(2.0 * k) == Approx(0.25f));
+    CHECK(detail::nearFieldCorrection(10.0 * k) == Approx(0.01f));
+    // The table applies it per channel to the edge in reduced mean free paths, not diffusion
+    // lengths: skin1's blue, sigma_t' 1.97 / mm against sigma_tr 1.46, at 5 mm edges.
+    const DipoleConstants skin = constants("skin1", ScatteringProfile::Calibrated);
+    const detail::NearFieldTable table = detail::tabulateNearField(skin, 1.0, 5.0);
+    for (int c = 0; c < 3; ++c) CHECK(table.correction[c] == Approx(detail::nearFieldCorrection(5.0 * skin.sigmaTPrime[c])));
+}
+
+TEST_CASE("near field of a textured material: each reflectance's share within the radius over the widest one's",
+          "[cpu][near-field][textured]") {
+    const TexturedScattering textured = texturedScattering(materialPreset("skin1"));
+    const glm::dvec3 widest{0.6, 0.4, 0.3};
+    detail::NearFieldTable table = detail::tabulateNearField(constants("skin1", ScatteringProfile::Calibrated), 2.0, 2.0);
+    detail::tabulateTexturedNearFieldShare(table, textured.meanFreePath, textured.eta, widest, 1.0,
+                                           ScatteringProfile::Calibrated);
+    // Node i holds reflectance (i / 32)^2: the widest material's own share is 1 there, a darker
+    // (lower-albedo, narrower) material keeps more of its light near, a brighter one less.
+    auto shareAt = [&](double reflectance, int c) {
+        const double f = std::sqrt(reflectance) * (detail::kNearFieldNodes - 1);
+        const int i = std::min(static_cast<int>(f), detail::kNearFieldNodes - 2);
+        return glm::mix(table.texturedShare[i][c], table.texturedShare[i + 1][c], static_cast<float>(f - i));
+    };
+    for (int c = 0; c < 3; ++c) {
+        INFO("channel " << c);
+        CHECK(shareAt(widest[c], c) == Approx(1.0f).epsilon(0.01));
+        for (int i = 1; i < detail::kNearFieldNodes; ++i) CHECK(table.texturedShare[i][c] < table.texturedShare[i - 1][c]);
+        CHECK(table.texturedShare[0][c] > 1.0f);
+        CHECK(table.texturedShare[detail::kNearFieldNodes - 1][c] < 1.0f);
+    }
+    // Without a near field there is nothing to scale.
+    detail::NearFieldTable none = detail::tabulateNearField(constants("skin1", ScatteringProfile::Calibrated), 0.0, 2.0);
+    detail::tabulateTexturedNearFieldShare(none, textured.meanFreePath, textured.eta, widest, 1.0,
+                                           ScatteringProfile::Calibrated);
+    for (const glm::vec3& share : none.texturedShare) CHECK(share == glm::vec3(1.0f));
+}
