@@ -43,8 +43,9 @@ struct NearFieldTable {
     float behindDepth = 0.0f;  ///< scene units
     /// A textured material (tabulateTexturedNearFieldShare): per node i, at reflectance
     /// (i / 32)^2, the share of a flat surface's light that enters within rho for that
-    /// reflectance's material over the widest material's, for which the table is made. Its
-    /// profile is narrower, so more of its light is near. 1 for a homogeneous material.
+    /// reflectance's material over the widest material's, for which the table is made (a
+    /// darker texel's profile is narrower, so more of its light is near). 1 for a homogeneous
+    /// material. The mean-free-path texture's thinning is not in it.
     std::array<glm::vec3, kNearFieldNodes> texturedShare = [] {
         std::array<glm::vec3, kNearFieldNodes> ones{};
         ones.fill(glm::vec3(1.0f));
