@@ -78,7 +78,7 @@ void main() {
 #endif
     vec3 referenceScale = entries * surroundings / max(referenceGathered, vec3(1e-6));
     // The near field also by the pixel's material's share within its radius, as the vertices.
-    vec3 nearFieldScale = referenceScale * nearFieldShareAt(textureLod(materialReflectance, texcoord, lod).rgb);
+    vec3 nearFieldScale = referenceScale * nearFieldShareAt(surface.rgb);
 #else
     DirpoleParams profile = dipole;
     vec3 referenceScale = vec3(1.0), nearFieldScale = vec3(1.0);

@@ -22,12 +22,12 @@ uniform vec3 nearFieldTapWeight[NEAR_FIELD_TAPS];   // per channel, summing to 1
 uniform vec3 nearFieldBehind[NEAR_FIELD_NODES];     // per unit irradiance at depth behindDepth (i / (N - 1))^2
 uniform float nearFieldBehindDepth;                 // scene units; nothing from there on
 #if TEXTURED_MATERIAL
-// Per reflectance (i / (N - 1))^2: the share of a flat surface's light within the near field's
-// radius for that reflectance's material over the table's (the widest) material.
+// Per reduced albedo 1 - (1 - i / (N - 1))^2: the share of a flat surface's light within the
+// near field's radius for that albedo's material over the table's (the widest) material.
 uniform vec3 nearFieldTexturedShare[NEAR_FIELD_NODES];
 
-vec3 nearFieldShareAt(vec3 reflectance) {
-    vec3 f = sqrt(clamp(reflectance, 0.0, 1.0)) * float(NEAR_FIELD_NODES - 1);
+vec3 nearFieldShareAt(vec3 albedo) {
+    vec3 f = (1.0 - sqrt(1.0 - clamp(albedo, 0.0, 1.0))) * float(NEAR_FIELD_NODES - 1);
     vec3 share;
     for (int c = 0; c < 3; ++c) {
         int i = min(int(f[c]), NEAR_FIELD_NODES - 2);

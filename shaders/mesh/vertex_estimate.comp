@@ -53,12 +53,10 @@ void main() {
     vec3 x = (model * vec4(p, 1.0)).xyz;
     vec3 inner, outer, logWeighted;
 #if TEXTURED_MATERIAL
-    vec2 uv = vec2(vertexData[8 * i + 6], vertexData[8 * i + 7]);
-    SurfaceMaterial material = materialAt(dipole, uv, 0.0);
+    SurfaceMaterial material = materialAt(dipole, vec2(vertexData[8 * i + 6], vertexData[8 * i + 7]), 0.0);
     estimateRadiositySplit(material.params, x, n, state, inner, outer, logWeighted);
     vec3 gathered = max(material.gathered, vec3(MIN_GATHERED));
-    vec3 nearFieldScale = gathered / max(referenceGathered, vec3(1e-6)) *
-                          nearFieldShareAt(textureLod(materialReflectance, uv, 0.0).rgb);
+    vec3 nearFieldScale = gathered / max(referenceGathered, vec3(1e-6)) * nearFieldShareAt(vec3(material.params.albedo));
 #else
     estimateRadiositySplit(dipole, x, n, state, inner, outer, logWeighted);
     vec3 nearFieldScale = vec3(1.0);

@@ -200,9 +200,8 @@ struct MeshScatteringRenderer::Impl {
         sampling.nearRadius = detail::nearFieldRadius(options.nearField, edge, edgeToDiffusionLength(), sampling.diskRadius);
         nearField = detail::tabulateNearField(dipole, sampling.nearRadius, edge);
         if (texturedGpu)
-            detail::tabulateTexturedNearFieldShare(nearField, texturedGpu->material().meanFreePath,
-                                                   texturedGpu->material().eta, texturedGpu->summary().maxReflectance,
-                                                   options.millimetresPerUnit, options.profile);
+            detail::tabulateTexturedNearFieldShare(nearField, texturedGpu->widestMaterial(), options.millimetresPerUnit,
+                                                   options.profile);
         environmentReflectance = options.profile == ScatteringProfile::Calibrated
                                      ? profileDiffuseReflectanceUniform(dipole)
                                      : dipoleDiffuseReflectance(dipole);

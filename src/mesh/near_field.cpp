@@ -133,27 +133,30 @@ NearFieldTable tabulateNearField(const DipoleConstants& c, double radius, double
     return table;
 }
 
-void tabulateTexturedNearFieldShare(NearFieldTable& table, const glm::dvec3& meanFreePath, double eta,
-                                    const glm::dvec3& widestReflectance, double millimetresPerUnit,
+void tabulateTexturedNearFieldShare(NearFieldTable& table, const ScatteringMaterial& widest, double millimetresPerUnit,
                                     ScatteringProfile profile) {
     table.texturedShare.fill(glm::vec3(1.0f));
     if (!(table.radius > 0.0f)) return;
-    // The share of the flat surface's light (head-on) entering within rho, per channel.
-    auto nearShare = [&](const glm::dvec3& reflectance) {
-        const DipoleConstants c = deriveDipoleConstants(materialFromReflectance(reflectance, meanFreePath, eta, profile),
-                                                        millimetresPerUnit, profile);
+    const glm::dvec3 sigmaT = widest.sigmaS + widest.sigmaA;  // 1 / the texture's mean free path
+    // The share of a flat surface's light (head-on) entering within rho, per channel, for the
+    // material of reduced albedo `albedo` (per channel, in (0, 1)).
+    auto nearShare = [&](const glm::dvec3& albedo) {
+        ScatteringMaterial m = widest;
+        m.sigmaS = albedo * sigmaT;
+        m.sigmaA = (1.0 - albedo) * sigmaT;
+        const DipoleConstants c = deriveDipoleConstants(m, millimetresPerUnit, profile);
         const glm::dvec3 near = dipoleDiskIntegral(c, 1.0, table.radius), whole = dipolePlaneIntegral(c, 1.0);
         glm::dvec3 share(1.0);
         for (int ch = 0; ch < 3; ++ch)
             if (whole[ch] > 0.0) share[ch] = near[ch] / whole[ch];
         return share;
     };
-    const glm::dvec3 widest = nearShare(widestReflectance);
+    const glm::dvec3 reference = nearShare(widest.sigmaS / sigmaT);
     for (int i = 0; i < kNearFieldNodes; ++i) {
-        const double t = static_cast<double>(i) / (kNearFieldNodes - 1);
-        const glm::dvec3 share = nearShare(glm::dvec3(std::max(t * t, 1e-4)));
+        const double t = 1.0 - static_cast<double>(i) / (kNearFieldNodes - 1);
+        const glm::dvec3 share = nearShare(glm::dvec3(std::clamp(1.0 - t * t, 1e-4, 1.0 - 1e-6)));
         for (int ch = 0; ch < 3; ++ch)
-            table.texturedShare[i][ch] = widest[ch] > 0.0 ? static_cast<float>(share[ch] / widest[ch]) : 1.0f;
+            table.texturedShare[i][ch] = reference[ch] > 0.0 ? static_cast<float>(share[ch] / reference[ch]) : 1.0f;
     }
 }
 

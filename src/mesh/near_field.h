@@ -41,11 +41,11 @@ struct NearFieldTable {
     /// factors; zero from behindDepth on.
     std::array<glm::vec3, kNearFieldNodes> behind{};
     float behindDepth = 0.0f;  ///< scene units
-    /// A textured material (tabulateTexturedNearFieldShare): per node i, at reflectance
-    /// (i / 32)^2, the share of a flat surface's light that enters within rho for that
-    /// reflectance's material over the widest material's, for which the table is made (a
-    /// darker texel's profile is narrower, so more of its light is near). 1 for a homogeneous
-    /// material. The mean-free-path texture's thinning is not in it.
+    /// A textured material (tabulateTexturedNearFieldShare): per node i, at reduced albedo
+    /// 1 - (1 - i / 32)^2, the share of a flat surface's light that enters within rho for that
+    /// albedo's material over the widest material's, for which the table is made (a darker
+    /// texel's profile is narrower, so more of its light is near). 1 for a homogeneous material.
+    /// The mean-free-path texture's thinning is not in it.
     std::array<glm::vec3, kNearFieldNodes> texturedShare = [] {
         std::array<glm::vec3, kNearFieldNodes> ones{};
         ones.fill(glm::vec3(1.0f));
@@ -89,12 +89,11 @@ float nearFieldCorrection(double edgeFreePaths);
 /// `edgeLength`: the mesh's edge (scene units), against each channel's diffusion length.
 NearFieldTable tabulateNearField(const DipoleConstants& constants, double radius, double edgeLength);
 
-/// Fills table.texturedShare for a textured material of mean free path `meanFreePath` (mm) and
-/// `eta`, whose widest material has the reflectance `widestReflectance`: the near field of a
-/// point is the table's, scaled by what the point gathers (textured_material.glsl) and by this
-/// share at its reflectance, so that a flat, evenly lit surface of any texel gets its own.
-void tabulateTexturedNearFieldShare(NearFieldTable& table, const glm::dvec3& meanFreePath, double eta,
-                                    const glm::dvec3& widestReflectance, double millimetresPerUnit,
+/// Fills table.texturedShare for a textured material whose widest material (g = 0, its reduced
+/// extinction the texture's mean free path) is `widest`: the near field of a point is the
+/// table's, scaled by what the point gathers (textured_material.glsl) and by this share at its
+/// albedo, so that a flat, evenly lit surface of any texel gets its own.
+void tabulateTexturedNearFieldShare(NearFieldTable& table, const ScatteringMaterial& widest, double millimetresPerUnit,
                                     ScatteringProfile profile);
 
 /// Sets the uniforms of shaders/mesh/near_field.glsl (radius 0 turns the near field off).

@@ -41,7 +41,6 @@ public:
     /// mean-free-path texture and the profile's table. Throws InvalidArgument for an invalid material.
     TexturedMaterialGpu(const TexturedScattering& material, const Image8& reflectance, ScatteringProfile profile);
 
-    const TexturedScattering& material() const { return m_material; }
     const TexturedMaterialSummary& summary() const { return m_summary; }
     /// The homogeneous material with the texture's largest reflectance per channel and the
     /// longest mean free path: the widest profile, for which the disk sampling, the Automatic

@@ -129,30 +129,30 @@ TEST_CASE("near field: the correction's weight is 1 within its reach and falls a
     for (int c = 0; c < 3; ++c) CHECK(table.correction[c] == Approx(detail::nearFieldCorrection(5.0 * skin.sigmaTPrime[c])));
 }
 
-TEST_CASE("near field of a textured material: each reflectance's share within the radius over the widest one's",
+TEST_CASE("near field of a textured material: each albedo's share within the radius over the widest one's",
           "[cpu][near-field][textured]") {
     const TexturedScattering textured = texturedScattering(materialPreset("skin1"));
-    const glm::dvec3 widest{0.6, 0.4, 0.3};
+    const ScatteringMaterial widest =
+        materialFromReflectance({0.6, 0.4, 0.3}, textured.meanFreePath, textured.eta, ScatteringProfile::Calibrated);
     detail::NearFieldTable table = detail::tabulateNearField(constants("skin1", ScatteringProfile::Calibrated), 2.0, 2.0);
-    detail::tabulateTexturedNearFieldShare(table, textured.meanFreePath, textured.eta, widest, 1.0,
-                                           ScatteringProfile::Calibrated);
-    // Node i holds reflectance (i / 32)^2: the widest material's own share is 1 there, a darker
-    // (lower-albedo, narrower) material keeps more of its light near, a brighter one less.
-    auto shareAt = [&](double reflectance, int c) {
-        const double f = std::sqrt(reflectance) * (detail::kNearFieldNodes - 1);
+    detail::tabulateTexturedNearFieldShare(table, widest, 1.0, ScatteringProfile::Calibrated);
+    // Node i holds reduced albedo 1 - (1 - i / 32)^2: the widest material's own share is 1 there,
+    // a darker (lower-albedo, narrower) material keeps more of its light near, a brighter one less.
+    auto shareAt = [&](double albedo, int c) {
+        const double f = (1.0 - std::sqrt(1.0 - albedo)) * (detail::kNearFieldNodes - 1);
         const int i = std::min(static_cast<int>(f), detail::kNearFieldNodes - 2);
         return glm::mix(table.texturedShare[i][c], table.texturedShare[i + 1][c], static_cast<float>(f - i));
     };
     for (int c = 0; c < 3; ++c) {
         INFO("channel " << c);
-        CHECK(shareAt(widest[c], c) == Approx(1.0f).epsilon(0.01));
+        const double albedo = widest.sigmaS[c] / (widest.sigmaS[c] + widest.sigmaA[c]);
+        CHECK(shareAt(albedo, c) == Approx(1.0f).epsilon(0.01));
         for (int i = 1; i < detail::kNearFieldNodes; ++i) CHECK(table.texturedShare[i][c] < table.texturedShare[i - 1][c]);
         CHECK(table.texturedShare[0][c] > 1.0f);
         CHECK(table.texturedShare[detail::kNearFieldNodes - 1][c] < 1.0f);
     }
     // Without a near field there is nothing to scale.
     detail::NearFieldTable none = detail::tabulateNearField(constants("skin1", ScatteringProfile::Calibrated), 0.0, 2.0);
-    detail::tabulateTexturedNearFieldShare(none, textured.meanFreePath, textured.eta, widest, 1.0,
-                                           ScatteringProfile::Calibrated);
+    detail::tabulateTexturedNearFieldShare(none, widest, 1.0, ScatteringProfile::Calibrated);
     for (const glm::vec3& share : none.texturedShare) CHECK(share == glm::vec3(1.0f));
 }
