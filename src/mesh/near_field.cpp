@@ -113,6 +113,7 @@ float nearFieldCorrection(double edgeFreePaths) {
 NearFieldTable tabulateNearField(const DipoleConstants& c, double radius, double edgeLength) {
     NearFieldTable table;
     table.radius = static_cast<float>(std::max(radius, 0.0));
+    table.texturedShare.fill(glm::vec3(1.0f));
     for (int ch = 0; ch < 3; ++ch) table.correction[ch] = nearFieldCorrection(edgeLength * c.sigmaTPrime[ch]);
     if (!(radius > 0.0)) return table;
     placeVisibilityTaps(c, radius, table);

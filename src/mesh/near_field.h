@@ -44,13 +44,10 @@ struct NearFieldTable {
     /// A textured material (tabulateTexturedNearFieldShare): per node i, at reduced albedo
     /// 1 - (1 - i / 32)^2, the share of a flat surface's light that enters within rho for that
     /// albedo's material over the widest material's, for which the table is made (a darker
-    /// texel's profile is narrower, so more of its light is near). 1 for a homogeneous material.
+    /// texel's profile is narrower, so more of its light is near). tabulateNearField sets it to 1
+    /// (a homogeneous material).
     /// The mean-free-path texture's thinning is not in it.
-    std::array<glm::vec3, kNearFieldNodes> texturedShare = [] {
-        std::array<glm::vec3, kNearFieldNodes> ones{};
-        ones.fill(glm::vec3(1.0f));
-        return ones;
-    }();
+    std::array<glm::vec3, kNearFieldNodes> texturedShare{};
 };
 
 /// The integral of S_d(x_i -> x_o) over the disk of radius `radius` around x_o facing a light at
