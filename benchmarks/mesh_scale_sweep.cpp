@@ -73,7 +73,12 @@ const std::vector<Method>& methods() {
              o.combine = sss::MeshCombine::VertexEstimate;
              o.nearField = 1.0f;
          }},
-        // The vertex estimate without the per-pixel near field: the previous defaults below 2
+        // The near field where it is evaluated (defaults: points 2 light-buffer texels apart,
+        // once per light change): at every pixel of every frame, or at points 1 or 4 texels apart.
+        {"near-field-per-pixel", [](sss::MeshRenderOptions& o) { o.nearFieldSpacing = 0.0f; }},
+        {"near-field-points-1", [](sss::MeshRenderOptions& o) { o.nearFieldSpacing = 1.0f; }},
+        {"near-field-points-4", [](sss::MeshRenderOptions& o) { o.nearFieldSpacing = 4.0f; }},
+        // The vertex estimate without the near field: the previous defaults below 2
         // diffusion lengths per edge.
         {"vertex-estimate-no-near-field",
          [](sss::MeshRenderOptions& o) {

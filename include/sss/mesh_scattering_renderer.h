@@ -105,6 +105,12 @@ struct MeshRenderOptions {
     /// (life-size objects); 0 interpolates all of it, and MeshCombine::Automatic then takes the
     /// maps on coarse meshes (docs/near-field.md) (default: 1).
     float nearField = 1.0f;
+    /// Where the near field is evaluated: > 0 once per light change, at points this many
+    /// light-buffer texels apart on each triangle (at most 8 per edge), which each pixel
+    /// interpolates, so a camera move reads it back instead of evaluating it again; 0 at every
+    /// pixel of every frame. At 2 the scale sweep's error is that of the per-pixel near field
+    /// (docs/near-field.md) (default: 2).
+    float nearFieldSpacing = 2.0f;
     /// Map frames accumulated while the scene is static, >= 1 (default: 8).
     int accumulationFrames = 8;
     /// Visibility depth bias of the map lookup, in texels' worth of depth, >= 0 (default: 1.5).

@@ -95,6 +95,9 @@ struct OptionTable<MeshRenderOptions> {
         OptionField<O, float>{&O::nearField, "nearField",
             "radius of the vertex estimate's per-pixel near field, in mesh edge lengths (1: life-size meshes); 0: off",
             atLeast(0), "--near-field", "EDGES"},
+        OptionField<O, float>{&O::nearFieldSpacing, "nearFieldSpacing",
+            "near field evaluated once per light change at points this many light-buffer texels apart, read by "
+            "camera moves; 0: per pixel every frame", atLeast(0), "--near-field-spacing", "TEXELS"},
         OptionField<O, int>{&O::accumulationFrames, "accumulationFrames", "frames accumulated into the scattering maps",
                             atLeast(1), "--frames", "F"},
         OptionField<O, float>{&O::depthBias, "depthBias", "visibility depth bias of the map lookup, in texels",

@@ -12,6 +12,8 @@
 //                         the pixel's material, the near field and the environment the whole rule
 //   VERTEX_EFFECTIVE 0|1: a textured vertex estimate: the rule's entries' part per vertex for
 //                         those (otherwise the pixel's own gathered stands in for the entries)
+//   NEAR_FIELD_CACHE 0|1: the near field interpolated from its points (src/mesh/near_field_cache.h)
+//                         instead of evaluated here
 #ifndef PER_VERTEX
 #define PER_VERTEX 0
 #endif
@@ -20,6 +22,9 @@
 #endif
 #ifndef VERTEX_EFFECTIVE
 #define VERTEX_EFFECTIVE 0
+#endif
+#ifndef NEAR_FIELD_CACHE
+#define NEAR_FIELD_CACHE 0
 #endif
 #include "common/camera.glsl"
 #include "common/lights.glsl"
@@ -49,6 +54,40 @@ uniform float specularStrength;
 uniform float shininess;
 uniform vec3 environment;    // a uniform environment's radiance times the total diffuse reflectance
 uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0: none)
+
+#if NEAR_FIELD_CACHE
+#define PER_PIXEL_NEAR_FIELD false
+#include "mesh/near_field_points.glsl"
+uniform samplerBuffer nearFieldBarycentric;  // per triangle 2: model position -> weights of corners b, c
+uniform usamplerBuffer nearFieldTriangles;   // per triangle its entry
+uniform samplerBuffer nearFieldPoints;       // rgb per point
+
+vec3 nearFieldPoint(int first, int i, int j, int r) {
+    return texelFetch(nearFieldPoints, first + nearFieldPointIndex(i, j, r)).rgb;
+}
+
+// The near field at model-space point p of this fragment's triangle, blended linearly from the
+// three grid points around it.
+vec3 cachedNearField(vec3 p) {
+    int t = gl_PrimitiveID;
+    uint entry = texelFetch(nearFieldTriangles, t).r;
+    int r = nearFieldDivisions(entry), first = nearFieldFirstPoint(entry);
+    vec4 toB = texelFetch(nearFieldBarycentric, 2 * t), toC = texelFetch(nearFieldBarycentric, 2 * t + 1);
+    vec2 w = clamp(vec2(dot(toB.xyz, p) + toB.w, dot(toC.xyz, p) + toC.w), 0.0, 1.0);
+    w /= max(w.x + w.y, 1.0);
+    vec2 g = w * float(r);
+    ivec2 cell = min(ivec2(g), ivec2(r - 1));
+    if (cell.x + cell.y >= r) cell.x = r - 1 - cell.y;  // on the far edge: the cell below it
+    vec2 f = g - vec2(cell);
+    if (f.x + f.y <= 1.0)
+        return (1.0 - f.x - f.y) * nearFieldPoint(first, cell.x, cell.y, r) +
+               f.x * nearFieldPoint(first, cell.x + 1, cell.y, r) + f.y * nearFieldPoint(first, cell.x, cell.y + 1, r);
+    return (f.x + f.y - 1.0) * nearFieldPoint(first, cell.x + 1, cell.y + 1, r) +
+           (1.0 - f.x) * nearFieldPoint(first, cell.x, cell.y + 1, r) + (1.0 - f.y) * nearFieldPoint(first, cell.x + 1, cell.y, r);
+}
+#else
+#define PER_PIXEL_NEAR_FIELD (nearFieldOn != 0)
+#endif
 
 layout(location = 0) out vec4 fragColor;
 
@@ -93,12 +132,15 @@ void main() {
     // One pass over the lights for the per-pixel terms: each light's direction, radiance and
     // shadows are found once.
     bool single = profile.singleScattering > 0.0, specular = specularStrength > 0.0;
-    if (single || specular || nearFieldOn != 0) {
+#if NEAR_FIELD_CACHE
+    color += exitT * nearFieldScale * cachedNearField(modelPosition);
+#endif
+    if (single || specular || PER_PIXEL_NEAR_FIELD) {
         for (int i = 0; i < lightCount; ++i) {
             vec3 radiance;
             vec3 l = lightDirectionAt(i, worldPosition, radiance);
             vec3 nearVisible, nearCovered;
-            if (nearFieldOn != 0) {
+            if (PER_PIXEL_NEAR_FIELD) {
                 nearFieldTaps(i, worldPosition, nWorld, l, nearVisible, nearCovered);
                 color += exitT * radiance * nearFieldScale *
                          nearFieldBehindRadiosity(i, worldPosition, nWorld, l, eta, nearCovered);
@@ -110,7 +152,7 @@ void main() {
                 float visible = selfVisibility(i, worldPosition, nWorld, l);
                 if (visible > 0.0) color += visible * radiance * dirpoleSingleScattering(profile, nWorld, l, wo);
             }
-            if (nearFieldOn != 0)
+            if (PER_PIXEL_NEAR_FIELD)
                 color += exitT * radiance * nearVisible * nearFieldAt(nDotL) * nearFieldScale;
             if (specular) {
                 vec3 h = normalize(l + wo);

@@ -15,7 +15,7 @@ std::uint64_t bytesPerTexel(GLenum internalFormat) {
         case GL_R16: case GL_R16F: case GL_R16UI: return 2;
         case GL_DEPTH_COMPONENT16: return 2;
         case GL_DEPTH_COMPONENT24: return 3;
-        case GL_RGBA8: case GL_R32F: case GL_RG16F: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8:
+        case GL_RGBA8: case GL_R32F: case GL_R32UI: case GL_RG16F: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8:
         case GL_DEPTH_COMPONENT32: return 4;
         case GL_DEPTH32F_STENCIL8: return 8;
         case GL_RGBA16: case GL_RGBA16F: case GL_RGBA16_SNORM: case GL_RG32F: return 8;
@@ -33,6 +33,7 @@ const char* formatName(GLenum internalFormat) {
         case GL_R16UI: return "R16UI";
         case GL_RGBA8: return "RGBA8";
         case GL_R32F: return "R32F";
+        case GL_R32UI: return "R32UI";
         case GL_RG16F: return "RG16F";
         case GL_DEPTH_COMPONENT32F: return "DEPTH32F";
         case GL_DEPTH24_STENCIL8: return "DEPTH24_STENCIL8";
@@ -92,6 +93,22 @@ Texture Texture::create(GLenum target, GLenum internalFormat, glm::ivec3 size, i
     Texture t(owner.release(), target, internalFormat, size, std::move(memory));
     t.setFilter(GL_LINEAR, GL_LINEAR);
     t.setWrap(GL_CLAMP_TO_EDGE);
+    t.setLabel(label);
+    return t;
+}
+
+Texture Texture::createBufferView(const Buffer& buffer, GLenum internalFormat, std::string_view label) {
+    const std::uint64_t texels = buffer.size() / bytesPerTexel(internalFormat);
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &limit);
+    if (texels > static_cast<std::uint64_t>(limit))
+        throw Error(ErrorKind::GpuLimit, std::string(label) + ": " + std::to_string(texels) + " " +
+                                             formatName(internalFormat) + " texels exceed GL_MAX_TEXTURE_BUFFER_SIZE (" +
+                                             std::to_string(limit) + " on this GPU)");
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+    glTextureBuffer(id, internalFormat, buffer.id());
+    Texture t(id, GL_TEXTURE_BUFFER, internalFormat, {static_cast<int>(texels), 1, 1}, MemoryReservation());
     t.setLabel(label);
     return t;
 }

@@ -1,5 +1,6 @@
 #pragma once
 #include "gl/allocation.h"
+#include "gl/buffer.h"
 #include "gl/object.h"
 
 #include <glm/vec3.hpp>
@@ -24,6 +25,9 @@ public:
     static Texture create2D(GLenum internalFormat, int width, int height, std::string_view label, int levels = 1);
     static Texture create2DArray(GLenum internalFormat, int width, int height, int layers, std::string_view label);
     static Texture create3D(GLenum internalFormat, glm::ivec3 size, std::string_view label, int levels = 1);
+    /// A buffer texture (GL_TEXTURE_BUFFER) over the whole of `buffer`, read as `internalFormat`;
+    /// it owns no storage of its own (the buffer must outlive it).
+    static Texture createBufferView(const Buffer& buffer, GLenum internalFormat, std::string_view label);
 
     /// Uploads a whole 2D image, 3D volume, or (for arrays) all layers.
     void upload(GLenum format, GLenum type, const void* pixels) const;

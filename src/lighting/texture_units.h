@@ -21,6 +21,11 @@ inline constexpr int kMaterialTable = 10;
 inline constexpr int kMaterialLogGathered = 11;
 inline constexpr int kMaterialSurfaceAlbedo = 12;
 inline constexpr int kMaterialSurroundings = 13;
+// The combine's near-field points (mesh/near_field_cache.h), buffer textures; units the mesh
+// passes leave free (the ray caster's there).
+inline constexpr int kNearFieldBarycentric = 4;
+inline constexpr int kNearFieldTriangles = 5;
+inline constexpr int kNearFieldPoints = 14;
 
 // Volume ray cast (shaders/volume/ray_cast.frag) and the eye pass's lit-colour compute.
 inline constexpr int kLightVolumes = 4;   // 4..11: lightVolumes[MAX_LIGHTS]

@@ -11,9 +11,10 @@
 
 namespace sss::detail {
 
-const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, bool textured, bool vertexEffective) const {
-    std::optional<gl::Program>& slot =
-        m_programs[(vertexEffective ? 8 : 0) + (textured ? 4 : 0) + (perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
+const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, bool textured, bool vertexEffective,
+                                        bool nearFieldCache) const {
+    std::optional<gl::Program>& slot = m_programs[(nearFieldCache ? 16 : 0) + (vertexEffective ? 8 : 0) +
+                                                  (textured ? 4 : 0) + (perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
     if (!slot) {
         ShaderDefines defines = texturedMaterialDefines(textured);
         defines.insert(defines.end(), {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)},
@@ -21,7 +22,8 @@ const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, boo
                                        {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)},
                                        {"PER_VERTEX", perVertex ? "1" : "0"},
                                        {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"},
-                                       {"VERTEX_EFFECTIVE", vertexEffective ? "1" : "0"}});
+                                       {"VERTEX_EFFECTIVE", vertexEffective ? "1" : "0"},
+                                       {"NEAR_FIELD_CACHE", nearFieldCache ? "1" : "0"}});
         slot = gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
                                  defines);
     }
@@ -30,8 +32,8 @@ const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, boo
 
 void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     const bool vertexEffective = s.material && in.vertexEffective;
-    const gl::Program& p =
-        program(s.perVertex, castsSurfaceShadows(in.shadows, in.lights.size()), s.material != nullptr, vertexEffective);
+    const gl::Program& p = program(s.perVertex, castsSurfaceShadows(in.shadows, in.lights.size()), s.material != nullptr,
+                                   vertexEffective, s.nearFieldCache != nullptr);
     p.set("model", in.model);
     p.set("viewProjection", in.camera.projection(in.aspect) * in.camera.view());
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
@@ -58,6 +60,7 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.id());
     if (vertexEffective) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.vertexEffective->id());
+    if (s.nearFieldCache) s.nearFieldCache->bind(p);
     in.mesh.drawOpaque(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);

@@ -8,6 +8,7 @@
 #include "mesh/gpu_mesh.h"
 #include "mesh/light_buffer_pass.h"
 #include "mesh/near_field.h"
+#include "mesh/near_field_cache.h"
 #include "mesh/textured_material.h"
 #include "sss/bssrdf.h"
 #include "mesh/scattering_map_pass.h"
@@ -29,6 +30,8 @@ struct CombineSettings {
     glm::vec3 environment{0.0f};  ///< the environment's radiance times R_d: added as is
     DipoleConstants dipole;       ///< the profile; its single-scattering term is added per pixel
     NearFieldTable nearField;     ///< added per pixel: what the vertex estimate left out (radius 0: none)
+    /// The near field evaluated once per light change, interpolated per pixel instead (or none).
+    const NearFieldCache* nearFieldCache = nullptr;
     bool perVertex = false;       ///< no map lookups, the vertices' radiosity (MeshCombine::PerVertex, VertexEstimate)
     /// A textured material: the cached radiosity takes each pixel's own texel (textured_material.glsl).
     const TexturedMaterialGpu* material = nullptr;
@@ -57,9 +60,10 @@ public:
 private:
     /// The program compiled for this frame's needs, linked the first time they occur: without
     /// map lookups for the per-vertex combines, without surface shadows where nothing casts them.
-    const gl::Program& program(bool perVertex, bool surfaceShadows, bool textured, bool vertexEffective) const;
+    const gl::Program& program(bool perVertex, bool surfaceShadows, bool textured, bool vertexEffective,
+                               bool nearFieldCache) const;
 
-    mutable std::array<std::optional<gl::Program>, 16> m_programs;
+    mutable std::array<std::optional<gl::Program>, 32> m_programs;
 };
 
 }  // namespace sss::detail

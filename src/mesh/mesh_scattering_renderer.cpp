@@ -13,6 +13,7 @@
 #include "mesh/scattering_map_pass.h"
 #include "mesh/renderer_access.h"
 #include "mesh/textured_material.h"
+#include "mesh/near_field_cache.h"
 #include "mesh/vertex_estimate_pass.h"
 #include "sss/error.h"
 #include "sss/option_table.h"
@@ -60,7 +61,7 @@ struct ScatteringMapInputs {
     std::uint64_t materialGeneration = 0;
     int cameras = 0, samples = 0, resolution = 0;
     double millimetresPerUnit = 0.0;
-    float sampleRadius = 0.0f, spread = 0.0f, nearField = 0.0f;
+    float sampleRadius = 0.0f, spread = 0.0f, nearField = 0.0f, nearFieldSpacing = 0.0f;
     ScatteringProfile profile = ScatteringProfile::Calibrated;
     bool vertexEstimate = false;  // MeshCombine::VertexEstimate: per vertex, no maps
     std::uint64_t shadowRevision = 0;  // hybrid scenes: meshes and volumes between lights and mesh
@@ -109,6 +110,7 @@ struct MeshScatteringRenderer::Impl {
     std::optional<detail::CombinePass> combine;
     std::optional<detail::VertexRadiosityPass> vertexRadiosity;  // built with the mesh's scattering
     std::optional<detail::VertexEstimatePass> vertexEstimate;    // MeshCombine::VertexEstimate
+    std::optional<detail::NearFieldCache> nearFieldCache;        // of the mesh; evaluated with nearFieldSpacing
     detail::VertexAdjacency adjacency;  // of the mesh, for the vertex-radiosity pass
     float surfaceEdgeLength = 0.0f;     // of the mesh, in its own units (MeshCombine::Automatic)
     int vertexRadiosityFrames = -1;
@@ -244,6 +246,7 @@ struct MeshScatteringRenderer::Impl {
                 options.sampleRadius,
                 options.spread,
                 options.nearField,
+                options.nearFieldSpacing,
                 options.profile,
                 activeCombine() == MeshCombine::VertexEstimate,
                 shadows ? shadows->revision() : 0};
@@ -257,6 +260,17 @@ struct MeshScatteringRenderer::Impl {
 
     bool mapsConverged() const {
         return scatteringMapInputs == currentMapInputs() && radiosityFrames() >= options.accumulationFrames;
+    }
+
+    bool usesNearFieldCache() const {
+        return activeCombine() == MeshCombine::VertexEstimate && nearField.radius > 0.0f && options.nearFieldSpacing > 0.0f;
+    }
+
+    void evaluateNearFieldCache() {
+        const float texel = lightBuffer->texelWorld(*mesh, model);
+        const float spacing = options.nearFieldSpacing * texel / std::max(detail::largestScale(model), 1e-30f);
+        nearFieldCache->evaluate({*mesh, model, lights, *lightBuffer, shadows ? &*shadows : nullptr, nearField,
+                                  static_cast<float>(profileMaterial().eta), spacing});
     }
 
     // Passes 1 and 2, each only when something it depends on changed.
@@ -280,6 +294,7 @@ struct MeshScatteringRenderer::Impl {
             cameras = detail::makeScatteringCameras(options.cameras, mesh->bounds);
             scatteringMapInputs = inputs;
             updateProfile();
+            if (usesNearFieldCache()) timed("near-field", [&] { evaluateNearFieldCache(); });
         }
         if (radiosityFrames() >= options.accumulationFrames) return;
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
@@ -318,6 +333,7 @@ void MeshScatteringRenderer::setMesh(const Mesh& mesh, const glm::mat4& model) {
     m_impl->mesh = detail::GpuMesh::upload(mesh);
     m_impl->vertexRadiosity.reset();
     m_impl->vertexEstimate.reset();
+    m_impl->nearFieldCache.emplace(mesh);
     m_impl->adjacency = detail::buildVertexAdjacency(mesh);
     m_impl->surfaceEdgeLength = detail::surfaceEdgeLength(mesh);
     ++m_impl->meshGeneration;
@@ -401,6 +417,7 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
     settings.environment = r.options.environment * glm::vec3(r.environmentReflectance);
     settings.dipole = r.dipole;
     if (vertexEstimate) settings.nearField = r.nearField;
+    if (r.usesNearFieldCache()) settings.nearFieldCache = &*r.nearFieldCache;
     settings.perVertex = combine != MeshCombine::PerPixel;
     settings.material = r.texturedGpu ? &*r.texturedGpu : nullptr;
     settings.millimetresPerUnit = r.options.millimetresPerUnit;

@@ -1,0 +1,42 @@
+// The near field (mesh/near_field.glsl) evaluated once per light change at the points of every
+// triangle's grid (mesh/near_field_points.glsl), for the combine pass to interpolate per pixel:
+// it depends on the light and the surface, not on the camera, so a camera move reuses it.
+layout(local_size_x = 64) in;
+
+#include "mesh/near_field.glsl"
+#include "mesh/near_field_points.glsl"
+
+// Model space, 8 floats per vertex (src/mesh/gpu_mesh.cpp): position, normal, texture coordinate.
+layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };
+layout(std430, binding = 1) readonly buffer Indices { uint indexData[]; };
+layout(std430, binding = 2) readonly buffer PointTriangles { uint triangleOfPoint[]; };
+layout(std430, binding = 3) readonly buffer Triangles { uint nearFieldTriangle[]; };
+// rgb as halves (read back as RGBA16F): the near field before the exit Fresnel factor, summed over the lights.
+layout(std430, binding = 4) writeonly buffer Points { uvec2 nearFieldOfPoint[]; };
+uniform int pointCount;
+uniform mat4 model;
+uniform mat3 normalMatrix;
+uniform float eta;
+
+vec3 cornerPosition(uint v) { return vec3(vertexData[8 * v], vertexData[8 * v + 1], vertexData[8 * v + 2]); }
+vec3 cornerNormal(uint v) { return vec3(vertexData[8 * v + 3], vertexData[8 * v + 4], vertexData[8 * v + 5]); }
+
+void main() {
+    int s = int(gl_GlobalInvocationID.x);
+    if (s >= pointCount) return;
+    uint t = triangleOfPoint[s];
+    uint entry = nearFieldTriangle[t];
+    int r = nearFieldDivisions(entry), k = s - nearFieldFirstPoint(entry), j = 0;
+    while (k > r - j) {  // row j holds r + 1 - j points
+        k -= r + 1 - j;
+        ++j;
+    }
+    vec3 w = vec3(float(r - k - j), float(k), float(j)) / float(r);
+    uint a = indexData[3 * t], b = indexData[3 * t + 1], c = indexData[3 * t + 2];
+    vec3 p = w.x * cornerPosition(a) + w.y * cornerPosition(b) + w.z * cornerPosition(c);
+    vec3 n = normalMatrix * (w.x * cornerNormal(a) + w.y * cornerNormal(b) + w.z * cornerNormal(c));
+    float length2 = dot(n, n);
+    n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
+    vec3 nearLight = nearFieldRadiosity((model * vec4(p, 1.0)).xyz, n, eta);
+    nearFieldOfPoint[s] = uvec2(packHalf2x16(nearLight.rg), packHalf2x16(vec2(nearLight.b, 0.0)));
+}

@@ -1,0 +1,129 @@
+#include "mesh/near_field_cache.h"
+
+#include "lighting/light_uniforms.h"
+#include "lighting/texture_units.h"
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace sss::detail {
+
+namespace {
+
+// Rows 2t and 2t + 1: the weights of corners b and c as affine functions of a point in the
+// triangle's plane (zero for a degenerate triangle: every point is corner a).
+std::vector<glm::vec4> barycentricMaps(const Mesh& mesh) {
+    std::vector<glm::vec4> maps(2 * mesh.triangleCount(), glm::vec4(0.0f));
+    const auto& p = mesh.positions();
+    const auto& index = mesh.indices();
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const glm::dvec3 a = p[index[3 * t]], e1 = glm::dvec3(p[index[3 * t + 1]]) - a,
+                         e2 = glm::dvec3(p[index[3 * t + 2]]) - a;
+        const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+        const double det = d11 * d22 - d12 * d12;
+        if (!(det > 1e-12 * d11 * d22)) continue;
+        const glm::dvec3 toB = (d22 * e1 - d12 * e2) / det, toC = (d11 * e2 - d12 * e1) / det;
+        maps[2 * t] = glm::vec4(glm::vec3(toB), static_cast<float>(-glm::dot(a, toB)));
+        maps[2 * t + 1] = glm::vec4(glm::vec3(toC), static_cast<float>(-glm::dot(a, toC)));
+    }
+    return maps;
+}
+
+std::vector<float> longestEdges(const Mesh& mesh) {
+    std::vector<float> longest(mesh.triangleCount());
+    const auto& p = mesh.positions();
+    const auto& index = mesh.indices();
+    for (std::size_t t = 0; t < longest.size(); ++t) {
+        const glm::vec3 a = p[index[3 * t]], b = p[index[3 * t + 1]], c = p[index[3 * t + 2]];
+        longest[t] = std::max({glm::distance(a, b), glm::distance(b, c), glm::distance(c, a)});
+    }
+    return longest;
+}
+
+gl::Buffer storage(std::size_t bytes, const void* data, std::string_view label) {
+    return gl::Buffer::create(std::max<std::size_t>(bytes, 16), data, 0, label);
+}
+
+}  // namespace
+
+int nearFieldDivisions(float longestEdge, float spacing) {
+    if (!(spacing > 0.0f) || !(longestEdge > spacing)) return 1;
+    return static_cast<int>(std::min(std::ceil(longestEdge / spacing), static_cast<float>(kMaxNearFieldDivisions)));
+}
+
+NearFieldPointLayout layoutNearFieldPoints(const std::vector<float>& longestEdges, float spacing) {
+    NearFieldPointLayout layout;
+    layout.triangles.reserve(longestEdges.size());
+    for (std::size_t t = 0; t < longestEdges.size(); ++t) {
+        const int r = nearFieldDivisions(longestEdges[t], spacing);
+        const auto first = static_cast<uint32_t>(layout.pointTriangles.size());
+        layout.triangles.push_back(first << 3 | static_cast<uint32_t>(r - 1));
+        layout.pointTriangles.insert(layout.pointTriangles.end(), (r + 1) * (r + 2) / 2, static_cast<uint32_t>(t));
+    }
+    return layout;
+}
+
+NearFieldCache::NearFieldCache(const Mesh& mesh) : m_longestEdges(longestEdges(mesh)), m_maps(barycentricMaps(mesh)) {}
+
+void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
+    if (!m_program) {
+        m_program = gl::Program::link({{GL_COMPUTE_SHADER, "mesh/near_field_cache.comp"}},
+                                      {{"MAX_LIGHTS", std::to_string(kMaxLights)},
+                                       {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
+                                       {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)}});
+        m_barycentric = storage(m_maps.size() * sizeof(glm::vec4), m_maps.data(), "near field (barycentric maps)");
+        m_barycentricView = gl::Texture::createBufferView(m_barycentric, GL_RGBA32F, "near field (barycentric maps)");
+    }
+    if (in.spacing != m_spacing || m_pointCount == 0) {
+        const NearFieldPointLayout layout = layoutNearFieldPoints(m_longestEdges, in.spacing);
+        m_triangles = storage(layout.triangles.size() * 4, layout.triangles.data(), "near field (triangles)");
+        m_pointTriangles =
+            storage(layout.pointTriangles.size() * 4, layout.pointTriangles.data(), "near field (point triangles)");
+        m_pointCount = layout.pointTriangles.size();
+        m_values = storage(m_pointCount * 8, nullptr, "near field (points)");
+        m_trianglesView = gl::Texture::createBufferView(m_triangles, GL_R32UI, "near field (triangles)");
+        m_valuesView = gl::Texture::createBufferView(m_values, GL_RGBA16F, "near field (points)");
+        m_spacing = in.spacing;
+    }
+    const gl::Program& p = *m_program;
+    setLightUniforms(p, in.lights);
+    setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
+    setNearFieldUniforms(p, in.nearField);
+    p.set("lightTexelWorld", in.lightBuffer.texelWorld(in.mesh, in.model));
+    p.set("lightPositions", 0);
+    p.set("lightNormals", 1);
+    for (std::size_t i = 0; i < in.lightBuffer.viewProjections().size(); ++i)
+        p.set("lightViewProjection[" + std::to_string(i) + "]", in.lightBuffer.viewProjections()[i]);
+    in.lightBuffer.positions().bind(0);
+    in.lightBuffer.normals().bind(1);
+    p.set("pointCount", static_cast<int>(m_pointCount));
+    p.set("model", in.model);
+    p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
+    p.set("eta", in.eta);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.mesh.vertices.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.mesh.indices.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_pointTriangles.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_triangles.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_values.id());
+    p.use();
+    glDispatchCompute(static_cast<GLuint>((m_pointCount + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the combine reads the points as fragment storage
+    glUseProgram(0);
+    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+}
+
+void NearFieldCache::bind(const gl::Program& program) const {
+    program.set("nearFieldBarycentric", units::kNearFieldBarycentric);
+    program.set("nearFieldTriangles", units::kNearFieldTriangles);
+    program.set("nearFieldPoints", units::kNearFieldPoints);
+    m_barycentricView.bind(units::kNearFieldBarycentric);
+    m_trianglesView.bind(units::kNearFieldTriangles);
+    m_valuesView.bind(units::kNearFieldPoints);
+}
+
+}  // namespace sss::detail

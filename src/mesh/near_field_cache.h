@@ -1,0 +1,74 @@
+#pragma once
+// The near field (src/mesh/near_field.h) evaluated once per light change at a grid of points on
+// every triangle (shaders/mesh/near_field_cache.comp) and interpolated per pixel by the combine
+// pass, instead of evaluated at every pixel of every frame. It depends on the lights and the
+// surface only, so a camera move reads it back: three points per pixel instead of the near
+// field's 40-odd light-buffer reads. The points lie `spacing` apart, a light-buffer texel or so:
+// the near field holds no detail finer than the light buffer's. Measurements: docs/near-field.md.
+#include "gl/buffer.h"
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "lighting/shadows.h"
+#include "mesh/gpu_mesh.h"
+#include "mesh/light_buffer_pass.h"
+#include "mesh/near_field.h"
+#include "sss/mesh.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace sss::detail {
+
+inline constexpr int kMaxNearFieldDivisions = 8;  // per triangle edge (3 bits in the packed layout)
+
+/// Per triangle, how many points its grid has per edge less one (R), from its longest edge and
+/// the spacing (both model units): ceil(longest / spacing), 1..kMaxNearFieldDivisions.
+int nearFieldDivisions(float longestEdge, float spacing);
+
+/// The grid's layout: per triangle its first point's index << 3 | (R - 1); per point its triangle.
+/// Triangle t holds (R + 1)(R + 2) / 2 points (shaders/mesh/near_field_points.glsl).
+struct NearFieldPointLayout {
+    std::vector<uint32_t> triangles;
+    std::vector<uint32_t> pointTriangles;
+};
+NearFieldPointLayout layoutNearFieldPoints(const std::vector<float>& longestEdges, float spacing);
+
+struct NearFieldCacheInputs {
+    const GpuMesh& mesh;
+    const glm::mat4& model;
+    const std::vector<Light>& lights;
+    const LightBufferPass& lightBuffer;
+    const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes
+    const NearFieldTable& nearField;
+    float eta = 1.3f;
+    float spacing = 0.0f;                     ///< between the points, model units (> 0)
+};
+
+class NearFieldCache {
+public:
+    /// Keeps each triangle's longest edge and its map from a model-space point to barycentrics;
+    /// creates no GL object before the first evaluate().
+    explicit NearFieldCache(const Mesh& mesh);
+    /// Evaluates the near field at every point, laying the points out again if the spacing changed.
+    void evaluate(const NearFieldCacheInputs& in);
+    std::size_t pointCount() const { return m_pointCount; }
+    /// For the combine (NEAR_FIELD_CACHE): its samplers and the buffer textures on their units
+    /// (lighting/texture_units.h).
+    void bind(const gl::Program& program) const;
+
+private:
+    std::optional<gl::Program> m_program;  // linked on first use
+    std::vector<float> m_longestEdges;
+    std::vector<glm::vec4> m_maps;  // per triangle 2: p -> (b, c) weights, affine in model space
+    gl::Buffer m_barycentric;       // m_maps, uploaded on first use
+    gl::Buffer m_triangles, m_pointTriangles, m_values;
+    gl::Texture m_barycentricView, m_trianglesView, m_valuesView;  // the combine reads them as buffer textures
+    float m_spacing = 0.0f;
+    std::size_t m_pointCount = 0;
+};
+
+}  // namespace sss::detail
