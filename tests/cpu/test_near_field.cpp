@@ -1,6 +1,7 @@
 // The profile's near field (src/mesh/near_field.h): the disk integral against the plane integral
 // it must reduce to, and the table's limits.
 #include "mesh/near_field.h"
+#include "mesh/near_field_cache.h"
 
 #include <catch2/catch.hpp>
 #include <sss/bssrdf.h>
@@ -155,4 +156,26 @@ TEST_CASE("near field of a textured material: each albedo's share within the rad
     detail::NearFieldTable none = detail::tabulateNearField(constants("skin1", ScatteringProfile::Calibrated), 0.0, 2.0);
     detail::tabulateTexturedNearFieldShare(none, widest, 1.0, ScatteringProfile::Calibrated);
     for (const glm::vec3& share : none.texturedShare) CHECK(share == glm::vec3(1.0f));
+}
+
+TEST_CASE("near field points: divisions per triangle follow the spacing, at most 8", "[cpu][near-field]") {
+    CHECK(detail::nearFieldDivisions(1.0f, 0.3f) == 4);
+    CHECK(detail::nearFieldDivisions(1.0f, 0.25f) == 4);  // exactly four spacings
+    CHECK(detail::nearFieldDivisions(0.1f, 0.3f) == 1);   // narrower than the spacing: its corners
+    CHECK(detail::nearFieldDivisions(1.0f, 0.0f) == 1);   // no spacing: corners only
+    CHECK(detail::nearFieldDivisions(1.0f, 1e-4f) == detail::kMaxNearFieldDivisions);
+}
+
+TEST_CASE("near field points: each triangle's grid follows the previous one's", "[cpu][near-field]") {
+    // Divisions 4, 1 and 2: 15, 3 and 6 points.
+    const detail::NearFieldPointLayout layout = detail::layoutNearFieldPoints({1.0f, 0.1f, 0.5f}, 0.25f);
+    REQUIRE(layout.triangles.size() == 3);
+    CHECK(layout.triangles[0] == (0u << 3 | 3u));
+    CHECK(layout.triangles[1] == (15u << 3 | 0u));
+    CHECK(layout.triangles[2] == (18u << 3 | 1u));
+    REQUIRE(layout.pointTriangles.size() == 24);
+    CHECK(std::count(layout.pointTriangles.begin(), layout.pointTriangles.end(), 0u) == 15);
+    CHECK(std::count(layout.pointTriangles.begin(), layout.pointTriangles.end(), 1u) == 3);
+    CHECK(std::count(layout.pointTriangles.begin(), layout.pointTriangles.end(), 2u) == 6);
+    CHECK(std::is_sorted(layout.pointTriangles.begin(), layout.pointTriangles.end()));
 }
