@@ -12,8 +12,8 @@
 //                         the pixel's material, the near field and the environment the whole rule
 //   VERTEX_EFFECTIVE 0|1: a textured vertex estimate: the rule's entries' part per vertex for
 //                         those (otherwise the pixel's own gathered stands in for the entries)
-//   NEAR_FIELD_CACHE 0|1: the near field interpolated from its points (src/mesh/near_field_cache.h)
-//                         instead of evaluated here
+//   NEAR_FIELD 0|1|2    : the near field (mesh/near_field.glsl): none, evaluated here, or
+//                         interpolated from its points (src/mesh/near_field_cache.h)
 #ifndef PER_VERTEX
 #define PER_VERTEX 0
 #endif
@@ -23,8 +23,8 @@
 #ifndef VERTEX_EFFECTIVE
 #define VERTEX_EFFECTIVE 0
 #endif
-#ifndef NEAR_FIELD_CACHE
-#define NEAR_FIELD_CACHE 0
+#ifndef NEAR_FIELD
+#define NEAR_FIELD 1
 #endif
 #include "common/camera.glsl"
 #include "common/lights.glsl"
@@ -55,20 +55,24 @@ uniform float shininess;
 uniform vec3 environment;    // a uniform environment's radiance times the total diffuse reflectance
 uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0: none)
 
-#if NEAR_FIELD_CACHE
-#define PER_PIXEL_NEAR_FIELD false
+// A compile-time constant: skipped behind a uniform instead, the per-pixel near field's code
+// still cost a quarter of a fixed frame on llvmpipe.
+#define PER_PIXEL_NEAR_FIELD (NEAR_FIELD == 1)
+#if NEAR_FIELD == 2
 #include "mesh/near_field_points.glsl"
 uniform samplerBuffer nearFieldBarycentric;  // per triangle 2: model position -> weights of corners b, c
 uniform usamplerBuffer nearFieldTriangles;   // per triangle its entry
-uniform samplerBuffer nearFieldPoints;       // rgb per point
+uniform samplerBuffer nearFieldPoints;       // per point nearFieldTexelsPerPoint (near_field_cache.comp)
+uniform int nearFieldTexelsPerPoint;
 
-vec3 nearFieldPoint(int first, int i, int j, int r) {
-    return texelFetch(nearFieldPoints, first + nearFieldPointIndex(i, j, r)).rgb;
-}
+// The three grid points around a pixel and their weights.
+struct PointBlend {
+    ivec3 first;  // each point's first texel
+    vec3 weight;
+};
 
-// The near field at model-space point p of this fragment's triangle, blended linearly from the
-// three grid points around it.
-vec3 cachedNearField(vec3 p) {
+// The grid points around model-space point p of this fragment's triangle.
+PointBlend pointsAround(vec3 p) {
     int t = gl_PrimitiveID;
     uint entry = texelFetch(nearFieldTriangles, t).r;
     int r = nearFieldDivisions(entry), first = nearFieldFirstPoint(entry);
@@ -79,14 +83,30 @@ vec3 cachedNearField(vec3 p) {
     ivec2 cell = min(ivec2(g), ivec2(r - 1));
     if (cell.x + cell.y >= r) cell.x = r - 1 - cell.y;  // on the far edge: the cell below it
     vec2 f = g - vec2(cell);
-    if (f.x + f.y <= 1.0)
-        return (1.0 - f.x - f.y) * nearFieldPoint(first, cell.x, cell.y, r) +
-               f.x * nearFieldPoint(first, cell.x + 1, cell.y, r) + f.y * nearFieldPoint(first, cell.x, cell.y + 1, r);
-    return (f.x + f.y - 1.0) * nearFieldPoint(first, cell.x + 1, cell.y + 1, r) +
-           (1.0 - f.x) * nearFieldPoint(first, cell.x, cell.y + 1, r) + (1.0 - f.y) * nearFieldPoint(first, cell.x + 1, cell.y, r);
+    PointBlend b;
+    if (f.x + f.y <= 1.0) {
+        b.first = ivec3(nearFieldPointIndex(cell.x, cell.y, r), nearFieldPointIndex(cell.x + 1, cell.y, r),
+                        nearFieldPointIndex(cell.x, cell.y + 1, r));
+        b.weight = vec3(1.0 - f.x - f.y, f.x, f.y);
+    } else {
+        b.first = ivec3(nearFieldPointIndex(cell.x + 1, cell.y + 1, r), nearFieldPointIndex(cell.x, cell.y + 1, r),
+                        nearFieldPointIndex(cell.x + 1, cell.y, r));
+        b.weight = vec3(f.x + f.y - 1.0, 1.0 - f.x, 1.0 - f.y);
+    }
+    b.first = (first + b.first) * nearFieldTexelsPerPoint;
+    return b;
 }
-#else
-#define PER_PIXEL_NEAR_FIELD (nearFieldOn != 0)
+
+// Texel k of the three points, blended.
+vec4 blendedPointTexel(PointBlend b, int k) {
+    return b.weight.x * texelFetch(nearFieldPoints, b.first.x + k) + b.weight.y * texelFetch(nearFieldPoints, b.first.y + k) +
+           b.weight.z * texelFetch(nearFieldPoints, b.first.z + k);
+}
+
+// Light l's selfVisibility at the points; `nearTexel` is texel 0, which holds light 0's.
+float pointVisibility(PointBlend b, vec4 nearTexel, int l) {
+    return l == 0 ? nearTexel.a : blendedPointTexel(b, 1 + (l - 1) / 4)[(l - 1) % 4];
+}
 #endif
 
 layout(location = 0) out vec4 fragColor;
@@ -132,8 +152,10 @@ void main() {
     // One pass over the lights for the per-pixel terms: each light's direction, radiance and
     // shadows are found once.
     bool single = profile.singleScattering > 0.0, specular = specularStrength > 0.0;
-#if NEAR_FIELD_CACHE
-    color += exitT * nearFieldScale * cachedNearField(modelPosition);
+#if NEAR_FIELD == 2
+    PointBlend points = pointsAround(modelPosition);
+    vec4 nearTexel = blendedPointTexel(points, 0);
+    color += exitT * nearFieldScale * nearTexel.rgb;
 #endif
     if (single || specular || PER_PIXEL_NEAR_FIELD) {
         for (int i = 0; i < lightCount; ++i) {
@@ -149,7 +171,11 @@ void main() {
             if (nDotL <= 0.0) continue;
             radiance *= nDotL * volumeTransmittance(i, worldPosition, l) * meshShadow(i, worldPosition, nWorld, l, 0);
             if (single) {
+#if NEAR_FIELD == 2
+                float visible = pointVisibility(points, nearTexel, i);
+#else
                 float visible = selfVisibility(i, worldPosition, nWorld, l);
+#endif
                 if (visible > 0.0) color += visible * radiance * dirpoleSingleScattering(profile, nWorld, l, wo);
             }
             if (PER_PIXEL_NEAR_FIELD)

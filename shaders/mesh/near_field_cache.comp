@@ -1,6 +1,7 @@
-// The near field (mesh/near_field.glsl) evaluated once per light change at the points of every
-// triangle's grid (mesh/near_field_points.glsl), for the combine pass to interpolate per pixel:
-// it depends on the light and the surface, not on the camera, so a camera move reuses it.
+// The near field (mesh/near_field.glsl) and each light's visibility (the single scattering's)
+// evaluated once per light change at the points of every triangle's grid
+// (mesh/near_field_points.glsl), for the combine pass to interpolate per pixel: they depend on
+// the lights and the surface, not on the camera, so a camera move reuses them.
 layout(local_size_x = 64) in;
 
 #include "mesh/near_field.glsl"
@@ -11,8 +12,10 @@ layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };
 layout(std430, binding = 1) readonly buffer Indices { uint indexData[]; };
 layout(std430, binding = 2) readonly buffer PointTriangles { uint triangleOfPoint[]; };
 layout(std430, binding = 3) readonly buffer Triangles { uint nearFieldTriangle[]; };
-// rgb as halves (read back as RGBA16F): the near field before the exit Fresnel factor, summed over the lights.
-layout(std430, binding = 4) writeonly buffer Points { uvec2 nearFieldOfPoint[]; };
+// Per point texelsPerPoint RGBA16F texels (as pairs of halves): the near field before the exit
+// Fresnel factor, summed over the lights, and light 0's selfVisibility; then lights 1-4's, 5-7's.
+layout(std430, binding = 4) writeonly buffer Points { uvec2 pointTexels[]; };
+uniform int texelsPerPoint;
 uniform int pointCount;
 uniform mat4 model;
 uniform mat3 normalMatrix;
@@ -37,6 +40,15 @@ void main() {
     vec3 n = normalMatrix * (w.x * cornerNormal(a) + w.y * cornerNormal(b) + w.z * cornerNormal(c));
     float length2 = dot(n, n);
     n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
-    vec3 nearLight = nearFieldRadiosity((model * vec4(p, 1.0)).xyz, n, eta);
-    nearFieldOfPoint[s] = uvec2(packHalf2x16(nearLight.rg), packHalf2x16(vec2(nearLight.b, 0.0)));
+    vec3 x = (model * vec4(p, 1.0)).xyz;
+    vec3 nearLight = nearFieldRadiosity(x, n, eta);
+    float visible[12] = float[12](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // 3 texels' worth
+    for (int i = 0; i < lightCount; ++i) {
+        vec3 radiance;
+        visible[i] = selfVisibility(i, x, n, lightDirectionAt(i, x, radiance));
+    }
+    pointTexels[texelsPerPoint * s] = uvec2(packHalf2x16(nearLight.rg), packHalf2x16(vec2(nearLight.b, visible[0])));
+    for (int k = 1; k < texelsPerPoint; ++k)
+        pointTexels[texelsPerPoint * s + k] = uvec2(packHalf2x16(vec2(visible[4 * k - 3], visible[4 * k - 2])),
+                                                    packHalf2x16(vec2(visible[4 * k - 1], visible[4 * k])));
 }

@@ -12,9 +12,9 @@
 namespace sss::detail {
 
 const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, bool textured, bool vertexEffective,
-                                        bool nearFieldCache) const {
-    std::optional<gl::Program>& slot = m_programs[(nearFieldCache ? 16 : 0) + (vertexEffective ? 8 : 0) +
-                                                  (textured ? 4 : 0) + (perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
+                                        int nearField) const {
+    std::optional<gl::Program>& slot = m_programs[16 * nearField + (vertexEffective ? 8 : 0) + (textured ? 4 : 0) +
+                                                  (perVertex ? 2 : 0) + (surfaceShadows ? 1 : 0)];
     if (!slot) {
         ShaderDefines defines = texturedMaterialDefines(textured);
         defines.insert(defines.end(), {{"MAX_CAMERAS", std::to_string(kMaxScatteringCameras)},
@@ -23,7 +23,7 @@ const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, boo
                                        {"PER_VERTEX", perVertex ? "1" : "0"},
                                        {"SURFACE_SHADOWS", surfaceShadows ? "1" : "0"},
                                        {"VERTEX_EFFECTIVE", vertexEffective ? "1" : "0"},
-                                       {"NEAR_FIELD_CACHE", nearFieldCache ? "1" : "0"}});
+                                       {"NEAR_FIELD", std::to_string(nearField)}});
         slot = gl::Program::link({{GL_VERTEX_SHADER, "mesh/combine.vert"}, {GL_FRAGMENT_SHADER, "mesh/combine.frag"}},
                                  defines);
     }
@@ -32,8 +32,9 @@ const gl::Program& CombinePass::program(bool perVertex, bool surfaceShadows, boo
 
 void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     const bool vertexEffective = s.material && in.vertexEffective;
+    const int nearField = s.nearFieldCache ? 2 : s.nearField.radius > 0.0f ? 1 : 0;
     const gl::Program& p = program(s.perVertex, castsSurfaceShadows(in.shadows, in.lights.size()), s.material != nullptr,
-                                   vertexEffective, s.nearFieldCache != nullptr);
+                                   vertexEffective, nearField);
     p.set("model", in.model);
     p.set("viewProjection", in.camera.projection(in.aspect) * in.camera.view());
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));

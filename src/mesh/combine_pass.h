@@ -60,10 +60,11 @@ public:
 private:
     /// The program compiled for this frame's needs, linked the first time they occur: without
     /// map lookups for the per-vertex combines, without surface shadows where nothing casts them.
+    /// `nearField`: 0 none, 1 per pixel, 2 from the cache's points (combine.frag's NEAR_FIELD).
     const gl::Program& program(bool perVertex, bool surfaceShadows, bool textured, bool vertexEffective,
-                               bool nearFieldCache) const;
+                               int nearField) const;
 
-    mutable std::array<std::optional<gl::Program>, 32> m_programs;
+    mutable std::array<std::optional<gl::Program>, 48> m_programs;
 };
 
 }  // namespace sss::detail

@@ -79,16 +79,18 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
         m_barycentric = storage(m_maps.size() * sizeof(glm::vec4), m_maps.data(), "near field (barycentric maps)");
         m_barycentricView = gl::Texture::createBufferView(m_barycentric, GL_RGBA32F, "near field (barycentric maps)");
     }
-    if (in.spacing != m_spacing || m_pointCount == 0) {
+    const int texelsPerPoint = 1 + (static_cast<int>(in.lights.size()) + 2) / 4;  // light 0 in texel 0, 4 per texel after
+    if (in.spacing != m_spacing || m_pointCount == 0 || texelsPerPoint != m_texelsPerPoint) {
         const NearFieldPointLayout layout = layoutNearFieldPoints(m_longestEdges, in.spacing);
         m_triangles = storage(layout.triangles.size() * 4, layout.triangles.data(), "near field (triangles)");
         m_pointTriangles =
             storage(layout.pointTriangles.size() * 4, layout.pointTriangles.data(), "near field (point triangles)");
         m_pointCount = layout.pointTriangles.size();
-        m_values = storage(m_pointCount * 8, nullptr, "near field (points)");
+        m_values = storage(m_pointCount * texelsPerPoint * 8, nullptr, "near field (points)");
         m_trianglesView = gl::Texture::createBufferView(m_triangles, GL_R32UI, "near field (triangles)");
         m_valuesView = gl::Texture::createBufferView(m_values, GL_RGBA16F, "near field (points)");
         m_spacing = in.spacing;
+        m_texelsPerPoint = texelsPerPoint;
     }
     const gl::Program& p = *m_program;
     setLightUniforms(p, in.lights);
@@ -105,6 +107,7 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
     p.set("model", in.model);
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
     p.set("eta", in.eta);
+    p.set("texelsPerPoint", m_texelsPerPoint);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.mesh.vertices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.mesh.indices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_pointTriangles.id());
@@ -121,6 +124,7 @@ void NearFieldCache::bind(const gl::Program& program) const {
     program.set("nearFieldBarycentric", units::kNearFieldBarycentric);
     program.set("nearFieldTriangles", units::kNearFieldTriangles);
     program.set("nearFieldPoints", units::kNearFieldPoints);
+    program.set("nearFieldTexelsPerPoint", m_texelsPerPoint);
     m_barycentricView.bind(units::kNearFieldBarycentric);
     m_trianglesView.bind(units::kNearFieldTriangles);
     m_valuesView.bind(units::kNearFieldPoints);

@@ -1,10 +1,11 @@
 #pragma once
-// The near field (src/mesh/near_field.h) evaluated once per light change at a grid of points on
-// every triangle (shaders/mesh/near_field_cache.comp) and interpolated per pixel by the combine
-// pass, instead of evaluated at every pixel of every frame. It depends on the lights and the
-// surface only, so a camera move reads it back: three points per pixel instead of the near
-// field's 40-odd light-buffer reads. The points lie `spacing` apart, a light-buffer texel or so:
-// the near field holds no detail finer than the light buffer's. Measurements: docs/near-field.md.
+// The near field (src/mesh/near_field.h) and each light's visibility (for the single
+// scattering) evaluated once per light change at a grid of points on every triangle
+// (shaders/mesh/near_field_cache.comp) and interpolated per pixel by the combine pass, instead
+// of evaluated at every pixel of every frame. They depend on the lights and the surface only, so
+// a camera move reads them back: three points per pixel instead of about 50 light-buffer reads.
+// The points lie `spacing` apart, a light-buffer texel or two: the light buffer holds no finer
+// detail. Measurements: docs/near-field.md.
 #include "gl/buffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
@@ -69,6 +70,7 @@ private:
     gl::Texture m_barycentricView, m_trianglesView, m_valuesView;  // the combine reads them as buffer textures
     float m_spacing = 0.0f;
     std::size_t m_pointCount = 0;
+    int m_texelsPerPoint = 0;  // RGBA16F: the near field and light 0's visibility, then 4 lights' each
 };
 
 }  // namespace sss::detail
