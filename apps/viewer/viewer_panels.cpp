@@ -255,6 +255,9 @@ void Panels::meshSection() {
         m_model.meshDirty = true;
     }
     m_model.meshDirty |= ImGui::SliderInt("frames accumulated", &m_model.meshOptions.accumulationFrames, 1, 64);
+    m_model.meshDirty |= ImGui::SliderFloat("near field (edges)", &m_model.meshOptions.nearField, 0.0f, 4.0f, "%.2f");
+    m_model.meshDirty |=
+        ImGui::SliderFloat("near field points (texels; 0: per pixel)", &m_model.meshOptions.nearFieldSpacing, 0.0f, 8.0f, "%.1f");
     m_model.meshDirty |= ImGui::SliderFloat("specular", &m_model.meshOptions.specular, 0.0f, 2.0f, "%.2f");
     m_model.meshDirty |= ImGui::SliderFloat("environment", &m_model.meshOptions.environment.x, 0.0f, 0.5f, "%.3f");
     m_model.meshOptions.environment = glm::vec3(m_model.meshOptions.environment.x);  // grey: one slider
