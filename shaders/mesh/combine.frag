@@ -161,9 +161,9 @@ void main() {
         for (int i = 0; i < lightCount; ++i) {
             vec3 radiance;
             vec3 l = lightDirectionAt(i, worldPosition, radiance);
-            vec3 nearVisible, nearCovered;
+            vec3 nearVisible, nearCovered, nearLit;
             if (PER_PIXEL_NEAR_FIELD) {
-                nearFieldTaps(i, worldPosition, nWorld, l, nearVisible, nearCovered);
+                nearFieldTaps(i, worldPosition, nWorld, l, 0.0, nearVisible, nearCovered, nearLit);
                 color += exitT * radiance * nearFieldScale *
                          nearFieldBehindRadiosity(i, worldPosition, nWorld, l, eta, nearCovered);
             }

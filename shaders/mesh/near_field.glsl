@@ -49,19 +49,39 @@ vec3 nearFieldAt(float cosTheta) {
     return mix(nearField[i], nearField[i + 1], f - float(i));
 }
 
+// max(c, 0) N(c): the flat near field's light per unit irradiance where cos theta = c.
+vec3 nearFieldLit(float c) { return max(c, 0.0) * nearFieldAt(c); }
+
+// The mean of nearFieldLit(c + a cos phi) around a ring: a surface whose cos theta rises by a
+// towards the light on one side of the ring and falls on the other. Near the terminator the
+// rising side adds light that a flat surface lit like the centre has not.
+vec3 nearFieldRing(float c, float a) {
+    vec3 sum = vec3(0.0);
+    for (int j = 0; j < 8; ++j) sum += nearFieldLit(c + a * cos(0.785398163 * (float(j) + 0.5)));
+    return 0.125 * sum;
+}
+
+// Per channel, how much of the rings' rise to take (src/mesh/near_field_cache.cpp: what the
+// vertices' correction leaves out; 0 where the near field is flat).
+uniform vec3 nearFieldCurvature;
+
 // Light l over the near field's disk around x, per channel weighted by the profile: `visible`,
 // the share that reaches the surface around x (a shadow's edge blurred as the subsurface light
 // blurs it); `covered`, the share where a surface in front of x hides it (how much of the near
-// field behind is there: less at the edge of a thin part). Taps closer than half a light-buffer
-// texel are the centre's.
-void nearFieldTaps(int l, vec3 x, vec3 n, vec3 toLight, out vec3 visible, out vec3 covered) {
+// field behind is there: less at the edge of a thin part); `lit`, the light entering the visible
+// share per unit irradiance, for a surface whose cos theta changes by `slope` per unit length
+// towards the light (0: flat). Taps closer than half a light-buffer texel are the centre's.
+void nearFieldTaps(int l, vec3 x, vec3 n, vec3 toLight, float slope, out vec3 visible, out vec3 covered,
+                   out vec3 lit) {
     float bias = lightBufferBias(n, toLight), behindBias = nearFieldBehindBias(n, toLight);
     vec2 centre = lightSeenAround(l, x, bias, x, behindBias);
     vec3 u = normalize(abs(toLight.x) < 0.9 ? cross(toLight, vec3(1, 0, 0)) : cross(toLight, vec3(0, 1, 0)));
     vec3 v = cross(toLight, u);
-    float nDotL = max(dot(n, toLight), 0.05);
+    float cosTheta = dot(n, toLight), nDotL = max(cosTheta, 0.05);
+    vec3 flatLit = nearFieldLit(cosTheta);
     visible = vec3(0.0);
     covered = vec3(0.0);
+    lit = vec3(0.0);
     for (int k = 0; k < NEAR_FIELD_TAPS; ++k) {
         float r = nearFieldTapRadius[k];
         vec2 seen = centre;
@@ -73,6 +93,8 @@ void nearFieldTaps(int l, vec3 x, vec3 n, vec3 toLight, out vec3 visible, out ve
         }
         visible += nearFieldTapWeight[k] * seen.x;
         covered += nearFieldTapWeight[k] * seen.y;
+        vec3 ringLit = slope > 0.0 ? mix(flatLit, nearFieldRing(cosTheta, slope * r), nearFieldCurvature) : flatLit;
+        lit += nearFieldTapWeight[k] * seen.x * ringLit;
     }
 }
 
@@ -114,20 +136,30 @@ vec3 nearFieldBehindRadiosity(int l, vec3 x, vec3 n, vec3 toLight, float eta, ve
     return centreCovered > 1e-3 ? sum * min(covered / centreCovered, vec3(1.0)) : vec3(0.0);
 }
 
+// How the interpolated normal varies across a triangle, world space: moving by dp changes
+// n . d by (dot(dnB, d) toB + dot(dnC, d) toC) . dp (all zero: a flat near field).
+struct NormalVariation {
+    vec3 dnB, dnC;  // corner b's and c's unit normal less corner a's
+    vec3 toB, toC;  // the gradients of corner b's and c's barycentric weights
+};
+
 // Sum over the lights of the near field at x (unit normal n), before the exit Fresnel factor:
 // in front where the light reaches x, behind where a lit surface hides it.
-vec3 nearFieldRadiosity(vec3 x, vec3 n, float eta) {
+vec3 nearFieldRadiosity(vec3 x, vec3 n, float eta, NormalVariation variation) {
     vec3 sum = vec3(0.0);
     if (nearFieldOn == 0) return sum;
     for (int i = 0; i < lightCount; ++i) {
-        vec3 radiance, visible, covered;
+        vec3 radiance, visible, covered, lit;
         vec3 l = lightDirectionAt(i, x, radiance);
-        nearFieldTaps(i, x, n, l, visible, covered);
+        vec3 gradient = dot(variation.dnB, l) * variation.toB + dot(variation.dnC, l) * variation.toC;
+        float slope = length(gradient - n * dot(gradient, n));
+        nearFieldTaps(i, x, n, l, slope, visible, covered, lit);
         sum += radiance * nearFieldBehindRadiosity(i, x, n, l, eta, covered);
-        float nDotL = dot(n, l);
-        if (nDotL <= 0.0) continue;
-        sum += nDotL * radiance * visible * volumeTransmittance(i, x, l) * meshShadow(i, x, n, l, 0) *
-               nearFieldAt(nDotL);
+        sum += radiance * lit * volumeTransmittance(i, x, l) * meshShadow(i, x, n, l, 0);
     }
     return sum;
+}
+
+vec3 nearFieldRadiosity(vec3 x, vec3 n, float eta) {
+    return nearFieldRadiosity(x, n, eta, NormalVariation(vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0)));
 }

@@ -24,6 +24,20 @@ uniform float eta;
 vec3 cornerPosition(uint v) { return vec3(vertexData[8 * v], vertexData[8 * v + 1], vertexData[8 * v + 2]); }
 vec3 cornerNormal(uint v) { return vec3(vertexData[8 * v + 3], vertexData[8 * v + 4], vertexData[8 * v + 5]); }
 
+// The triangle's normal variation (near_field.glsl), world space; zero for a degenerate one.
+NormalVariation normalVariation(uint a, uint b, uint c) {
+    vec3 pa = cornerPosition(a), e1 = cornerPosition(b) - pa, e2 = cornerPosition(c) - pa;
+    float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), det = d11 * d22 - d12 * d12;
+    NormalVariation v = NormalVariation(vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+    if (!(det > 1e-12 * d11 * d22)) return v;
+    vec3 na = normalize(normalMatrix * cornerNormal(a));
+    v.dnB = normalize(normalMatrix * cornerNormal(b)) - na;
+    v.dnC = normalize(normalMatrix * cornerNormal(c)) - na;
+    v.toB = normalMatrix * ((d22 * e1 - d12 * e2) / det);  // model-space gradients to world space
+    v.toC = normalMatrix * ((d11 * e2 - d12 * e1) / det);
+    return v;
+}
+
 void main() {
     int s = int(gl_GlobalInvocationID.x);
     if (s >= pointCount) return;
@@ -41,7 +55,7 @@ void main() {
     float length2 = dot(n, n);
     n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
     vec3 x = (model * vec4(p, 1.0)).xyz;
-    vec3 nearLight = nearFieldRadiosity(x, n, eta);
+    vec3 nearLight = nearFieldRadiosity(x, n, eta, normalVariation(a, b, c));
     float visible[12] = float[12](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // 3 texels' worth
     for (int i = 0; i < lightCount; ++i) {
         vec3 radiance;

@@ -108,6 +108,8 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
     p.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(in.model))));
     p.set("eta", in.eta);
     p.set("texelsPerPoint", m_texelsPerPoint);
+    // The rise across the terminator where the vertices' correction does not carry it.
+    p.set("nearFieldCurvature", glm::vec3(1.0f) - in.nearField.correction);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.mesh.vertices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.mesh.indices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_pointTriangles.id());
