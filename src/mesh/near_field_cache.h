@@ -5,7 +5,8 @@
 // of evaluated at every pixel of every frame. They depend on the lights and the surface only, so
 // a camera move reads them back: three points per pixel instead of about 50 light-buffer reads.
 // The points lie `spacing` apart, a light-buffer texel or two: the light buffer holds no finer
-// detail. Measurements: docs/near-field.md.
+// detail. Knowing their triangle, the points also follow how its normals turn across the
+// terminator (nearFieldRing in shaders/mesh/near_field.glsl). Measurements: docs/near-field.md.
 #include "gl/buffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
