@@ -98,9 +98,10 @@ struct MeshRenderOptions {
     float spread = 1.0f;
     /// Radius of the vertex estimate's near field, in the mesh's edge lengths (the edge of
     /// MeshScatteringRenderer::edgeToDiffusionLength), >= 0: the light entering that close to a
-    /// point, for a locally flat surface lit like the point, is evaluated per pixel; the vertices
-    /// interpolate only the rest, which varies little across a triangle. Where a lit surface hides
-    /// the point (a thin part lit from behind), the light entering it is evaluated per pixel too.
+    /// point, for a locally flat surface lit like the point, is evaluated finer than the vertices
+    /// (see nearFieldSpacing); the vertices interpolate only the rest, which varies little across
+    /// a triangle. Where a lit surface hides the point (a thin part lit from behind), the light
+    /// entering it is evaluated so too.
     /// Keeps the radiosity right on meshes whose triangles are many diffusion lengths wide
     /// (life-size objects); 0 interpolates all of it, and MeshCombine::Automatic then takes the
     /// maps on coarse meshes (docs/near-field.md) (default: 1).

@@ -93,7 +93,7 @@ struct OptionTable<MeshRenderOptions> {
         OptionField<O, float>{&O::spread, "spread", "spreads the samples: sigma* = min(sigma_tr) / spread",
                               atLeast(0.1)},
         OptionField<O, float>{&O::nearField, "nearField",
-            "radius of the vertex estimate's per-pixel near field, in mesh edge lengths (1: life-size meshes); 0: off",
+            "radius of the vertex estimate's near field, in mesh edge lengths (1: life-size meshes); 0: off",
             atLeast(0), "--near-field", "EDGES"},
         OptionField<O, float>{&O::nearFieldSpacing, "nearFieldSpacing",
             "near field evaluated once per light change at points this many light-buffer texels apart, read by "
