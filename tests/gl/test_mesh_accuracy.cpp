@@ -56,10 +56,11 @@ struct ConvergedRender {
     double edgeRatio = 0.0;  // MeshScatteringRenderer::edgeToDiffusionLength
 };
 
-ConvergedRender renderConverged(const Mesh& mesh, const ScatteringMaterial& material, const std::vector<Light>& lights,
-                                const Camera& camera, const MeshRenderOptions& options, int width, int height) {
-    MeshScatteringRenderer renderer(options);
-    renderer.setMesh(mesh);
+// Renders with `renderer` (its options as they are) until it reports convergence.
+ConvergedRender renderConvergedWith(MeshScatteringRenderer& renderer, const Mesh& mesh, const glm::mat4& model,
+                                    const ScatteringMaterial& material, const std::vector<Light>& lights,
+                                    const Camera& camera, int width, int height) {
+    renderer.setMesh(mesh, model);
     renderer.setScatteringMaterial(material);
     renderer.setLights(lights);
     RenderTarget target(width, height);
@@ -68,6 +69,12 @@ ConvergedRender renderConverged(const Mesh& mesh, const ScatteringMaterial& mate
         renderer.render(camera, target);
     } while (!renderer.converged());
     return {target.readColor(), renderer.activeCombine(), renderer.edgeToDiffusionLength()};
+}
+
+ConvergedRender renderConverged(const Mesh& mesh, const ScatteringMaterial& material, const std::vector<Light>& lights,
+                                const Camera& camera, const MeshRenderOptions& options, int width, int height) {
+    MeshScatteringRenderer renderer(options);
+    return renderConvergedWith(renderer, mesh, glm::mat4(1.0f), material, lights, camera, width, height);
 }
 
 Image renderGpu(const Scene& scene, const MeshRenderOptions& options) {
@@ -498,32 +505,24 @@ TEST_CASE("the near field's points: the per-pixel near field's image, evaluated 
                             glm::scale(glm::mat4(1.0f), glm::vec3(1.3f));
     Camera camera = Scene().camera;
     camera.setDistance(camera.distance() * 1.3f);
-    auto render = [&](float spacing, MeshScatteringRenderer* keep) {
+    auto render = [&](float spacing, MeshScatteringRenderer& renderer) {
         MeshRenderOptions o = comparable();
         o.millimetresPerUnit = 1000.0;
         o.nearFieldSpacing = spacing;
-        MeshScatteringRenderer local(o);
-        MeshScatteringRenderer& renderer = keep ? *keep : local;
         renderer.setOptions(o);
-        renderer.setMesh(mesh, model);
-        renderer.setScatteringMaterial(marble);
-        renderer.setLights(lights);
-        RenderTarget target(kW, kH);
-        do {
-            target.clear({0, 0, 0, 0});
-            renderer.render(camera, target);
-        } while (!renderer.converged());
-        CHECK(renderer.activeCombine() == MeshCombine::VertexEstimate);
-        return target.readColor();
+        const ConvergedRender r = renderConvergedWith(renderer, mesh, model, marble, lights, camera, kW, kH);
+        CHECK(r.active == MeshCombine::VertexEstimate);
+        return r.image;
     };
-    const Image perPixel = render(0.0f, nullptr);
+    MeshScatteringRenderer perPixelRenderer;
+    const Image perPixel = render(0.0f, perPixelRenderer);
     struct Case {
         float spacing;
         double bound;
     };
     MeshScatteringRenderer renderer;
     for (const Case& c : {Case{1.0f, 0.0179}, Case{2.0f, 0.0424}, Case{8.0f, 0.130}}) {
-        const double error = computeErrorMetrics(render(c.spacing, &renderer), perPixel).relRmse;
+        const double error = computeErrorMetrics(render(c.spacing, renderer), perPixel).relRmse;
         std::printf("[near-field points] spacing %g texels: relRmse %.4f against the per-pixel near field\n",
                     c.spacing, error);
         CHECK(error < c.bound);
