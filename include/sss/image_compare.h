@@ -48,6 +48,16 @@ struct ErrorMetrics {
 /// non-finite. @throws Error InvalidArgument if the sizes differ (naming both).
 ErrorMetrics computeErrorMetrics(const Image& test, const Image& reference);
 
+/// Specks where a Monte Carlo reference resolves its own value: the share of speckShare's pixels
+/// whose reference luminance is at least four times its standard error (the channels' standard
+/// errors weighted like the luminance and summed, as the channels share their samples), so that
+/// "below half the reference" lies at least two standard errors out. Elsewhere a second
+/// reference from other random streams is itself below half the first at a few per cent of the
+/// pixels (the 2 m scenes of docs/near-field.md), and a test there says nothing.
+/// `referenceStandardError`: per-pixel rgb standard errors (MeshReferenceResult::standardError).
+/// @throws Error InvalidArgument if the sizes differ (naming them).
+double resolvedSpeckShare(const Image& test, const Image& reference, const Image& referenceStandardError);
+
 }  // namespace sss
 
 SSS_END_API

@@ -9,7 +9,7 @@
 #define TEXTURED_MATERIAL 0
 #endif
 #ifndef NEAR_FIELD_TAPS
-#define NEAR_FIELD_TAPS 8  // kNearFieldTaps
+#define NEAR_FIELD_TAPS 12  // kNearFieldTaps
 #endif
 #include "mesh/light_buffer_lookup.glsl"
 #include "common/dirpole.glsl"
@@ -52,18 +52,47 @@ vec3 nearFieldAt(float cosTheta) {
 // max(c, 0) N(c): the flat near field's light per unit irradiance where cos theta = c.
 vec3 nearFieldLit(float c) { return max(c, 0.0) * nearFieldAt(c); }
 
-// The mean of nearFieldLit(c + a cos phi) around a ring: a surface whose cos theta rises by a
-// towards the light on one side of the ring and falls on the other. Near the terminator the
-// rising side adds light that a flat surface lit like the centre has not.
-vec3 nearFieldRing(float c, float a) {
-    vec3 sum = vec3(0.0);
-    for (int j = 0; j < 8; ++j) sum += nearFieldLit(c + a * cos(0.785398163 * (float(j) + 0.5)));
-    return 0.125 * sum;
-}
+#ifndef NEAR_FIELD_CURVATURE
+#define NEAR_FIELD_CURVATURE 0
+#endif
+#if NEAR_FIELD_CURVATURE
+#define NEAR_FIELD_RING_NODES 33  // kNearFieldRingNodes
+// Per tap (src/mesh/near_field.h, NearFieldRingTable): (outer radius), (mean r^2), then per
+// node (H), (Q) at t = outer (2 i / (N - 1) - 1).
+layout(std430, binding = 5) readonly buffer NearFieldRings { vec4 nearFieldRing[]; };
 
 // Per channel, how much of the rings' rise to take (src/mesh/near_field_cache.cpp: what the
-// vertices' correction leaves out; 0 where the near field is flat).
+// vertices' correction leaves out).
 uniform vec3 nearFieldCurvature;
+
+vec3 nearFieldAt(vec3 cosTheta) {
+    return vec3(nearFieldAt(cosTheta.r).r, nearFieldAt(cosTheta.g).g, nearFieldAt(cosTheta.b).b);
+}
+
+// Tap k's annulus on a surface whose cos theta is c at x and rises by g per unit length towards
+// the light: the light entering it per unit irradiance. Its mean lit cos theta is g H, and the
+// table N is read at that mean weighted by itself, g Q / H. Beyond the terminator (c < 0) this is
+// the light that diffuses over from the side that turns towards the light.
+vec3 nearFieldRingLit(int k, float c, float g) {
+    int base = k * (2 + 2 * NEAR_FIELD_RING_NODES);
+    float outer = nearFieldRing[base].x, t = -c / g;
+    vec3 h, q;
+    if (!(t > -outer)) {  // every ring lit (also g = 0 with c > 0)
+        h = vec3(-t);
+        q = vec3(t * t) + 0.5 * nearFieldRing[base + 1].xyz;
+    } else if (!(t < outer)) {
+        return vec3(0.0);
+    } else {
+        float f = 0.5 * (t / outer + 1.0) * float(NEAR_FIELD_RING_NODES - 1);
+        int i = min(int(f), NEAR_FIELD_RING_NODES - 2);
+        int at = base + 2 + 2 * i;
+        h = mix(nearFieldRing[at].xyz, nearFieldRing[at + 2].xyz, f - float(i));
+        q = mix(nearFieldRing[at + 1].xyz, nearFieldRing[at + 3].xyz, f - float(i));
+    }
+    vec3 meanCos = g * h, weightedCos = g * q / max(h, vec3(1e-30));
+    return meanCos * nearFieldAt(weightedCos);
+}
+#endif
 
 // Light l over the near field's disk around x, per channel weighted by the profile: `visible`,
 // the share that reaches the surface around x (a shadow's edge blurred as the subsurface light
@@ -93,7 +122,11 @@ void nearFieldTaps(int l, vec3 x, vec3 n, vec3 toLight, float slope, out vec3 vi
         }
         visible += nearFieldTapWeight[k] * seen.x;
         covered += nearFieldTapWeight[k] * seen.y;
-        vec3 ringLit = slope > 0.0 ? mix(flatLit, nearFieldRing(cosTheta, slope * r), nearFieldCurvature) : flatLit;
+#if NEAR_FIELD_CURVATURE
+        vec3 ringLit = slope > 0.0 ? mix(flatLit, nearFieldRingLit(k, cosTheta, slope), nearFieldCurvature) : flatLit;
+#else
+        vec3 ringLit = flatLit;
+#endif
         lit += nearFieldTapWeight[k] * seen.x * ringLit;
     }
 }

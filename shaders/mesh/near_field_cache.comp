@@ -4,6 +4,7 @@
 // the lights and the surface, not on the camera, so a camera move reuses them.
 layout(local_size_x = 64) in;
 
+#define NEAR_FIELD_CURVATURE 1
 #include "mesh/near_field.glsl"
 #include "mesh/near_field_points.glsl"
 

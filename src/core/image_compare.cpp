@@ -113,6 +113,22 @@ double speckShare(const std::vector<float>& test, const std::vector<float>& refe
 
 }  // namespace
 
+double resolvedSpeckShare(const Image& test, const Image& reference, const Image& referenceStandardError) {
+    checkSameSize("resolvedSpeckShare", test, reference, "test", "reference");
+    checkSameSize("resolvedSpeckShare", referenceStandardError, reference, "referenceStandardError", "reference");
+    const std::vector<float>& t = test.data();
+    const std::vector<float>& r = reference.data();
+    const std::vector<float>& e = referenceStandardError.data();
+    std::size_t counted = 0, specks = 0;
+    for (std::size_t i = 0; i < t.size(); i += 4) {
+        const double ref = luminance(&r[i]);
+        if (!(r[i + 3] > 0.0f) || !(ref > 0.0) || !(ref >= 4.0 * luminance(&e[i]))) continue;
+        ++counted;
+        specks += luminance(&t[i]) < 0.5 * ref ? 1 : 0;
+    }
+    return counted ? double(specks) / double(counted) : 0.0;
+}
+
 ErrorMetrics computeErrorMetrics(const Image& test, const Image& reference) {
     checkSameSize("computeErrorMetrics", test, reference, "test", "reference");
     const std::vector<float>& t = test.data();

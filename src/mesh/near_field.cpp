@@ -47,9 +47,52 @@ std::vector<std::pair<double, glm::dvec3>> cumulativeDiskIntegral(const DipoleCo
 
 constexpr int kRadialBins = 320;
 
+// Tap k's ring table (NearFieldRingTable) from the disk integral's bins [first, end): each bin a
+// ring at its mid radius weighted by its integral, per channel.
+void tabulateRing(const std::vector<std::pair<double, glm::dvec3>>& cumulative, std::size_t first, std::size_t end,
+                  NearFieldRingTable& ring) {
+    if (first >= end) return;
+    ring.outer = static_cast<float>(cumulative[end - 1].first);
+    glm::dvec3 weight(0.0), meanSquare(0.0);
+    std::array<glm::dvec3, kNearFieldRingNodes> h{}, q{};
+    for (std::size_t b = first; b < end; ++b) {
+        const double inner = b == 0 ? 0.0 : cumulative[b - 1].first, outer = cumulative[b].first;
+        const double r = b == 0 ? outer : std::sqrt(inner * outer);
+        const glm::dvec3 w = cumulative[b].second - (b == 0 ? glm::dvec3(0.0) : cumulative[b - 1].second);
+        weight += w;
+        meanSquare += w * r * r;
+        for (int i = 0; i < kNearFieldRingNodes; ++i) {
+            const double t = ring.outer * (2.0 * i / (kNearFieldRingNodes - 1) - 1.0);
+            const glm::dvec2 m = nearFieldRingMoments(r, t);
+            h[i] += w * m.x;
+            q[i] += w * m.y;
+        }
+    }
+    for (int ch = 0; ch < 3; ++ch) {
+        if (!(weight[ch] > 0.0)) continue;
+        ring.meanSquareRadius[ch] = static_cast<float>(meanSquare[ch] / weight[ch]);
+        for (int i = 0; i < kNearFieldRingNodes; ++i) {
+            ring.h[i][ch] = static_cast<float>(h[i][ch] / weight[ch]);
+            ring.q[i][ch] = static_cast<float>(q[i][ch] / weight[ch]);
+        }
+    }
+}
+
+// The share of the disk integral within tap k's ring's outer radius: eighths up to 7/8, then
+// halving what is left (15/16, 31/32, ...), the last ring out to the disk's edge. The tail's rings
+// find a cast shadow's edge or a terminator several diffusion lengths away, whose light is a
+// small share of the profile's but all a point in the dark gets.
+static_assert(kNearFieldTaps >= 8);
+double tapUpperQuantile(int k) {
+    if (k + 1 >= kNearFieldTaps) return 1.0;
+    if (k < 7) return (k + 1) / 8.0;
+    return 1.0 - std::ldexp(1.0, -(k - 3));
+}
+
 // Visibility taps for the near field lit head-on: tap k stands for the ring between the
-// quantiles k / N and (k + 1) / N of the channels' mean share of the disk integral, at the ring's
-// median radius; each channel weighs it by its own share of the disk integral in that ring.
+// quantiles tapUpperQuantile(k - 1) and tapUpperQuantile(k) of the channels' mean share of the
+// disk integral, at the ring's median radius; each channel weighs it by its own share of the
+// disk integral in that ring.
 void placeVisibilityTaps(const DipoleConstants& c, double radius, NearFieldTable& table) {
     const auto cumulative = cumulativeDiskIntegral(c, 1.0, radius, kRadialBins);
     if (cumulative.empty()) return;
@@ -67,16 +110,33 @@ void placeVisibilityTaps(const DipoleConstants& c, double radius, NearFieldTable
         return cumulative.back();
     };
     glm::dvec3 previous(0.0);
+    std::size_t bin = 0;  // the first bin of tap k's annulus
+    double lower = 0.0;
     for (int k = 0; k < kNearFieldTaps; ++k) {
-        const double upper = static_cast<double>(k + 1) / kNearFieldTaps;
+        const double upper = tapUpperQuantile(k);
         const glm::dvec3 ringEnd = k + 1 == kNearFieldTaps ? total : at(upper).second;
-        table.tapRadius[k] = static_cast<float>(at((k + 0.5) / kNearFieldTaps).first);
+        table.tapRadius[k] = static_cast<float>(at(0.5 * (lower + upper)).first);
+        lower = upper;
         table.tapWeight[k] = glm::vec3(share(ringEnd - previous));
+        std::size_t end = bin;  // one past the annulus's last bin
+        while (end < cumulative.size() && (end == bin || meanShare(cumulative[end - 1].second) < upper)) ++end;
+        if (k + 1 == kNearFieldTaps) end = cumulative.size();
+        tabulateRing(cumulative, bin, end, table.rings[k]);
+        bin = end;
         previous = ringEnd;
     }
 }
 
 }  // namespace
+
+glm::dvec2 nearFieldRingMoments(double r, double t) {
+    if (t >= r) return glm::dvec2(0.0);
+    if (t <= -r) return {-t, t * t + 0.5 * r * r};
+    const double a = std::acos(t / r), sinA = std::sin(a);  // the lit arc is |phi| < a
+    const double h = r * sinA - t * a;
+    const double q = r * r * (0.5 * a + 0.5 * sinA * std::cos(a)) - 2.0 * r * t * sinA + t * t * a;
+    return glm::dvec2(h, q) / std::numbers::pi;
+}
 
 glm::dvec3 dipoleDiskIntegral(const DipoleConstants& c, double cosIncidence, double radius) {
     if (!(radius > 0.0) || !(cosIncidence > 0.0)) return glm::dvec3(0.0);
@@ -159,6 +219,20 @@ void tabulateTexturedNearFieldShare(NearFieldTable& table, const ScatteringMater
         for (int ch = 0; ch < 3; ++ch)
             table.texturedShare[i][ch] = reference[ch] > 0.0 ? static_cast<float>(share[ch] / reference[ch]) : 1.0f;
     }
+}
+
+std::vector<glm::vec4> packNearFieldRings(const NearFieldTable& table) {
+    std::vector<glm::vec4> packed;
+    packed.reserve(kNearFieldTaps * (2 + 2 * kNearFieldRingNodes));
+    for (const NearFieldRingTable& ring : table.rings) {
+        packed.emplace_back(ring.outer, 0.0f, 0.0f, 0.0f);
+        packed.emplace_back(ring.meanSquareRadius, 0.0f);
+        for (int i = 0; i < kNearFieldRingNodes; ++i) {
+            packed.emplace_back(ring.h[i], 0.0f);
+            packed.emplace_back(ring.q[i], 0.0f);
+        }
+    }
+    return packed;
 }
 
 void setNearFieldUniforms(const gl::Program& p, const NearFieldTable& table) {

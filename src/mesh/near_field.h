@@ -10,14 +10,34 @@
 #include "gl/program.h"
 #include "sss/bssrdf.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <array>
+#include <vector>
 
 namespace sss::detail {
 
 inline constexpr int kNearFieldNodes = 33;  // cos theta = 0, 1/32, ..., 1 (NEAR_FIELD_NODES in GLSL)
-inline constexpr int kNearFieldTaps = 8;    // NEAR_FIELD_TAPS in GLSL
+inline constexpr int kNearFieldTaps = 12;   // NEAR_FIELD_TAPS in GLSL
+inline constexpr int kNearFieldRingNodes = 33;  // NEAR_FIELD_RING_NODES in GLSL
+
+/// A tap's ring over a surface whose cos theta rises at g per unit length towards the light (the
+/// terminator at a distance t from x_o along that rise, t > 0 beyond it): the mean over the tap's
+/// annulus of the disk, weighted by the profile, of H = mean over the azimuth of (r cos phi - t)+
+/// and Q of its square; g H is the mean lit cos theta, g Q / H that mean weighted by itself.
+/// Tabulated at t = outer (2 i / (N - 1) - 1); below -outer every ring is lit and H = -t,
+/// Q = t^2 + meanSquareRadius / 2 exactly; from +outer on nothing is lit.
+struct NearFieldRingTable {
+    float outer = 0.0f;                ///< the annulus's outer radius, scene units
+    glm::vec3 meanSquareRadius{0.0f};  ///< per channel, the profile-weighted mean of r^2 over it
+    std::array<glm::vec3, kNearFieldRingNodes> h{}, q{};
+};
+
+/// The ring means of a unit rise at a ring of radius r, the terminator at t:
+/// (mean (r cos phi - t)+, mean ((r cos phi - t)+)^2) over phi.
+glm::dvec2 nearFieldRingMoments(double r, double t);
 
 struct NearFieldTable {
     float radius = 0.0f;  ///< rho, scene units (0: no near field)
@@ -34,6 +54,9 @@ struct NearFieldTable {
     /// to 1, each tap the ring of the profile around its radius (lit head-on).
     std::array<float, kNearFieldTaps> tapRadius{};
     std::array<glm::vec3, kNearFieldTaps> tapWeight{};
+    /// Per tap, its annulus's light across a terminator: how the near field's points follow a
+    /// surface that turns towards the light (nearFieldRingLit in shaders/mesh/near_field.glsl).
+    std::array<NearFieldRingTable, kNearFieldTaps> rings{};
     /// The near field behind: where a lit surface hides x_o from the light (a thin part lit from
     /// behind, an overhang), the light entering it within rho, for a flat surface lit head-on at
     /// a distance d behind x_o and facing away from it. Per node i, at d = behindDepth (i / 32)^2:
@@ -95,5 +118,9 @@ void tabulateTexturedNearFieldShare(NearFieldTable& table, const ScatteringMater
 
 /// Sets the uniforms of shaders/mesh/near_field.glsl (radius 0 turns the near field off).
 void setNearFieldUniforms(const gl::Program& program, const NearFieldTable& table);
+
+/// The rings' tables as shaders/mesh/near_field.glsl reads them (NEAR_FIELD_CURVATURE) from a
+/// storage buffer: per tap (outer, 0, 0, 0), (meanSquareRadius, 0), then per node (h, 0), (q, 0).
+std::vector<glm::vec4> packNearFieldRings(const NearFieldTable& table);
 
 }  // namespace sss::detail

@@ -110,16 +110,19 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
     p.set("texelsPerPoint", m_texelsPerPoint);
     // The rise across the terminator where the vertices' correction does not carry it.
     p.set("nearFieldCurvature", glm::vec3(1.0f) - in.nearField.correction);
+    const std::vector<glm::vec4> rings = packNearFieldRings(in.nearField);
+    m_rings = storage(rings.size() * sizeof(glm::vec4), rings.data(), "near field (rings)");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.mesh.vertices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.mesh.indices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_pointTriangles.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_triangles.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_values.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m_rings.id());
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_pointCount + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the combine reads the points as fragment storage
     glUseProgram(0);
-    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
 
 void NearFieldCache::bind(const gl::Program& program) const {

@@ -68,6 +68,7 @@ private:
     std::vector<glm::vec4> m_maps;  // per triangle 2: p -> (b, c) weights, affine in model space
     gl::Buffer m_barycentric;       // m_maps, uploaded on first use
     gl::Buffer m_triangles, m_pointTriangles, m_values;
+    gl::Buffer m_rings;  // the near field's ring tables (packNearFieldRings), each evaluate()
     gl::Texture m_barycentricView, m_trianglesView, m_valuesView;  // the combine reads them as buffer textures
     float m_spacing = 0.0f;
     std::size_t m_pointCount = 0;

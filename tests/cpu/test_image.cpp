@@ -168,3 +168,22 @@ TEST_CASE("computeErrorMetrics: specks, and those bright enough to see", "[cpu]"
     CHECK(same.speckShare == 0.0);
     CHECK(same.visibleSpeckShare == 0.0);
 }
+
+TEST_CASE("resolvedSpeckShare: only pixels the reference knows to four standard errors", "[cpu]") {
+    // 10 covered pixels, all dark in the test (0.4x). The reference's standard error is a fifth
+    // of its value at 4 pixels (resolved), a third at 3 (not), and a fifth in one channel only
+    // but larger in another at 1 (luminance-weighted: not); 2 have a black reference or none.
+    Image ref(10, 1, {1.0f, 1.0f, 1.0f, 1.0f});
+    ref.at(8, 0) = {0.0f, 0.0f, 0.0f, 1.0f};
+    ref.at(9, 0) = {1.0f, 1.0f, 1.0f, 0.0f};
+    Image error(10, 1, {0.2f, 0.2f, 0.2f, 0.0f});
+    for (int x : {4, 5, 6}) error.at(x, 0) = {0.34f, 0.34f, 0.34f, 0.0f};
+    error.at(7, 0) = {0.2f, 0.4f, 0.2f, 0.0f};  // green dominates the luminance
+    Image test = ref;
+    for (int x = 0; x < 10; ++x) test.at(x, 0) *= glm::vec4(0.4f, 0.4f, 0.4f, 1.0f);
+    test.at(0, 0) = ref.at(0, 0);  // one resolved pixel that is right
+    CHECK(sss::resolvedSpeckShare(test, ref, error) == Approx(3.0 / 4.0));
+    CHECK(sss::resolvedSpeckShare(ref, ref, error) == 0.0);
+    REQUIRE_SSS_ERROR(sss::resolvedSpeckShare(test, ref, Image(2, 1)), ErrorKind::InvalidArgument,
+                      Contains("referenceStandardError") && Contains("2x1"));
+}
