@@ -129,6 +129,12 @@ public:
                         std::optional<glm::ivec2> size = std::nullopt,
                         const std::function<void(bool starting)>& timedRuns = {});
 
+    /// Times several renders as measure() does, their timed frames interleaved (one of each in
+    /// turn, options().runs rounds), so that this machine's drift in speed falls on all of them
+    /// alike: for ratios between them. One Measurement per render, in order; each image checked.
+    std::vector<Measurement> measureInterleaved(const std::vector<std::function<void(sss::RenderTarget&)>>& renders,
+                                                const std::vector<std::string>& ids);
+
     /// The frame's floor: the target's clear alone (RenderTarget::clear, or `clear` if given),
     /// timed as measure() times a frame (no image check: nothing is drawn).
     Measurement measureClearOnly(const std::function<void(sss::RenderTarget&)>& clear = {});
@@ -139,6 +145,10 @@ public:
     const std::vector<Skipped>& skipped() const { return m_skipped; }
 
 private:
+    // Reads `target` back once, saves it under `id` (--images) and throws BenchFailure if it is
+    // empty or the debug context saw GL errors; sets m.coverage.
+    void verify(sss::RenderTarget& target, const std::string& id, Measurement& m);
+
     Options m_options;
     std::string m_startedAt;
     // Declared first so it is destroyed last: the target and timer hold GL objects.

@@ -100,8 +100,37 @@ Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget
     }
     if (timedRuns) timedRuns(false);
     m.stats = summarize(m.samplesMs);
+    verify(target, id, m);  // once, after timing, so the read-back is not billed to any frame
+    return m;
+}
 
-    // Verify once, after timing, so the read-back is not billed to any frame.
+std::vector<Measurement> BenchmarkContext::measureInterleaved(
+    const std::vector<std::function<void(sss::RenderTarget&)>>& renders, const std::vector<std::string>& ids) {
+    sss::RenderTarget& target = *m_target;
+    for (const auto& render : renders)
+        for (int i = 0; i < m_options.warmup; ++i) {
+            target.clear(kBackground);
+            render(target);
+        }
+    sss::finishGpuWork();
+    std::vector<Measurement> measurements(renders.size());
+    for (int i = 0; i < m_options.runs; ++i)
+        for (std::size_t r = 0; r < renders.size(); ++r) {
+            m_timer->begin();
+            target.clear(kBackground);
+            renders[r](target);
+            measurements[r].samplesMs.push_back(m_timer->endMilliseconds());
+        }
+    for (std::size_t r = 0; r < renders.size(); ++r) {
+        measurements[r].stats = summarize(measurements[r].samplesMs);
+        target.clear(kBackground);
+        renders[r](target);  // the image to check, after timing
+        verify(target, ids.at(r), measurements[r]);
+    }
+    return measurements;
+}
+
+void BenchmarkContext::verify(sss::RenderTarget& target, const std::string& id, Measurement& m) {
     const sss::Image image = target.readColor();
     if (!m_options.imageDir.empty()) {
         std::filesystem::create_directories(m_options.imageDir);
@@ -113,7 +142,6 @@ Measurement BenchmarkContext::measure(const std::function<void(sss::RenderTarget
                            "% of pixels differ from the background)");
     if (m_gl->info().debug && m_gl->debugMessages().errors > 0)
         throw BenchFailure(id + ": OpenGL reported errors: " + m_gl->lastDebugError());
-    return m;
 }
 
 Measurement BenchmarkContext::measureClearOnly(const std::function<void(sss::RenderTarget&)>& clear) {

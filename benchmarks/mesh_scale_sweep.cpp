@@ -272,9 +272,13 @@ void meshScaleSweep(BenchmarkContext& bench) {
             const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference.image);
             const std::string id = "scale-" + scene + "-" + method.name;
             saveImages(o, id, image, reference.image, "scale-" + scene + "-reference");
-            const Measurement fixed = bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed");
-            const Measurement baseline =
-                bench.measure([&](sss::RenderTarget& t) { blinnPhong.render(camera, t); }, id + "-blinn-phong");
+            // Side by side, frame for frame: the ratio is the goal (this machine's speed drifts).
+            const std::vector<Measurement> timed =
+                bench.measureInterleaved({[&](sss::RenderTarget& t) { renderer.render(camera, t); },
+                                          [&](sss::RenderTarget& t) { blinnPhong.render(camera, t); }},
+                                         {id + "-fixed", id + "-blinn-phong"});
+            const Measurement& fixed = timed[0];
+            const Measurement& baseline = timed[1];
             Record r;
             r.table = "error-sweep";
             r.model = s.model;
