@@ -156,20 +156,17 @@ bool secondReferenceWanted(const Options& o) {
     return std::find(o.only.begin(), o.only.end(), "second-reference") != o.only.end();
 }
 
-void compareSecondReference(BenchmarkContext& bench, const SweepScene& s, const std::string& scene,
-                            const std::string& referenceName, const Reference& reference,
-                            const std::function<sss::MeshReferenceResult()>& render) {
-    const auto start = std::chrono::steady_clock::now();
-    const Reference second = cachedMeshReference(bench.options(), referenceName + "-seed2", render);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const sss::ErrorMetrics error = sss::computeErrorMetrics(second.image, reference.image);
-    const double specks = sss::resolvedSpeckShare(second.image, reference.image, reference.standardError);
+// The record of `method`'s image of scene `s` against its reference: error, specks and `ms`
+// (what it took to make). The methods add their own fields (combine, timings).
+Record sweepRecord(const SweepScene& s, const std::string& method, const sss::Image& image,
+                   const Reference& reference, double ms) {
+    const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference.image);
     Record r;
     r.table = "error-sweep";
     r.model = s.model;
     r.mode = "sss";
     r.dataSize = std::to_string(s.mesh->triangleCount()) + " tri";
-    r.params = "second-reference " + s.material + " " + std::to_string(static_cast<int>(s.sizeMm)) +
+    r.params = method + " " + s.material + " " + std::to_string(static_cast<int>(s.sizeMm)) +
                " mm relRMSE=" + std::to_string(error.relRmse);
     r.width = kWidth;
     r.height = kHeight;
@@ -178,16 +175,27 @@ void compareSecondReference(BenchmarkContext& bench, const SweepScene& s, const 
                  {"size_mm", s.sizeMm},
                  {"millimetres_per_unit", s.millimetresPerUnit},
                  {"material", s.material},
-                 {"method", "second-reference"},
+                 {"method", method},
                  {"rel_rmse", error.relRmse},
-                 {"specks", specks},
+                 {"specks", sss::resolvedSpeckShare(image, reference.image, reference.standardError)},
                  {"specks_all", error.speckShare},
                  {"specks_visible", error.visibleSpeckShare},
-                 {"mean_ratio", meanRatio(second.image, reference.image)},
+                 {"mean_ratio", meanRatio(image, reference.image)},
                  {"ms", ms},
                  {"reference_rel_rmse", reference.ownRelRmse}};
-    std::cerr << "sss-bench: " << scene << " second-reference relRMSE " << error.relRmse << " specks " << specks
-              << " (all " << error.speckShare << ", visible " << error.visibleSpeckShare << ")\n";
+    return r;
+}
+
+void compareSecondReference(BenchmarkContext& bench, const SweepScene& s, const std::string& scene,
+                            const std::string& referenceName, const Reference& reference,
+                            const std::function<sss::MeshReferenceResult()>& render) {
+    const auto start = std::chrono::steady_clock::now();
+    const Reference second = cachedMeshReference(bench.options(), referenceName + "-seed2", render);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    Record r = sweepRecord(s, "second-reference", second.image, reference, ms);
+    std::cerr << "sss-bench: " << scene << " second-reference relRMSE " << r.details["rel_rmse"] << " specks "
+              << r.details["specks"] << " (all " << r.details["specks_all"] << ", visible "
+              << r.details["specks_visible"] << ")\n";
     bench.addRecord(std::move(r));
 }
 
@@ -266,8 +274,6 @@ void meshScaleSweep(BenchmarkContext& bench) {
             sss::RenderTarget target(kWidth, kHeight);
             const double regenerateMs = renderUntilConverged(renderer, camera, target);
             const sss::Image image = target.readColor();
-            const sss::ErrorMetrics error = sss::computeErrorMetrics(image, reference.image);
-            const double specks = sss::resolvedSpeckShare(image, reference.image, reference.standardError);
             const std::string id = "scale-" + scene + "-" + method.name;
             saveImages(o, id, image, reference.image, "scale-" + scene + "-reference");
             // Side by side, frame for frame: the ratio is the goal (this machine's speed drifts).
@@ -277,38 +283,18 @@ void meshScaleSweep(BenchmarkContext& bench) {
                                          {id + "-fixed", id + "-blinn-phong"});
             const Measurement& fixed = timed[0];
             const Measurement& baseline = timed[1];
-            Record r;
-            r.table = "error-sweep";
-            r.model = s.model;
-            r.mode = "sss";
-            r.dataSize = std::to_string(mesh.triangleCount()) + " tri";
-            r.params = method.name + " " + s.material + " " + std::to_string(static_cast<int>(s.sizeMm)) +
-                       " mm relRMSE=" + std::to_string(error.relRmse);
-            r.width = kWidth;
-            r.height = kHeight;
+            Record r = sweepRecord(s, method.name, image, reference, regenerateMs);
             r.measurement = fixed;
-            r.details = {{"sweep", "mesh-scale"},
-                         {"model", s.model},
-                         {"size_mm", s.sizeMm},
-                         {"millimetres_per_unit", s.millimetresPerUnit},
-                         {"material", s.material},
-                         {"method", method.name},
-                         {"combine", combineName(renderer.activeCombine())},
-                         {"near_field", mo.nearField},
-                         {"edge_diffusion_lengths", renderer.edgeToDiffusionLength()},
-                         {"rel_rmse", error.relRmse},
-                         {"specks", specks},
-                         {"specks_all", error.speckShare},
-                         {"specks_visible", error.visibleSpeckShare},
-                         {"mean_ratio", meanRatio(image, reference.image)},
-                         {"ms", regenerateMs},
-                         {"fixed_ms", fixed.stats.medianMs},
-                         {"blinn_phong_ms", baseline.stats.medianMs},
-                         {"fixed_over_blinn_phong", fixed.stats.medianMs / baseline.stats.medianMs},
-                         {"reference_rel_rmse", reference.ownRelRmse}};
+            r.details["combine"] = combineName(renderer.activeCombine());
+            r.details["near_field"] = mo.nearField;
+            r.details["edge_diffusion_lengths"] = renderer.edgeToDiffusionLength();
+            r.details["fixed_ms"] = fixed.stats.medianMs;
+            r.details["blinn_phong_ms"] = baseline.stats.medianMs;
+            r.details["fixed_over_blinn_phong"] = fixed.stats.medianMs / baseline.stats.medianMs;
             std::cerr << "sss-bench: " << scene << " " << method.name << " (" << combineName(renderer.activeCombine())
                       << ", edges " << renderer.edgeToDiffusionLength() << " diffusion lengths) relRMSE "
-                      << error.relRmse << " specks " << specks << " (all " << error.speckShare << ") regenerated in " << regenerateMs << " ms\n";
+                      << r.details["rel_rmse"] << " specks " << r.details["specks"] << " (all "
+                      << r.details["specks_all"] << ") regenerated in " << regenerateMs << " ms\n";
             bench.addRecord(std::move(r));
         }
     }

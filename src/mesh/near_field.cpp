@@ -114,14 +114,14 @@ void placeVisibilityTaps(const DipoleConstants& c, double radius, NearFieldTable
     double lower = 0.0;
     for (int k = 0; k < kNearFieldTaps; ++k) {
         const double upper = tapUpperQuantile(k);
-        const glm::dvec3 ringEnd = k + 1 == kNearFieldTaps ? total : at(upper).second;
-        table.tapRadius[k] = static_cast<float>(at(0.5 * (lower + upper)).first);
-        lower = upper;
-        table.tapWeight[k] = glm::vec3(share(ringEnd - previous));
-        std::size_t end = bin;  // one past the annulus's last bin
+        std::size_t end = bin;  // one past the annulus's last bin: the first to reach `upper`
         while (end < cumulative.size() && (end == bin || meanShare(cumulative[end - 1].second) < upper)) ++end;
         if (k + 1 == kNearFieldTaps) end = cumulative.size();
+        const glm::dvec3 ringEnd = cumulative[end - 1].second;
+        table.tapRadius[k] = static_cast<float>(at(0.5 * (lower + upper)).first);
+        table.tapWeight[k] = glm::vec3(share(ringEnd - previous));
         tabulateRing(cumulative, bin, end, table.rings[k]);
+        lower = upper;
         bin = end;
         previous = ringEnd;
     }

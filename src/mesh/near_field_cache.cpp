@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace sss::detail {
 
@@ -110,8 +111,11 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
     p.set("texelsPerPoint", m_texelsPerPoint);
     // The rise across the terminator where the vertices' correction does not carry it.
     p.set("nearFieldCurvature", glm::vec3(1.0f) - in.nearField.correction);
-    const std::vector<glm::vec4> rings = packNearFieldRings(in.nearField);
-    m_rings = storage(rings.size() * sizeof(glm::vec4), rings.data(), "near field (rings)");
+    // The rings depend on the material and the scale, not the lights: uploaded when they change.
+    if (std::vector<glm::vec4> rings = packNearFieldRings(in.nearField); rings != m_ringTables) {
+        m_rings = storage(rings.size() * sizeof(glm::vec4), rings.data(), "near field (rings)");
+        m_ringTables = std::move(rings);
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.mesh.vertices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.mesh.indices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_pointTriangles.id());

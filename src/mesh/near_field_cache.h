@@ -6,7 +6,7 @@
 // a camera move reads them back: three points per pixel instead of about 50 light-buffer reads.
 // The points lie `spacing` apart, a light-buffer texel or two: the light buffer holds no finer
 // detail. Knowing their triangle, the points also follow how its normals turn across the
-// terminator (nearFieldRing in shaders/mesh/near_field.glsl). Measurements: docs/near-field.md.
+// terminator (nearFieldRingLit in shaders/mesh/near_field.glsl). Measurements: docs/near-field.md.
 #include "gl/buffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
@@ -68,7 +68,8 @@ private:
     std::vector<glm::vec4> m_maps;  // per triangle 2: p -> (b, c) weights, affine in model space
     gl::Buffer m_barycentric;       // m_maps, uploaded on first use
     gl::Buffer m_triangles, m_pointTriangles, m_values;
-    gl::Buffer m_rings;  // the near field's ring tables (packNearFieldRings), each evaluate()
+    std::vector<glm::vec4> m_ringTables;  // packNearFieldRings of the table last uploaded
+    gl::Buffer m_rings;                   // m_ringTables on the GPU
     gl::Texture m_barycentricView, m_trianglesView, m_valuesView;  // the combine reads them as buffer textures
     float m_spacing = 0.0f;
     std::size_t m_pointCount = 0;

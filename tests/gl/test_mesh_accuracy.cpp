@@ -280,6 +280,15 @@ glm::dvec3 renderSlabCentre(const ScatteringMaterial& material, double incidence
     return sum / (32.0 * 32.0 * std::cos(theta));
 }
 
+// makeFolds() in marble, lit from above so that every groove has a depth edge seen from the
+// light, seen by the default camera: the concave and large-triangle tests' scene.
+struct FoldsScene {
+    Mesh mesh = makeFolds();
+    ScatteringMaterial marble = materialPreset("marble");
+    std::vector<Light> lights{DirectionalLight{.direction = {-0.4f, -0.8f, -0.45f}}};
+    Camera camera = Scene().camera;
+};
+
 }  // namespace
 
 TEST_CASE("GPU slab radiance matches the CPU evaluation of the same profile", "[gl][mesh][reference][profile]") {
@@ -320,10 +329,8 @@ TEST_CASE("a concave model with overhangs: no specks and near the CPU reference,
     test::GlTestScope gl;
     constexpr int kW = 96, kH = 72;
     constexpr double kMmPerUnit = 100.0;
-    const Mesh mesh = makeFolds();
-    const ScatteringMaterial marble = materialPreset("marble");
-    const std::vector<Light> lights{DirectionalLight{.direction = {-0.4f, -0.8f, -0.45f}}};
-    const Camera camera = Scene().camera;
+    const FoldsScene folds;
+    const auto& [mesh, marble, lights, camera] = folds;
     MeshReferenceOptions ro;
     ro.millimetresPerUnit = kMmPerUnit;
     ro.targetRelativeError = 0.02;
@@ -393,10 +400,8 @@ TEST_CASE("large triangles: the near field stays near the reference from 2 cm to
     // larger, the speck bounds at 2 cm 0.3 %, the visible and resolved ones 0.2 % at least.
     test::GlTestScope gl;
     constexpr int kW = 96, kH = 72;
-    const Mesh mesh = makeFolds();
-    const ScatteringMaterial marble = materialPreset("marble");
-    const std::vector<Light> lights{DirectionalLight{.direction = {-0.4f, -0.8f, -0.45f}}};
-    const Camera camera = Scene().camera;
+    const FoldsScene folds;
+    const auto& [mesh, marble, lights, camera] = folds;
     auto render = [&](double millimetresPerUnit, float nearField, double* edgeRatio) {
         MeshRenderOptions o = comparable();
         o.millimetresPerUnit = millimetresPerUnit;
@@ -503,13 +508,12 @@ TEST_CASE("the near field's points: the per-pixel near field's image, evaluated 
     // light change evaluates the points once more.
     test::GlTestScope gl;
     constexpr int kW = 96, kH = 72;
-    const Mesh mesh = makeFolds();
-    const ScatteringMaterial marble = materialPreset("marble");
-    const std::vector<Light> lights{DirectionalLight{.direction = {-0.4f, -0.8f, -0.45f}}};
+    const FoldsScene folds;
+    const auto& [mesh, marble, lights, sceneCamera] = folds;
     const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, -0.05f, 0.2f)) *
                             glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f))) *
                             glm::scale(glm::mat4(1.0f), glm::vec3(1.3f));
-    Camera camera = Scene().camera;
+    Camera camera = sceneCamera;
     camera.setDistance(camera.distance() * 1.3f);
     auto render = [&](float spacing, MeshScatteringRenderer& renderer) {
         MeshRenderOptions o = comparable();
