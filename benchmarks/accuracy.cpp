@@ -857,6 +857,7 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                     settings == "thesis" ? thesisVolumeOptions(bench.options(), sss::VolumeShading::Scattering) : sss::VolumeRenderOptions{};
                 o.shading = sss::VolumeShading::Scattering;
                 o.model = model;
+                o.lightPropagation = bench.options().lightPropagation;
                 o.anisotropy = kG;
                 o.ambient = 0.0f;
                 o.diffuse = 1.0f;

@@ -42,6 +42,7 @@ struct Options {
     std::filesystem::path referenceCache;  // --reference-cache: CPU references kept as EXR (empty: none)
     std::string scene;  // --scene: time this scene file instead of the tables
     sss::RayCaster rayCaster = sss::RayCaster::Auto;  // --ray-caster: the volume rows' ray caster
+    sss::LightPropagation lightPropagation = sss::LightPropagation::Auto;  // --light-propagation: the volume rows'
     sss::VolumeModel volumeModel = sss::VolumeModel::Paper;  // --volume-model: the thesis rows' shading model
     bool passes = false;  // --passes: GPU timestamps per pass; records with pass, gpu_ms, cpu_ms
 };
@@ -167,8 +168,8 @@ sss::DirectionalLight keyLight(const sss::Camera& camera);
 /// view-independent pass reruns) at almost the same image.
 sss::DirectionalLight nudged(const sss::DirectionalLight& light);
 /// The thesis's ray casting, which its tables measured: step 1 voxel, post-classification (the
-/// library's defaults since are step 0.5 with pre-integration); with the run's --ray-caster and
-/// --passes.
+/// library's defaults since are step 0.5 with pre-integration); with the run's --ray-caster,
+/// --light-propagation and --passes.
 sss::VolumeRenderOptions thesisVolumeOptions(const Options& run, sss::VolumeShading shading);
 
 /// Renders into `target` (cleared each frame) until the renderer has converged: the scattering

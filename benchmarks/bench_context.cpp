@@ -205,6 +205,7 @@ sss::VolumeRenderOptions thesisVolumeOptions(const Options& run, sss::VolumeShad
     o.stepSize = 1.0f;
     o.preintegration = false;
     o.rayCaster = run.rayCaster;
+    o.lightPropagation = run.lightPropagation;
     o.model = run.volumeModel;
     o.gpuPassTimes = run.passes;
     return o;

@@ -97,6 +97,7 @@ void volumeSeries(BenchmarkContext& bench, const std::string& model) {
                 o.shading = shading;
                 o.stepSize = step;
                 o.rayCaster = bench.options().rayCaster;
+                o.lightPropagation = bench.options().lightPropagation;
                 renderer.setOptions(o);
                 Record r = row(model, mode, size, "step " + std::to_string(step).substr(0, 4) + " (median = fixed)");
                 r.dataSize = dimsText(d);

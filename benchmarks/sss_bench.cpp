@@ -108,9 +108,11 @@ Options parseArgs(int argc, char** argv) {
               "(hybrid scenes); casters: fragment against compute ray casting side by side; scaling: time against "
               "viewport size and ray step, with the fixed and per-pixel costs fitted; clear: the ways to clear a target; "
               "textured: a textured translucent mesh against the same mesh untextured; light-sweep: the light-volume rebuild "
-              "against the slices each dispatch advances (1-16), with its dispatches",
+              "against the slices each dispatch advances (1-16) and by ray doubling, with its dispatches",
               "T[,T...]");
     addEnum(app, "--ray-caster", o.rayCaster, "the ray caster of every volume row (casters: both)");
+    addEnum(app, "--light-propagation", o.lightPropagation,
+            "how the volume rows' light volumes are propagated (light-sweep: every way side by side)");
     addEnum(app, "--volume-model", o.volumeModel,
             "the shading model of the thesis tables' volume rows: paper (the thesis) or physical (its light volume "
             "carries the intensity alone, one lookup per voxel instead of nine)");

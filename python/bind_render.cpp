@@ -352,6 +352,10 @@ void bindOptions(py::module_& m) {
                              {{"AUTO", sss::RayCaster::Auto}, {"FRAGMENT", sss::RayCaster::Fragment},
                               {"COMPUTE", sss::RayCaster::Compute}},
                              "Which ray caster draws a volume (the same image either way).");
+    bindEnum<sss::LightPropagation>(m, "LightPropagation",
+                                    {{"AUTO", sss::LightPropagation::Auto}, {"SWEEP", sss::LightPropagation::Sweep},
+                                     {"DOUBLING", sss::LightPropagation::Doubling}},
+                                    "How the light volume is carried from the light (sweep or ray doubling).");
     bindEnum<sss::VolumeReconstruction>(m, "VolumeReconstruction",
                                         {{"TRILINEAR", sss::VolumeReconstruction::Trilinear},
                                          {"CUBIC_B_SPLINE", sss::VolumeReconstruction::CubicBSpline}},

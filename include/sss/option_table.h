@@ -151,6 +151,9 @@ struct OptionTable<VolumeRenderOptions> {
         OptionField<O, int>{&O::lightSweepSlices, "lightSweepSlices",
             "slices each light-volume dispatch advances at most, 0 = the measured choice (fewer dispatches, more "
             "arithmetic)", between(0, 16), "--light-sweep-slices", "N"},
+        OptionField<O, LightPropagation>{&O::lightPropagation, "lightPropagation",
+            "light-volume propagation: sweep (slice by slice), doubling (ray segments doubled per dispatch: about "
+            "log2 of the slices) or auto (per device: doubling on hardware GPUs)", {}, "--light-propagation"},
         OptionField<O, LightVolumeFallback>{&O::lightVolumeFallback, "lightVolumeFallback",
             "when the light volume does not fit the GPU: halve its resolution until it fits, with a warning, or "
             "fail", {}, "--light-volume-fallback"},

@@ -79,6 +79,23 @@ enum class RayCaster {
     Compute,
 };
 
+/// How the light volume is carried from the light through the medium
+/// (docs/light-volume-sweep.md). Both give the light arriving at each voxel along the ray to the
+/// light, through the same medium samples and the same colour cone.
+enum class LightPropagation {
+    /// Picked per device from measurements (docs/light-volume-sweep.md, "Ray doubling"):
+    /// Doubling on hardware GPUs, Sweep on software rasterisers.
+    Auto,
+    /// Slice by slice away from the light (Ropinski et al. 2010): one dependent step per slice,
+    /// each a GPU-wide wait, and a cubic lookup of the previous slice per voxel.
+    Sweep,
+    /// Ray doubling: each voxel's segment towards the light doubles in length per dispatch,
+    /// joined with the segment beyond it, so a 256^3 light volume takes 10 dispatches. Rays are
+    /// straight, as the CPU reference's shadow rays; each level's lookup is linear, and the
+    /// colour cone blurs per level instead of per slice (lightSweepSlices does not apply).
+    Doubling,
+};
+
 /// What the renderer does when a light volume does not fit the GPU at the requested
 /// resolution (a side over GL_MAX_3D_TEXTURE_SIZE, the memory budget, or GL_OUT_OF_MEMORY).
 enum class LightVolumeFallback {
@@ -159,6 +176,9 @@ struct VolumeRenderOptions {
     /// Lights whose sideways reach per slice is too wide (inside the volume, or a blended sweep
     /// nearly along its slices) always take one (default: 0).
     int lightSweepSlices = 0;
+    /// Sweep or ray doubling, or picked per device (default: Auto; see LightPropagation). The
+    /// eye pass always sweeps.
+    LightPropagation lightPropagation = LightPropagation::Auto;
     /// When the light volume does not fit the GPU (default: Reduce, with a warning).
     LightVolumeFallback lightVolumeFallback = LightVolumeFallback::Reduce;
     /// Henyey-Greenstein g in (-1, 1): the forward cone over which the light's colour is blurred

@@ -63,6 +63,13 @@ std::span<const EnumName<RayCaster>> enumNames<RayCaster>() {
 }
 
 template <>
+std::span<const EnumName<LightPropagation>> enumNames<LightPropagation>() {
+    static constexpr EnumName<LightPropagation> names[] = {
+        {LightPropagation::Auto, "auto"}, {LightPropagation::Sweep, "sweep"}, {LightPropagation::Doubling, "doubling"}};
+    return names;
+}
+
+template <>
 std::span<const EnumName<CropSpace>> enumNames<CropSpace>() {
     static constexpr EnumName<CropSpace> names[] = {{CropSpace::Data, "data"}, {CropSpace::World, "world"}};
     return names;

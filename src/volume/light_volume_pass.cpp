@@ -10,6 +10,8 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <array>
+#include <functional>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -149,7 +151,69 @@ int deviceSlicesPerDispatch(bool softwareDevice, bool chromaticity) {
     return softwareDevice || chromaticity ? 1 : 4;
 }
 
+bool usesRayDoubling(LightPropagation propagation, bool softwareDevice) {
+    if (propagation != LightPropagation::Auto) return propagation == LightPropagation::Doubling;
+    return !softwareDevice;
+}
+
+// Ray doubling's first segment: the path between two slices of the axis the light travels most
+// along (in voxels), so a directional light's far ends all lie on slice planes and each level's
+// lookups interpolate within a slice, as the sweep's; a point light outside the box, as seen from
+// its centre, the same (its rays are nearly parallel); a point light inside, the shortest voxel
+// edge.
+float firstSegmentLength(const Light& light, const Bounds& box, glm::vec3 voxelSize) {
+    glm::vec3 direction(0.0f);
+    if (const auto* d = std::get_if<DirectionalLight>(&light)) {
+        direction = d->direction;
+    } else {
+        const glm::vec3 position = *lightPosition(light);
+        if (glm::all(glm::greaterThanEqual(position, box.min)) && glm::all(glm::lessThanEqual(position, box.max)))
+            return std::min({voxelSize.x, voxelSize.y, voxelSize.z});
+        direction = glm::normalize(position - box.center());
+    }
+    const glm::vec3 perVoxel = glm::abs(direction) / voxelSize;
+    const int axis = perVoxel.x >= perVoxel.y && perVoxel.x >= perVoxel.z ? 0 : (perVoxel.y >= perVoxel.z ? 1 : 2);
+    return voxelSize[axis] / std::abs(direction[axis]);
+}
+
 }  // namespace
+
+LightVolumePass::DoublingGrid LightVolumePass::doublingGrid(const Light& light, const Bounds& box, glm::ivec3 dims) {
+    const glm::vec3 voxelSize = box.size() / glm::vec3(dims);
+    const float segment = firstSegmentLength(light, box, voxelSize);
+    // Levels until a segment spans the box's diagonal: every path to the light inside the box.
+    // At least one, so the last level (which writes the light volume) follows the first.
+    const int levels = std::max(1, static_cast<int>(std::ceil(std::log2(glm::length(box.size()) / segment) - 1e-4f)));
+    return {dims, voxelSize, segment, levels};
+}
+
+void LightVolumePass::setDoublingUniforms(const gl::Program& p, const DoublingScene& scene, const DoublingGrid& grid) {
+    const GpuVolume& volume = scene.medium.volume;
+    p.set("nextLevel", 0);  // image unit
+    p.set("gridDims", grid.dims);
+    p.set("voxelSize", grid.voxelSize);
+    p.set("boxMin", scene.box.min);
+    p.set("boxSize", scene.box.size());
+    if (const auto* d = std::get_if<DirectionalLight>(&scene.light)) {
+        p.set("isPointLight", 0);
+        p.set("lightDirection", d->direction);
+    } else {
+        p.set("isPointLight", 1);
+        p.set("lightPosition", *lightPosition(scene.light));
+    }
+    p.set("volumeTexture", 0);
+    p.set("transferFunction", 1);
+    p.set("occupiedNeighbourhoods", 3);
+    p.set("transferFunctionEntries", static_cast<float>(scene.medium.transferFunction.size().x));
+    p.set("valueScaleOffset", volume.valueScaleOffset);
+    p.set("segmentLength", grid.segment);
+    p.set("referenceLength", volume.voxelLength);
+    p.set("skipEmpty", scene.medium.occupiedNeighbourhoods ? 1 : 0);
+    p.set("dataDims", volume.dims);
+    p.set("brickVoxels", kBrickVoxels);
+    p.set("textureToBrick", textureToBrick(volume.dims));
+    setClipUniforms(p, scene.medium.clip, scene.model, volume.box);
+}
 
 LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass), m_softwareDevice(gl::currentDeviceIsSoftware()) {}
 
@@ -197,6 +261,10 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     else
         light = PointLight{.position = glm::vec3(toModel * glm::vec4(*lightPosition(worldLight), 1.0f))};
 
+    if (!m_eyePass && usesRayDoubling(settings.propagation, m_softwareDevice)) {
+        doubleRays(medium, light, model, settings, output);
+        return;
+    }
     const std::vector<LightSweep> sweeps = planLightSweeps(light, volume.box, dims);
     const ChromaticityCone cone = chromaticityCone(settings.anisotropy);
     // The eye pass carries colour whatever the settings say.
@@ -239,6 +307,84 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     m_lastLayout = layout;
     propagate(p, layout, medium, outside, output);
     glUseProgram(0);
+}
+
+const gl::Program& LightVolumePass::doublingProgram(const DoublingVariant& v) {
+    auto found = m_doublingPrograms.find(v);
+    if (found == m_doublingPrograms.end()) {
+        const auto flag = [](bool on) { return on ? "1" : "0"; };
+        found = m_doublingPrograms
+                    .emplace(v, gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_doubling.comp"}},
+                                                  {{"GRID_COLOUR", flag(v.colourGrid)},
+                                                   {"LEVEL0", flag(v.firstLevel)},
+                                                   {"LAST", flag(v.last)},
+                                                   {"CHROMATICITY", flag(v.chromaticity)},
+                                                   {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)}}))
+                    .first;
+    }
+    return found->second;
+}
+
+void LightVolumePass::doubleRays(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
+                                 const LightVolumeSettings& settings, gl::Texture& output) {
+    const GpuVolume& volume = medium.volume;
+    volume.texture.bind(0);
+    medium.transferFunction.bind(1);
+    (medium.occupiedNeighbourhoods ? *medium.occupiedNeighbourhoods : volume.texture).bind(3);
+    const DoublingScene scene{medium, light, model, volume.box};
+    DoublingVariant variant{.chromaticity = settings.chromaticity, .reconstruction = settings.reconstruction};
+    int dispatches = 0;
+    // The paper model's colour first, at half resolution: the last level of the light reads it.
+    gl::Texture colour;
+    if (settings.chromaticity) {
+        const DoublingGrid grid = doublingGrid(light, volume.box, glm::max(glm::ivec3(1), (output.size() + 1) / 2));
+        const ChromaticityCone cone = chromaticityCone(settings.anisotropy);
+        // The sweep blurs a slice's colour only where the cone's ring is half a texel or wider.
+        const float minVoxel = std::min({grid.voxelSize.x, grid.voxelSize.y, grid.voxelSize.z});
+        const float ring = cone.tangent * grid.segment;
+        variant.colourGrid = true;
+        const auto setCone = [&](const gl::Program& p, int level) {
+            p.set("coneWeights", glm::vec2(cone.centreWeight, cone.ringWeight));
+            p.set("ringRadius", ring >= 0.5f * minVoxel ? ring * std::sqrt(std::exp2(static_cast<float>(level - 1))) : 0.0f);
+        };
+        std::array<gl::Texture, 2> levels{gl::Texture::create3D(GL_RGBA16F, grid.dims, "light doubling colour"),
+                                          gl::Texture::create3D(GL_RGBA16F, grid.dims, "light doubling colour")};
+        colour = std::move(levels[runDoublingGrid(scene, grid, variant, levels, nullptr, setCone)]);
+        dispatches += grid.levels + 1;
+        variant.colourGrid = false;
+    }
+    if (colour) colour.bind(4);
+    const DoublingGrid grid = doublingGrid(light, volume.box, output.size());
+    std::array<gl::Texture, 2> levels{gl::Texture::create3D(GL_R16F, grid.dims, "light doubling transmittance"),
+                                      gl::Texture::create3D(GL_R16F, grid.dims, "light doubling transmittance")};
+    runDoublingGrid(scene, grid, variant, levels, &output, nullptr);
+    dispatches += grid.levels + 1;
+    m_lastLayout = SweepLayout{.passes = dispatches, .doubling = true};
+}
+
+int LightVolumePass::runDoublingGrid(const DoublingScene& scene, const DoublingGrid& grid, DoublingVariant variant,
+                                     std::array<gl::Texture, 2>& levels, gl::Texture* lastTarget,
+                                     const std::function<void(const gl::Program&, int)>& setLevel) {
+    for (int level = 0; level <= grid.levels; ++level) {
+        variant.firstLevel = level == 0;
+        variant.last = lastTarget && level == grid.levels;
+        const gl::Program& p = doublingProgram(variant);
+        setDoublingUniforms(p, scene, grid);
+        if (level > 0) {
+            p.set("level", 2);
+            p.set("colourGrid", 4);
+            p.set("span", grid.segment * std::exp2(static_cast<float>(level - 1)));
+            if (setLevel) setLevel(p, level);
+            levels[static_cast<size_t>((level - 1) % 2)].bind(2);
+        }
+        (variant.last ? *lastTarget : levels[static_cast<size_t>(level % 2)]).bindImage(0, GL_WRITE_ONLY);
+        const glm::ivec3 group = p.workGroupSize();
+        p.use();
+        glDispatchCompute(static_cast<GLuint>((grid.dims.x + group.x - 1) / group.x),
+                          static_cast<GLuint>((grid.dims.y + group.y - 1) / group.y), static_cast<GLuint>(grid.dims.z));
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    return grid.levels % 2;
 }
 
 void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout, const LightVolumeMedium& medium,

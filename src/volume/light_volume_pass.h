@@ -4,6 +4,9 @@
 // by slice from the light (shaders/volume/light_propagation.comp). View-independent: it is
 // rebuilt only when the volume, transfer function, light, model transform or options change.
 //
+// Ray doubling (LightPropagation::Doubling, shaders/volume/light_doubling.comp) instead joins
+// ray segments towards the light that double in length per dispatch.
+//
 // Sweeps (all along +w of a permuted frame; a light's sweeps advance together, each compute
 // dispatch several slices of each, as many as the light's sideways reach per slice allows):
 //  - directional light, or point light outside the volume: along the axis the light travels most
@@ -16,11 +19,15 @@
 #include "gl/texture.h"
 #include "sss/light.h"
 #include "sss/volume_clip.h"
+#include "sss/volume_scattering_renderer.h"
 #include "volume/gpu_volume.h"
 #include "volume/light_sweep_plan.h"
 
 #include <glm/mat4x4.hpp>
 
+#include <array>
+#include <functional>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -53,6 +60,8 @@ struct LightVolumeSettings {
     int maxSlicesPerDispatch = 0;
     /// The field the medium samples read (VolumeRenderOptions::reconstruction).
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
+    /// Sweep or ray doubling (VolumeRenderOptions::lightPropagation); the eye pass always sweeps.
+    LightPropagation propagation = LightPropagation::Sweep;
     bool operator==(const LightVolumeSettings&) const = default;
 };
 
@@ -73,7 +82,8 @@ public:
     struct SweepLayout {
         int sweeps = 0;
         glm::ivec2 largestSlice{1};
-        int passes = 0;              ///< dispatches
+        int passes = 0;              ///< dispatches (sweep), or levels (ray doubling)
+        bool doubling = false;       ///< ray doubling: `passes` levels, no sweeps
         bool slab = false;           ///< several slices per dispatch through shared memory
         int slicesPerPass = 1;       ///< the most slices a dispatch advances a sweep
         int blendedSweep = -1;       ///< the sweep mixed in afterwards, if any
@@ -91,12 +101,47 @@ private:
     /// Runs the sweeps laid out in `p` (all uniforms but the step set) into `output`.
     void propagate(const gl::Program& p, const SweepLayout& layout, const LightVolumeMedium& medium, glm::vec4 outside,
                    gl::Texture& output);
+    /// Ray doubling (light_doubling.comp) of `light` (model space) into `output`.
+    void doubleRays(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
+                    const LightVolumeSettings& settings, gl::Texture& output);
+    /// Which light_doubling.comp program a level runs.
+    struct DoublingVariant {
+        bool colourGrid = false;    ///< the half-resolution (c, T) grid, else the T grid
+        bool firstLevel = false;    ///< samples the medium (LEVEL0)
+        bool last = false;          ///< the T grid's last level: writes the light volume
+        bool chromaticity = false;  ///< a colour grid exists (the last level reads it)
+        VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
+        auto operator<=>(const DoublingVariant&) const = default;
+    };
+    const gl::Program& doublingProgram(const DoublingVariant& variant);
+    /// One grid ray doubling runs on: its voxels, its first segment and its levels (at least 1).
+    struct DoublingGrid {
+        glm::ivec3 dims;
+        glm::vec3 voxelSize;
+        float segment;
+        int levels;
+    };
+    static DoublingGrid doublingGrid(const Light& light, const Bounds& box, glm::ivec3 dims);
+    /// What every level of a doubling reads: the medium, the light (model space) and the box.
+    struct DoublingScene {
+        const LightVolumeMedium& medium;
+        const Light& light;
+        const glm::mat4& model;
+        const Bounds& box;
+    };
+    static void setDoublingUniforms(const gl::Program& p, const DoublingScene& scene, const DoublingGrid& grid);
+    /// Runs `grid`'s levels, ping-ponging between `levels`; the last writes `lastTarget` if given.
+    /// `setLevel` sets a level's own uniforms. Returns the index in `levels` of the last level.
+    int runDoublingGrid(const DoublingScene& scene, const DoublingGrid& grid, DoublingVariant variant,
+                        std::array<gl::Texture, 2>& levels, gl::Texture* lastTarget,
+                        const std::function<void(const gl::Program&, int)>& setLevel);
     /// Mixes the blended sweep's volume `blended` into `output` with `weight`.
     void blend(const gl::Texture& blended, float weight, const gl::Texture& output);
     /// The propagation program for this pass, `chromaticity` and `slab`, linked on first use.
     const gl::Program& program(bool chromaticity, bool slab, VolumeReconstruction reconstruction);
     std::optional<gl::Program> m_programs[2][2][2];  // [chromaticity][slab][reconstruction]
     std::optional<gl::Program> m_blendProgram;
+    std::map<DoublingVariant, gl::Program> m_doublingPrograms;
     bool m_eyePass = false;
     bool m_softwareDevice = false;  // the device's choice of maxSlicesPerDispatch
     gl::Texture m_slices;  // per sweep, ping-pong: light leaving the previous / current dispatch

@@ -303,7 +303,8 @@ struct VolumeScatteringRenderer::Impl {
                                                 .anisotropy = options.anisotropy,
                                                 .chromaticity = options.model != VolumeModel::Physical,
                                                 .maxSlicesPerDispatch = options.lightSweepSlices,
-                                                .reconstruction = options.reconstruction};
+                                                .reconstruction = options.reconstruction,
+                                                .propagation = options.lightPropagation};
         const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
                                        lights, model, asked, lightClip() ? clip : VolumeClip{}};
         if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing

@@ -4,6 +4,8 @@
 #include "support/scenes.h"
 #include "support/golden.h"
 
+#include "support/light_volumes.h"
+#include "gl/device.h"
 #include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
 #include "volume/light_volume_pass.h"
@@ -26,90 +28,15 @@
 
 using namespace sss;
 using sss::test::orbitCamera;
+using namespace sss::test::light_volumes;
 
 namespace {
 
 const glm::vec4 kBackground{0.1f, 0.1f, 0.12f, 1.0f};
-
-// A uint8 volume whose voxel (x, y, z) is value(x, y, z).
-Volume makeVolume(int n, const std::function<uint8_t(int, int, int)>& value) {
-    std::vector<uint8_t> bytes(static_cast<size_t>(n * n * n));
-    for (int z = 0; z < n; ++z)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) bytes[static_cast<size_t>((z * n + y) * n + x)] = value(x, y, z);
-    return Volume::fromData({n, n, n}, VoxelType::UInt8, std::move(bytes));
-}
-
-// Binary TF: values >= 0.5 get `opacity`, below are transparent.
-TransferFunction stepTf(float opacity, glm::vec3 color = glm::vec3(1.0f)) {
-    return TransferFunction({{0.0f, color, 0.0f}, {0.49f, color, 0.0f}, {0.51f, color, opacity}, {1.0f, color, opacity}});
-}
-
-// Runs the light-volume pass alone and reads the volume back: (c, l) per voxel, x fastest.
-struct LightVolumeReadback {
-    glm::ivec3 dims;
-    std::vector<glm::vec4> texels;
-    const glm::vec4& at(int x, int y, int z) const { return texels[static_cast<size_t>((z * dims.y + y) * dims.x + x)]; }
-};
-
-// Empty-space skipping in the sweep: Off, or with the occupancy grid derived from `skipTf` (the
-// propagated TF itself when it is null).
-struct Skipping {
-    bool on = false;
-    const TransferFunction* skipTf = nullptr;
-};
-
-// Two small dense blobs in a 48^3 box under a two-colour TF: most bricks (8^3) and their
-// neighbourhoods are empty and some are not, and the light comes out of the blobs tinted.
-Volume twoBlobsVolume() {
-    return makeVolume(48, [](int x, int y, int z) {
-        const auto inside = [&](glm::vec3 c, float r) { return glm::length(glm::vec3(x, y, z) + 0.5f - c) < r; };
-        return (inside({14, 15, 18}, 6.0f) || inside({33, 30, 26}, 5.0f)) ? 200 : 20;
-    });
-}
-TransferFunction twoBlobsTf() {
-    return TransferFunction({{0.0f, {0.9f, 0.5f, 0.3f}, 0.0f}, {0.45f, {0.9f, 0.5f, 0.3f}, 0.0f},
-                             {0.55f, {0.3f, 0.6f, 0.9f}, 0.8f}, {1.0f, {0.3f, 0.6f, 0.9f}, 0.8f}});
-}
-
-// Lights that exercise every kind of sweep: a slanted directional light (two blended sweeps,
-// long slabs), a nearly axial one (one sweep), a point light inside (six sweeps) and, at a
-// reduced resolution, light-volume voxels that span several data voxels.
-struct SweepCase {
-    Light light;
-    float scale;
-};
-const SweepCase kSweepCases[] = {{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 1.0f},
-                                 {DirectionalLight{.direction = {0.05f, 1.0f, 0.02f}}, 1.0f},
-                                 {PointLight{.position = {0.02f, -0.05f, 0.1f}}, 1.0f},
-                                 {DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 0.35f}};
-
-LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, const Light& light,
-                              detail::LightVolumeSettings settings = {}, Skipping skipping = {},
-                              int* slicesPerDispatch = nullptr, const VolumeClip* clip = nullptr) {
-    const detail::GpuVolume gpu = detail::GpuVolume::upload(volume);
-    const std::vector<glm::vec4> table = tf.table(256);
-    gl::Texture tfTexture = gl::Texture::create2D(GL_RGBA32F, 256, 1, "test transfer function");
-    tfTexture.upload(GL_RGBA, GL_FLOAT, table.data());
-    std::optional<detail::OccupancyGrid> occupancy;
-    if (skipping.on) {
-        occupancy.emplace(volume);
-        occupancy->update(skipping.skipTf ? skipping.skipTf->table(256) : table, gpu.valueScaleOffset,
-                          VolumeReconstruction::Trilinear);
-    }
-    detail::LightVolumePass pass;
-    gl::Texture output;
-    pass.run({.volume = gpu,
-              .transferFunction = tfTexture,
-              .occupiedNeighbourhoods = occupancy ? &occupancy->occupiedNeighbourhoods() : nullptr,
-              .clip = clip},
-             light, glm::mat4(1.0f), settings, output);
-    if (slicesPerDispatch) *slicesPerDispatch = pass.lastLayout().slicesPerPass;
-    LightVolumeReadback r{output.size(), std::vector<glm::vec4>(static_cast<size_t>(output.size().x * output.size().y * output.size().z))};
-    glGetTextureImage(output.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(r.texels.size() * sizeof(glm::vec4)),
-                      r.texels.data());
-    return r;
-}
+// Variants of the sweep that llvmpipe computes texel for texel alike differ on hardware GPUs,
+// whose compilers fuse each variant's arithmetic its own way: at most 8.8e-3 in intensity over
+// the blobs on an NVIDIA H200 (2026-11-28).
+constexpr float kHardwareRounding = 1.2e-2f;
 
 Image renderScattering(const Volume& volume, const TransferFunction& tf, const std::vector<Light>& lights,
                        const Camera& camera, int width, int height, VolumeRenderOptions options = {}) {
@@ -187,6 +114,7 @@ TEST_CASE("an intensity-only light volume has the full one's intensity texel for
     // dispatch (one filters with the texture unit, several interpolate in the shader: the
     // default on hardware GPUs differs between the two sweeps); c must be white everywhere.
     test::GlTestScope gl;
+    const bool softwareDevice = gl::currentDeviceIsSoftware();
     const Volume volume = twoBlobsVolume();
     const TransferFunction tf = twoBlobsTf();
     for (const SweepCase& c : kSweepCases) {
@@ -199,18 +127,23 @@ TEST_CASE("an intensity-only light volume has the full one's intensity texel for
             const LightVolumeReadback grey = propagate(volume, tf, c.light, greySettings, {.on = skipping});
             REQUIRE(full.texels.size() == grey.texels.size());
             size_t intensityDiffers = 0, notWhite = 0, tinted = 0, shadowed = 0;
+            float largest = 0.0f;
             for (size_t i = 0; i < full.texels.size(); ++i) {
                 intensityDiffers += full.texels[i].a != grey.texels[i].a ? 1 : 0;
+                largest = std::max(largest, std::abs(full.texels[i].a - grey.texels[i].a));
                 notWhite += glm::vec3(grey.texels[i]) != glm::vec3(1.0f) ? 1 : 0;
                 tinted += glm::vec3(full.texels[i]) != glm::vec3(1.0f) ? 1 : 0;
                 shadowed += full.texels[i].a < 0.9f ? 1 : 0;
             }
             INFO("scale " << c.scale << ", skipping " << skipping << ", slices " << slices << ": " << intensityDiffers
                           << " intensities differ, "
-                          << notWhite << " grey texels not white, " << tinted << " tinted, " << shadowed << " shadowed");
+                          << notWhite << " grey texels not white, " << tinted << " tinted, " << shadowed
+                          << " shadowed; largest difference " << largest);
             CHECK(shadowed > 0);  // the blobs cast shadows and tint the light: the cases are not trivial
             CHECK(tinted > 0);
-            CHECK(intensityDiffers == 0);
+            // A hardware GPU's compiler fuses the two variants' arithmetic differently.
+            if (softwareDevice) CHECK(intensityDiffers == 0);
+            else CHECK(largest <= kHardwareRounding);
             CHECK(notWhite == 0);
         }
     }
@@ -223,12 +156,14 @@ TEST_CASE("any number of slices per dispatch gives the same light volume", "[gl]
     // number of slices must give the same light volume texel for texel: the sideways reach per
     // slice is bounded on the CPU (a bound too small reads a clamped margin), and shared memory
     // holds the same half floats as the slice texture. One slice per dispatch (SLAB 0) weights
-    // the same texels in the shader for the intensity, the same texel for texel, but lets the
+    // the same texels in the shader for the intensity, the same texel for texel on llvmpipe
+    // (within kHardwareRounding on a hardware GPU), but lets the
     // texture unit filter the chromaticity cone's taps, whose bilinear weights are coarser (8
     // bits on llvmpipe and NVIDIA): the colour the same within a tolerance. The cases: every kind of sweep, a point light outside beyond a
     // corner (diverging light: the bound comes from the box's corners), voxels twice as deep as
     // wide, the grey sweep, and skipping on.
     test::GlTestScope gl;
+    const bool softwareDevice = gl::currentDeviceIsSoftware();
     const Volume blobs = twoBlobsVolume();
     std::vector<uint8_t> bytes(blobs.bytes().begin(), blobs.bytes().end());
     const Volume deep = Volume::fromData(blobs.dims(), VoxelType::UInt8, std::move(bytes), {1.0f, 1.0f, 2.0f});
@@ -270,7 +205,8 @@ TEST_CASE("any number of slices per dispatch gives the same light volume", "[gl]
                           << fromOne.x << ", in intensity " << fromOne.y << "; " << shadowed << " shadowed");
             CHECK(shadowed > 0);
             CHECK(differing == 0);
-            CHECK(fromOne.y == 0.0f);
+            if (softwareDevice) CHECK(fromOne.y == 0.0f);
+            else CHECK(fromOne.y <= kHardwareRounding);
             CHECK(fromOne.x <= (v.chromaticity ? 1.2e-2f : 0.0f));  // llvmpipe: 8.3e-3 at most
             // The slanted light and the point light outside run several slices per dispatch. The
             // nearly axial light's blended sweep shifts 20 texels per slice and the light inside
@@ -342,13 +278,14 @@ TEST_CASE("an opaque slab casts a hard shadow exactly where the geometry puts it
     }
     SECTION("oblique light: the shadow edge moves with the light") {
         // Light travelling (1, 0.5, 0): behind the wall, the shadow's edge is where the ray back to
-        // the light grazes the wall's top (y = 16) at its back face (x = 9):
-        //   y_edge(x) = 16 + 0.5 (x - 9)   (continuous voxel coordinates, voxel i spans [i, i+1)).
+        // the light grazes the wall's top (y = 16) at its front face (x = 6), the face nearer the
+        // light (a ray over the back face's top edge has crossed the wall before it):
+        //   y_edge(x) = 16 + 0.5 (x - 6)   (continuous voxel coordinates, voxel i spans [i, i+1)).
         // Slice propagation softens the edge a little (numerical diffusion), so the test locates
-        // the 50 % crossing and allows 1.5 voxels.
+        // the 50 % crossing: measured 0.25 voxels from the geometry's on llvmpipe; 0.5 allowed.
         const LightVolumeReadback lv = propagate(volume, stepTf(1.0f), DirectionalLight{.direction = {1, 0.5f, 0}});
         for (int x : {12, 16, 20, 24}) {
-            const float edge = 16.0f + 0.5f * (static_cast<float>(x) + 0.5f - 9.0f);
+            const float edge = 16.0f + 0.5f * (static_cast<float>(x) + 0.5f - 6.0f);
             float crossing = -1.0f;
             for (int y = 1; y < n && crossing < 0.0f; ++y) {
                 const float below = lv.at(x, y - 1, 16).a, above = lv.at(x, y, 16).a;
@@ -356,7 +293,7 @@ TEST_CASE("an opaque slab casts a hard shadow exactly where the geometry puts it
                     crossing = static_cast<float>(y) - 0.5f + (0.5f - below) / (above - below);  // between centres
             }
             INFO("x " << x << ": shadow edge at y " << crossing << ", geometry says " << edge);
-            CHECK(crossing == Approx(edge).margin(1.5));
+            CHECK(crossing == Approx(edge).margin(0.5));
             CHECK(lv.at(x, static_cast<int>(edge) - 5, 16).a < 0.1f);  // well inside: dark
             if (edge + 5 < n) CHECK(lv.at(x, static_cast<int>(edge) + 5, 16).a > 0.9f);  // well outside: lit
         }
