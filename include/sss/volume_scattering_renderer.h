@@ -90,9 +90,10 @@ enum class LightPropagation {
     /// each a GPU-wide wait, and a cubic lookup of the previous slice per voxel.
     Sweep,
     /// Ray doubling: each voxel's segment towards the light doubles in length per dispatch,
-    /// joined with the segment beyond it, so a 256^3 light volume takes 10 dispatches. Rays are
-    /// straight, as the CPU reference's shadow rays; each level's lookup is linear, and the
-    /// colour cone blurs per level instead of per slice (lightSweepSlices does not apply).
+    /// joined with the segment beyond it, so a 256^3 light volume takes 10 dispatches (19 with
+    /// the paper model's colour, computed at half resolution). Rays are straight, as the CPU
+    /// reference's shadow rays; each level's lookup is linear, and the colour cone blurs per
+    /// level instead of per slice (lightSweepSlices does not apply).
     Doubling,
 };
 
