@@ -224,7 +224,8 @@ TEST_CASE("a light volume with cut matter is the light volume without that matte
     // little slanted. Cut at data x = 0.6 (voxel 19.2, empty space between them), the wall casts
     // no shadow, so the light volume is the one of the data without the wall, everywhere and
     // exactly; with clippedMatterCastsShadows it is the one with the wall. In the data and in
-    // world space, by planes and by the crop box, slabs of slices and one slice per dispatch.
+    // world space, by planes and by the crop box, slabs of slices, one slice per dispatch and ray
+    // doubling.
     test::GlTestScope gl;
     const Volume withWall = test::blockAndWallVolume(true), withoutWall = test::blockAndWallVolume(false);
     const TransferFunction tf = stepTf(0.6f, {0.9f, 0.6f, 0.3f});
@@ -243,13 +244,14 @@ TEST_CASE("a light volume with cut matter is the light volume without that matte
         for (size_t i = 0; i < a.texels.size(); ++i) count += a.texels[i] != b.texels[i] ? 1 : 0;
         return count;
     };
-    for (const int slices : {1, 4}) {
+    for (const int slices : {1, 4, 0}) {  // 0: ray doubling
         detail::LightVolumeSettings settings;
         settings.maxSlicesPerDispatch = slices;
+        settings.propagation = slices > 0 ? LightPropagation::Sweep : LightPropagation::Doubling;
         const LightVolumeReadback noWall = propagate(withoutWall, tf, light, settings);
         const LightVolumeReadback wall = propagate(withWall, tf, light, settings);
         const size_t shadowed = differing(wall, noWall);
-        INFO(slices << " slices per dispatch: the wall changes " << shadowed << " texels");
+        INFO(slices << " slices per dispatch (0: ray doubling): the wall changes " << shadowed << " texels");
         CHECK(shadowed > 1000);  // the wall does shadow the block
         for (const VolumeClip* clip : {&dataPlane, &worldPlane, &crop}) {
             const LightVolumeReadback cut = propagate(withWall, tf, light, settings, {}, nullptr, clip);
