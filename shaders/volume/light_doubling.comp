@@ -42,6 +42,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "volume/transfer_function.glsl"
 #include "volume/clip.glsl"
+#include "volume/empty_neighbourhood.glsl"
 
 #if GRID_COLOUR || LAST
 layout(rgba16f) uniform writeonly image3D nextLevel;
@@ -64,8 +65,10 @@ struct RayToLight {
 
 // Distance from `origin` (inside the box) along `direction` to the box's face.
 float exitDistance(vec3 origin, vec3 direction) {
-    vec3 towards = mix(boxMin, boxMin + boxSize, greaterThan(direction, vec3(0.0)));
-    vec3 t = (towards - origin) / direction;  // +inf along an axis the ray does not move on
+    // safeInverse (common/ray_box.glsl, via clip.glsl) makes a zero component, of either sign, a
+    // huge positive one: the face to leave by along it is then the upper one, which it never reaches.
+    vec3 towards = mix(boxMin, boxMin + boxSize, greaterThanEqual(direction, vec3(0.0)));
+    vec3 t = (towards - origin) * safeInverse(direction);
     return max(0.0, min(min(t.x, t.y), t.z));
 }
 
@@ -84,23 +87,6 @@ vec3 textureCoordinate(vec3 position) { return (position - boxMin) / boxSize; }
 
 uniform float segmentLength;
 uniform float referenceLength;  // the TF opacity's reference length (one data voxel)
-// Empty space, as in light_propagation.comp.
-uniform int skipEmpty;
-uniform sampler3D occupiedNeighbourhoods;
-uniform ivec3 dataDims;
-uniform int brickVoxels;
-uniform vec3 textureToBrick;
-
-// Whether every sample of the segment from `start` to `end` (texture coordinates) lies within a
-// brick of empty bricks: then each would have opacity 0.
-bool segmentIsEmpty(vec3 start, vec3 end) {
-    if (skipEmpty == 0) return false;
-    vec3 halfSegment = 0.5 * abs(end - start) * vec3(dataDims);
-    if (max(max(halfSegment.x, halfSegment.y), halfSegment.z) > float(brickVoxels)) return false;
-    ivec3 brick = clamp(ivec3(0.5 * (start + end) * textureToBrick), ivec3(0), textureSize(occupiedNeighbourhoods, 0) - 1);
-    return texelFetch(occupiedNeighbourhoods, brick, 0).r == 0.0;
-}
-
 // What `length` (at most segmentLength) of the ray from `origin` towards the light does to white
 // light, (c, T), sampled as the sweep samples a slice's path: about one sample per data voxel, at
 // least two, from the far end (the light's side) towards the origin, as the light travels.
@@ -110,7 +96,7 @@ vec4 marchSegment(vec3 origin, vec3 direction, float length) {
     int n = 2 * clamp(int(ceil(0.5 * length / referenceLength)), 1, 8);
     float piece = length / float(n);
     vec4 light = vec4(1.0);
-    for (int k = segmentIsEmpty(start, end) ? -1 : n - 1; k >= 0; --k) {
+    for (int k = pathIsEmpty(0.5 * (start + end), 0.5 * (end - start)) ? -1 : n - 1; k >= 0; --k) {
         vec3 tc = mix(start, end, (float(k) + 0.5) / float(n));
         vec4 medium = lightSeesMedium(tc) ? classify(volumeValue(tc)) : vec4(0.0);
         float a = correctOpacity(medium.a, piece, referenceLength);

@@ -53,6 +53,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "volume/transfer_function.glsl"
 #include "volume/clip.glsl"
+#include "volume/empty_neighbourhood.glsl"
 
 #define MAX_SWEEPS 6
 // Layer 2 s + parity holds the light leaving sweep s's last slice of the previous (parity =
@@ -92,13 +93,6 @@ uniform vec3 lightDirection;    // direction the light travels, model space, uni
 uniform vec3 lightPosition;     // model space (point light)
 uniform float coneTangent;      // tan of the cone half-angle
 uniform vec2 coneWeights;       // (centre tap, each of the 8 ring taps); centre + 8 ring = 1
-// Empty space (src/volume/empty_space.h): per brick of brickVoxels^3 data voxels, 0 where the
-// brick and its 26 neighbours sample no opacity under the current transfer function.
-uniform int skipEmpty;
-uniform sampler3D occupiedNeighbourhoods;
-uniform ivec3 dataDims;
-uniform int brickVoxels;
-uniform vec3 textureToBrick;    // dataDims / brickVoxels: a brick by a float product (ray_cast.frag)
 #if EYE_PASS
 uniform sampler3D litColour;
 #endif
@@ -227,15 +221,7 @@ vec4 propagateVoxel(ivec2 uv, int w, bool store) {
     // Where every medium sample below lies within a brick of empty bricks (per axis, in data
     // voxels), each would have opacity 0 and leave the light exactly as it is: skip them. On the
     // bonsai most voxels are empty, and these samples were a quarter to a third of the sweep.
-    bool empty = false;
-    if (skipEmpty != 0) {
-        vec3 halfSlab = 0.5 * abs(slabTc) * vec3(dataDims);
-        if (max(max(halfSlab.x, halfSlab.y), halfSlab.z) <= float(brickVoxels)) {
-            ivec3 brick = clamp(ivec3(centreTc * textureToBrick), ivec3(0),
-                                textureSize(occupiedNeighbourhoods, 0) - 1);
-            empty = texelFetch(occupiedNeighbourhoods, brick, 0).r == 0.0;
-        }
-    }
+    bool empty = pathIsEmpty(centreTc, 0.5 * slabTc);
     for (int k = 0; k < (empty ? 0 : n); ++k) {
         vec3 tcK = centreTc + ((float(k) + 0.5) / float(n) - 0.5) * slabTc;
 #if EYE_PASS

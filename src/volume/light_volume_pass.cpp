@@ -151,6 +151,41 @@ int deviceSlicesPerDispatch(bool softwareDevice, bool chromaticity) {
     return softwareDevice || chromaticity ? 1 : 4;
 }
 
+// The medium both propagations sample (transfer_function.glsl, clip.glsl,
+// empty_neighbourhood.glsl): its textures on units 0, 1 and 3, and its uniforms.
+void bindMedium(const LightVolumeMedium& medium) {
+    medium.volume.texture.bind(0);
+    medium.transferFunction.bind(1);
+    // Unit 3 always holds a 3D texture, so the sampler validates with skipping off as well.
+    (medium.occupiedNeighbourhoods ? *medium.occupiedNeighbourhoods : medium.volume.texture).bind(3);
+}
+
+void setMediumUniforms(const gl::Program& p, const LightVolumeMedium& medium, const glm::mat4& model) {
+    const GpuVolume& volume = medium.volume;
+    p.set("volumeTexture", 0);
+    p.set("transferFunction", 1);
+    p.set("occupiedNeighbourhoods", 3);
+    p.set("transferFunctionEntries", static_cast<float>(medium.transferFunction.size().x));
+    p.set("valueScaleOffset", volume.valueScaleOffset);
+    p.set("referenceLength", volume.voxelLength);
+    p.set("skipEmpty", medium.occupiedNeighbourhoods ? 1 : 0);
+    p.set("dataDims", volume.dims);
+    p.set("brickVoxels", kBrickVoxels);
+    p.set("textureToBrick", textureToBrick(volume.dims));
+    setClipUniforms(p, medium.clip, model, volume.box);
+}
+
+// The light, in the volume's model space.
+void setLightUniforms(const gl::Program& p, const Light& light) {
+    if (const auto* d = std::get_if<DirectionalLight>(&light)) {
+        p.set("isPointLight", 0);
+        p.set("lightDirection", d->direction);
+    } else {
+        p.set("isPointLight", 1);
+        p.set("lightPosition", *lightPosition(light));
+    }
+}
+
 bool usesRayDoubling(LightPropagation propagation, bool softwareDevice) {
     if (propagation != LightPropagation::Auto) return propagation == LightPropagation::Doubling;
     return !softwareDevice;
@@ -188,31 +223,14 @@ LightVolumePass::DoublingGrid LightVolumePass::doublingGrid(const Light& light, 
 }
 
 void LightVolumePass::setDoublingUniforms(const gl::Program& p, const DoublingScene& scene, const DoublingGrid& grid) {
-    const GpuVolume& volume = scene.medium.volume;
     p.set("nextLevel", 0);  // image unit
     p.set("gridDims", grid.dims);
     p.set("voxelSize", grid.voxelSize);
     p.set("boxMin", scene.box.min);
     p.set("boxSize", scene.box.size());
-    if (const auto* d = std::get_if<DirectionalLight>(&scene.light)) {
-        p.set("isPointLight", 0);
-        p.set("lightDirection", d->direction);
-    } else {
-        p.set("isPointLight", 1);
-        p.set("lightPosition", *lightPosition(scene.light));
-    }
-    p.set("volumeTexture", 0);
-    p.set("transferFunction", 1);
-    p.set("occupiedNeighbourhoods", 3);
-    p.set("transferFunctionEntries", static_cast<float>(scene.medium.transferFunction.size().x));
-    p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("segmentLength", grid.segment);
-    p.set("referenceLength", volume.voxelLength);
-    p.set("skipEmpty", scene.medium.occupiedNeighbourhoods ? 1 : 0);
-    p.set("dataDims", volume.dims);
-    p.set("brickVoxels", kBrickVoxels);
-    p.set("textureToBrick", textureToBrick(volume.dims));
-    setClipUniforms(p, scene.medium.clip, scene.model, volume.box);
+    setLightUniforms(p, scene.light);
+    setMediumUniforms(p, scene.medium, scene.model);
 }
 
 LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass), m_softwareDevice(gl::currentDeviceIsSoftware()) {}
@@ -278,30 +296,14 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
 
     const gl::Program& p = program(chromaticity, !slabs.empty(), settings.reconstruction);
     if (m_eyePass) p.set("litColour", units::kLitColour);
-    p.set("volumeTexture", 0);
-    p.set("transferFunction", 1);
     p.set("lightVolume", 0);   // image unit
-    p.set("occupiedNeighbourhoods", 3);
-    p.set("transferFunctionEntries", static_cast<float>(medium.transferFunction.size().x));
-    p.set("valueScaleOffset", volume.valueScaleOffset);
     p.set("lightVolumeDims", dims);
     p.set("voxelSize", voxelSize);
     p.set("boxMin", volume.box.min);
-    p.set("referenceLength", volume.voxelLength);
-    if (const auto* d = std::get_if<DirectionalLight>(&light)) {
-        p.set("isPointLight", 0);
-        p.set("lightDirection", d->direction);
-    } else {
-        p.set("isPointLight", 1);
-        p.set("lightPosition", *lightPosition(light));
-    }
+    setLightUniforms(p, light);
     p.set("coneTangent", cone.tangent);
     p.set("coneWeights", glm::vec2(cone.centreWeight, cone.ringWeight));
-    p.set("skipEmpty", medium.occupiedNeighbourhoods ? 1 : 0);
-    p.set("dataDims", volume.dims);
-    p.set("brickVoxels", kBrickVoxels);
-    p.set("textureToBrick", textureToBrick(volume.dims));
-    setClipUniforms(p, medium.clip, model, volume.box);
+    setMediumUniforms(p, medium, model);
 
     const SweepLayout layout = setSweepFrames(p, sweeps, dims, voxelSize, slabs);
     m_lastLayout = layout;
@@ -328,9 +330,7 @@ const gl::Program& LightVolumePass::doublingProgram(const DoublingVariant& v) {
 void LightVolumePass::doubleRays(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
                                  const LightVolumeSettings& settings, gl::Texture& output) {
     const GpuVolume& volume = medium.volume;
-    volume.texture.bind(0);
-    medium.transferFunction.bind(1);
-    (medium.occupiedNeighbourhoods ? *medium.occupiedNeighbourhoods : volume.texture).bind(3);
+    bindMedium(medium);
     const DoublingScene scene{medium, light, model, volume.box};
     DoublingVariant variant{.chromaticity = settings.chromaticity, .reconstruction = settings.reconstruction};
     int dispatches = 0;
@@ -359,20 +359,24 @@ void LightVolumePass::doubleRays(const LightVolumeMedium& medium, const Light& l
                                       gl::Texture::create3D(GL_R16F, grid.dims, "light doubling transmittance")};
     runDoublingGrid(scene, grid, variant, levels, &output, nullptr);
     dispatches += grid.levels + 1;
-    m_lastLayout = SweepLayout{.passes = dispatches, .doubling = true};
+    m_lastLayout = SweepLayout{.passes = dispatches};
 }
 
 int LightVolumePass::runDoublingGrid(const DoublingScene& scene, const DoublingGrid& grid, DoublingVariant variant,
                                      std::array<gl::Texture, 2>& levels, gl::Texture* lastTarget,
                                      const std::function<void(const gl::Program&, int)>& setLevel) {
+    const gl::Program* configured = nullptr;  // the program whose grid uniforms are set
     for (int level = 0; level <= grid.levels; ++level) {
         variant.firstLevel = level == 0;
         variant.last = lastTarget && level == grid.levels;
         const gl::Program& p = doublingProgram(variant);
-        setDoublingUniforms(p, scene, grid);
-        if (level > 0) {
+        if (&p != configured) {
+            setDoublingUniforms(p, scene, grid);
             p.set("level", 2);
             p.set("colourGrid", 4);
+            configured = &p;
+        }
+        if (level > 0) {
             p.set("span", grid.segment * std::exp2(static_cast<float>(level - 1)));
             if (setLevel) setLevel(p, level);
             levels[static_cast<size_t>((level - 1) % 2)].bind(2);
@@ -389,7 +393,6 @@ int LightVolumePass::runDoublingGrid(const DoublingScene& scene, const DoublingG
 
 void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout, const LightVolumeMedium& medium,
                                 glm::vec4 outside, gl::Texture& output) {
-    const GpuVolume& volume = medium.volume;
     const glm::ivec3 dims = output.size();
     const glm::ivec2 largestSlice = layout.largestSlice;
     const int count = layout.sweeps;
@@ -417,11 +420,8 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     p.set("outsideLight", outside);
     p.set("slicesTextureSize", glm::vec2(largestSlice));
 
-    volume.texture.bind(0);
-    medium.transferFunction.bind(1);
+    bindMedium(medium);
     m_slices.bind(2);
-    // Unit 3 always holds a 3D texture, so the sampler validates with skipping off as well.
-    (medium.occupiedNeighbourhoods ? *medium.occupiedNeighbourhoods : volume.texture).bind(3);
     output.bindImage(0, GL_WRITE_ONLY);
     m_slices.bindImage(1, GL_WRITE_ONLY);
     (blendedSweep >= 0 ? blended : output).bindImage(2, GL_WRITE_ONLY);

@@ -83,7 +83,6 @@ public:
         int sweeps = 0;
         glm::ivec2 largestSlice{1};
         int passes = 0;              ///< dispatches (ray doubling: over both of its grids)
-        bool doubling = false;       ///< ray doubling: no sweeps
         bool slab = false;           ///< several slices per dispatch through shared memory
         int slicesPerPass = 1;       ///< the most slices a dispatch advances a sweep
         int blendedSweep = -1;       ///< the sweep mixed in afterwards, if any

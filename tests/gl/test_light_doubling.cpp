@@ -41,18 +41,13 @@ float exitDistance(glm::vec3 p, glm::vec3 direction, float n) {
 }
 
 // Mean |dc| between two light volumes' colours.
-struct Differences {
-    float meanColour = 0.0f;
-};
-
-Differences differences(const LightVolumeReadback& a, const LightVolumeReadback& b) {
-    Differences d;
+float meanColourDifference(const LightVolumeReadback& a, const LightVolumeReadback& b) {
+    float sum = 0.0f;
     for (size_t i = 0; i < a.texels.size(); ++i) {
         const glm::vec4 delta = glm::abs(a.texels[i] - b.texels[i]);
-        d.meanColour += (delta.r + delta.g + delta.b) / 3.0f;
+        sum += (delta.r + delta.g + delta.b) / 3.0f;
     }
-    d.meanColour /= static_cast<float>(a.texels.size());
-    return d;
+    return sum / static_cast<float>(a.texels.size());
 }
 
 // |l - exact| over sampled voxels.
@@ -151,17 +146,17 @@ TEST_CASE("ray doubling and the sweep against the CPU reference's shadow rays", 
                     sweepError.add(swept.at(x, y, z).a, exact);
                     doublingError.add(doubled.at(x, y, z).a, exact);
                 }
-        const Differences d = differences(doubled, swept);
+        const float meanColour = meanColourDifference(doubled, swept);
         INFO("scale " << c.scale << ": mean |dl| " << doublingError.mean() << " (sweep " << sweepError.mean()
                       << "), largest " << doublingError.largest << " (sweep " << sweepError.largest << "), "
                       << doublingError.shadowed << " of " << doublingError.count << " shadowed; doubling against "
-                      << "the sweep: mean |dc| " << d.meanColour);
+                      << "the sweep: mean |dc| " << meanColour);
         CHECK(doublingError.shadowed > doublingError.count / 50);  // the blobs cast shadows
         CHECK(doublingError.mean() <= 0.02);
         CHECK(doublingError.mean() <= 1.4 * sweepError.mean());
         CHECK(doublingError.largest <= 0.8);
-        CHECK(d.meanColour > 0.0f);
-        CHECK(d.meanColour <= 0.03f);
+        CHECK(meanColour > 0.0f);
+        CHECK(meanColour <= 0.03f);
     }
     gl.requireNoErrors();
 }
