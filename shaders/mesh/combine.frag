@@ -60,10 +60,10 @@ uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0
 #define PER_PIXEL_NEAR_FIELD (NEAR_FIELD == 1)
 #if NEAR_FIELD == 2
 #include "mesh/near_field_points.glsl"
-uniform samplerBuffer nearFieldBarycentric;  // per triangle 2: model position -> weights of corners b, c
-uniform usamplerBuffer nearFieldTriangles;   // per triangle its entry
-uniform samplerBuffer nearFieldPoints;       // per point nearFieldTexelsPerPoint (near_field_cache.comp)
+uniform samplerBuffer nearFieldPoints;  // per point nearFieldTexelsPerPoint (near_field_cache.comp)
 uniform int nearFieldTexelsPerPoint;
+flat in uint nearFieldEntry;            // this fragment's triangle's (combine.vert)
+in vec2 nearFieldWeights;               // of its corners b and c
 
 // The three grid points around a pixel and their weights.
 struct PointBlend {
@@ -71,13 +71,10 @@ struct PointBlend {
     vec3 weight;
 };
 
-// The grid points around model-space point p of this fragment's triangle.
-PointBlend pointsAround(vec3 p) {
-    int t = gl_PrimitiveID;
-    uint entry = texelFetch(nearFieldTriangles, t).r;
-    int r = nearFieldDivisions(entry), first = nearFieldFirstPoint(entry);
-    vec4 toB = texelFetch(nearFieldBarycentric, 2 * t), toC = texelFetch(nearFieldBarycentric, 2 * t + 1);
-    vec2 w = clamp(vec2(dot(toB.xyz, p) + toB.w, dot(toC.xyz, p) + toC.w), 0.0, 1.0);
+// The grid points around this fragment in its triangle.
+PointBlend pointsAround() {
+    int r = nearFieldDivisions(nearFieldEntry), first = nearFieldFirstPoint(nearFieldEntry);
+    vec2 w = clamp(nearFieldWeights, 0.0, 1.0);
     w /= max(w.x + w.y, 1.0);
     vec2 g = w * float(r);
     ivec2 cell = min(ivec2(g), ivec2(r - 1));
@@ -153,7 +150,7 @@ void main() {
     // shadows are found once.
     bool single = profile.singleScattering > 0.0, specular = specularStrength > 0.0;
 #if NEAR_FIELD == 2
-    PointBlend points = pointsAround(modelPosition);
+    PointBlend points = pointsAround();
     vec4 nearTexel = blendedPointTexel(points, 0);
     color += exitT * nearFieldScale * nearTexel.rgb;
 #endif

@@ -1,6 +1,15 @@
-layout(location = 0) in vec3 inPosition;
-layout(location = 1) in vec3 inNormal;
-layout(location = 2) in vec2 inTexcoord;
+// The combine's vertices (shaders/mesh/combine.frag). With NEAR_FIELD 2 every triangle's
+// corners arrive apart (GpuMesh::drawCorners: vertex 3t + k is corner k of triangle t) and the
+// shader reads the mesh itself, so each fragment gets its triangle's near-field grid as a flat
+// value and where it lies in the grid as interpolated weights, instead of fetching them per
+// pixel: on small triangles a fragment costs about what its triangle does.
+#ifndef VERTEX_EFFECTIVE
+#define VERTEX_EFFECTIVE 0
+#endif
+#ifndef NEAR_FIELD
+#define NEAR_FIELD 1
+#endif
+#define CORNERS_APART (NEAR_FIELD == 2)
 uniform mat4 model;
 uniform mat4 viewProjection;
 uniform mat3 normalMatrix;
@@ -12,24 +21,54 @@ out vec2 texcoord;
 out vec3 vertexRadiosity;
 // Per vertex, from src/mesh/vertex_radiosity_pass.cpp: rgb radiosity (filled everywhere).
 layout(std430, binding = 0) readonly buffer VertexRadiosity { vec4 radiosityOfVertex[]; };
-#ifndef VERTEX_EFFECTIVE
-#define VERTEX_EFFECTIVE 0
-#endif
 #if VERTEX_EFFECTIVE
 // A textured vertex estimate's entries' part of the rule per vertex (shaders/mesh/vertex_estimate.comp).
 out vec3 vertexEffective;
 layout(std430, binding = 1) readonly buffer VertexEffective { vec4 effectiveOfVertex[]; };
 #endif
+
+#if CORNERS_APART
+// The mesh as storage (src/mesh/gpu_mesh.h): 8 floats per vertex (position, normal, texture
+// coordinate) and 3 indices per triangle; per triangle its near-field entry (near_field_points.glsl).
+layout(std430, binding = 2) readonly buffer Vertices { float vertexData[]; };
+layout(std430, binding = 3) readonly buffer Indices { uint indexData[]; };
+layout(std430, binding = 4) readonly buffer NearFieldTriangles { uint nearFieldTriangle[]; };
+flat out uint nearFieldEntry;
+out vec2 nearFieldWeights;  // of corners b and c
+
+int cornerVertex() {
+    int corner = gl_VertexID % 3;
+    nearFieldEntry = nearFieldTriangle[gl_VertexID / 3];
+    nearFieldWeights = vec2(corner == 1, corner == 2);
+    return int(indexData[gl_VertexID]);
+}
+vec3 vertexVec3(int v, int offset) {
+    return vec3(vertexData[8 * v + offset], vertexData[8 * v + offset + 1], vertexData[8 * v + offset + 2]);
+}
+#else
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inTexcoord;
+#endif
+
 void main() {
+#if CORNERS_APART
+    int v = cornerVertex();
+    modelPosition = vertexVec3(v, 0);
+    modelNormal = vertexVec3(v, 3);
+    texcoord = vec2(vertexData[8 * v + 6], vertexData[8 * v + 7]);
+#else
+    int v = gl_VertexID;
     modelPosition = inPosition;
     modelNormal = inNormal;
     texcoord = inTexcoord;
-    vertexRadiosity = radiosityOfVertex[gl_VertexID].rgb;
-#if VERTEX_EFFECTIVE
-    vertexEffective = effectiveOfVertex[gl_VertexID].rgb;
 #endif
-    vec4 world = model * vec4(inPosition, 1.0);
+    vertexRadiosity = radiosityOfVertex[v].rgb;
+#if VERTEX_EFFECTIVE
+    vertexEffective = effectiveOfVertex[v].rgb;
+#endif
+    vec4 world = model * vec4(modelPosition, 1.0);
     worldPosition = world.xyz;
-    worldNormal = normalMatrix * inNormal;
+    worldNormal = normalMatrix * modelNormal;
     gl_Position = viewProjection * world;
 }

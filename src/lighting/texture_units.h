@@ -21,10 +21,8 @@ inline constexpr int kMaterialTable = 10;
 inline constexpr int kMaterialLogGathered = 11;
 inline constexpr int kMaterialSurfaceAlbedo = 12;
 inline constexpr int kMaterialSurroundings = 13;
-// The combine's near-field points (mesh/near_field_cache.h), buffer textures; units the mesh
+// The combine's near-field points (mesh/near_field_cache.h), a buffer texture; a unit the mesh
 // passes leave free (the ray caster's there).
-inline constexpr int kNearFieldBarycentric = 4;
-inline constexpr int kNearFieldTriangles = 5;
 inline constexpr int kNearFieldPoints = 14;
 
 // Volume ray cast (shaders/volume/ray_cast.frag) and the eye pass's lit-colour compute.

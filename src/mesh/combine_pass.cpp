@@ -61,10 +61,13 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.id());
     if (vertexEffective) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.vertexEffective->id());
-    if (s.nearFieldCache) s.nearFieldCache->bind(p);
-    in.mesh.drawOpaque(p);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    if (s.nearFieldCache) {
+        s.nearFieldCache->bind(p);
+        in.mesh.drawCornersOpaque(p);
+    } else {
+        in.mesh.drawOpaque(p);
+    }
+    for (GLuint b : {0, 1, 4}) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
 
 }  // namespace sss::detail

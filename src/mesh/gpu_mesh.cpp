@@ -23,6 +23,7 @@ GpuMesh GpuMesh::upload(const Mesh& mesh) {
     gpu.vertexArray.setAttribute(1, gpu.vertices, 3, 3 * sizeof(float), stride);
     gpu.vertexArray.setAttribute(2, gpu.vertices, 2, 6 * sizeof(float), stride);
     gpu.vertexArray.setIndexBuffer(gpu.indices);
+    gpu.noAttributes = gl::VertexArray::create();
     gpu.indexCount = static_cast<GLsizei>(mesh.indices().size());
     gpu.bounds = mesh.bounds();
     gpu.hasTexcoords = textured;
@@ -34,15 +35,35 @@ void GpuMesh::draw() const {
     glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
 }
 
-void GpuMesh::drawOpaque(const gl::Program& program) const {
+namespace {
+
+void setOpaqueState(const gl::Program& program) {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     program.use();
+}
+
+}  // namespace
+
+void GpuMesh::drawOpaque(const gl::Program& program) const {
+    setOpaqueState(program);
     draw();
     glBindVertexArray(0);
+    glUseProgram(0);
+}
+
+void GpuMesh::drawCornersOpaque(const gl::Program& program) const {
+    setOpaqueState(program);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, vertices.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, indices.id());
+    noAttributes.bind();
+    glDrawArrays(GL_TRIANGLES, 0, indexCount);
+    glBindVertexArray(0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
     glUseProgram(0);
 }
 

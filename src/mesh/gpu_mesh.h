@@ -17,6 +17,7 @@ struct GpuMesh {
     gl::Buffer vertices;
     gl::Buffer indices;
     gl::VertexArray vertexArray;
+    gl::VertexArray noAttributes;  ///< for drawCorners, whose shaders read the buffers themselves
     GLsizei indexCount = 0;
     Bounds bounds;
     bool hasTexcoords = false;
@@ -26,6 +27,10 @@ struct GpuMesh {
     /// Draws with `program` as an opaque surface: depth test (less) and depth writes on, no
     /// blending, no culling (open meshes show their inside; both sides are shaded).
     void drawOpaque(const gl::Program& program) const;
+    /// As drawOpaque, but each triangle's corners as their own vertices without attributes:
+    /// vertex 3t + k is corner k of triangle t, and the program reads `vertices` and `indices`
+    /// as storage buffers 2 and 3 (shaders/mesh/combine.vert).
+    void drawCornersOpaque(const gl::Program& program) const;
 };
 
 }  // namespace sss::detail

@@ -16,25 +16,6 @@ namespace sss::detail {
 
 namespace {
 
-// Rows 2t and 2t + 1: the weights of corners b and c as affine functions of a point in the
-// triangle's plane (zero for a degenerate triangle: every point is corner a).
-std::vector<glm::vec4> barycentricMaps(const Mesh& mesh) {
-    std::vector<glm::vec4> maps(2 * mesh.triangleCount(), glm::vec4(0.0f));
-    const auto& p = mesh.positions();
-    const auto& index = mesh.indices();
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        const glm::dvec3 a = p[index[3 * t]], e1 = glm::dvec3(p[index[3 * t + 1]]) - a,
-                         e2 = glm::dvec3(p[index[3 * t + 2]]) - a;
-        const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-        const double det = d11 * d22 - d12 * d12;
-        if (!(det > 1e-12 * d11 * d22)) continue;
-        const glm::dvec3 toB = (d22 * e1 - d12 * e2) / det, toC = (d11 * e2 - d12 * e1) / det;
-        maps[2 * t] = glm::vec4(glm::vec3(toB), static_cast<float>(-glm::dot(a, toB)));
-        maps[2 * t + 1] = glm::vec4(glm::vec3(toC), static_cast<float>(-glm::dot(a, toC)));
-    }
-    return maps;
-}
-
 std::vector<float> longestEdges(const Mesh& mesh) {
     std::vector<float> longest(mesh.triangleCount());
     const auto& p = mesh.positions();
@@ -69,7 +50,7 @@ NearFieldPointLayout layoutNearFieldPoints(const std::vector<float>& longestEdge
     return layout;
 }
 
-NearFieldCache::NearFieldCache(const Mesh& mesh) : m_longestEdges(longestEdges(mesh)), m_maps(barycentricMaps(mesh)) {}
+NearFieldCache::NearFieldCache(const Mesh& mesh) : m_longestEdges(longestEdges(mesh)) {}
 
 void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
     if (!m_program) {
@@ -77,8 +58,6 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
                                       {{"MAX_LIGHTS", std::to_string(kMaxLights)},
                                        {"NEAR_FIELD_NODES", std::to_string(kNearFieldNodes)},
                                        {"NEAR_FIELD_TAPS", std::to_string(kNearFieldTaps)}});
-        m_barycentric = storage(m_maps.size() * sizeof(glm::vec4), m_maps.data(), "near field (barycentric maps)");
-        m_barycentricView = gl::Texture::createBufferView(m_barycentric, GL_RGBA32F, "near field (barycentric maps)");
     }
     const int texelsPerPoint = 1 + (static_cast<int>(in.lights.size()) + 2) / 4;  // light 0 in texel 0, 4 per texel after
     if (in.spacing != m_spacing || m_pointCount == 0 || texelsPerPoint != m_texelsPerPoint) {
@@ -88,7 +67,6 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
             storage(layout.pointTriangles.size() * 4, layout.pointTriangles.data(), "near field (point triangles)");
         m_pointCount = layout.pointTriangles.size();
         m_values = storage(m_pointCount * texelsPerPoint * 8, nullptr, "near field (points)");
-        m_trianglesView = gl::Texture::createBufferView(m_triangles, GL_R32UI, "near field (triangles)");
         m_valuesView = gl::Texture::createBufferView(m_values, GL_RGBA16F, "near field (points)");
         m_spacing = in.spacing;
         m_texelsPerPoint = texelsPerPoint;
@@ -124,19 +102,16 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m_rings.id());
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_pointCount + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the combine reads the points as fragment storage
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // the combine reads the points as a buffer texture
     glUseProgram(0);
     for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
 
 void NearFieldCache::bind(const gl::Program& program) const {
-    program.set("nearFieldBarycentric", units::kNearFieldBarycentric);
-    program.set("nearFieldTriangles", units::kNearFieldTriangles);
     program.set("nearFieldPoints", units::kNearFieldPoints);
     program.set("nearFieldTexelsPerPoint", m_texelsPerPoint);
-    m_barycentricView.bind(units::kNearFieldBarycentric);
-    m_trianglesView.bind(units::kNearFieldTriangles);
     m_valuesView.bind(units::kNearFieldPoints);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_triangles.id());
 }
 
 }  // namespace sss::detail

@@ -52,25 +52,23 @@ struct NearFieldCacheInputs {
 
 class NearFieldCache {
 public:
-    /// Keeps each triangle's longest edge and its map from a model-space point to barycentrics;
-    /// creates no GL object before the first evaluate().
+    /// Keeps each triangle's longest edge; creates no GL object before the first evaluate().
     explicit NearFieldCache(const Mesh& mesh);
     /// Evaluates the near field at every point, laying the points out again if the spacing changed.
     void evaluate(const NearFieldCacheInputs& in);
     std::size_t pointCount() const { return m_pointCount; }
-    /// For the combine (NEAR_FIELD_CACHE): its samplers and the buffer textures on their units
-    /// (lighting/texture_units.h).
+    /// For the combine (NEAR_FIELD 2, drawn with GpuMesh::drawCornersOpaque): the points as a
+    /// buffer texture on their unit (lighting/texture_units.h), the triangles' entries as
+    /// storage buffer 4 (shaders/mesh/combine.vert).
     void bind(const gl::Program& program) const;
 
 private:
     std::optional<gl::Program> m_program;  // linked on first use
     std::vector<float> m_longestEdges;
-    std::vector<glm::vec4> m_maps;  // per triangle 2: p -> (b, c) weights, affine in model space
-    gl::Buffer m_barycentric;       // m_maps, uploaded on first use
     gl::Buffer m_triangles, m_pointTriangles, m_values;
     std::vector<glm::vec4> m_ringTables;  // packNearFieldRings of the table last uploaded
     gl::Buffer m_rings;                   // m_ringTables on the GPU
-    gl::Texture m_barycentricView, m_trianglesView, m_valuesView;  // the combine reads them as buffer textures
+    gl::Texture m_valuesView;  // the combine reads the points as a buffer texture
     float m_spacing = 0.0f;
     std::size_t m_pointCount = 0;
     int m_texelsPerPoint = 0;  // RGBA16F: the near field and light 0's visibility, then 4 lights' each
