@@ -58,6 +58,11 @@ uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0
 // A compile-time constant: skipped behind a uniform instead, the per-pixel near field's code
 // still cost a quarter of a fixed frame on llvmpipe.
 #define PER_PIXEL_NEAR_FIELD (NEAR_FIELD == 1)
+// Untextured, the near field's points hold the vertices' radiosity too (mesh/near_field_radiosity.comp).
+#define RADIOSITY_IN_POINTS (NEAR_FIELD == 2 && !TEXTURED_MATERIAL)
+#if RADIOSITY_IN_POINTS && !PER_VERTEX
+#error "the points hold the vertices' radiosity, not the maps'"
+#endif
 #if NEAR_FIELD == 2
 #include "mesh/near_field_points.glsl"
 uniform samplerBuffer nearFieldPoints;  // per point nearFieldTexelsPerPoint (near_field_cache.comp)
@@ -112,7 +117,11 @@ void main() {
     // Cached combine: the vertices' radiosity only. Otherwise the maps, and a point no layer sees
     // (deep concavities) takes the radiosity interpolated from its triangle's vertices, which the
     // vertex pass filled in from the surface around them.
+#if RADIOSITY_IN_POINTS
+    vec3 radiosity = vec3(0.0);  // added with the near field below
+#else
     vec3 radiosity = vertexRadiosity;
+#endif
 #if !PER_VERTEX
     MapLookup maps = lookUpScatteringMaps(modelPosition, normalize(modelNormal));
     if (maps.weight > 0.0) radiosity = maps.radiosity;

@@ -9,7 +9,12 @@
 #ifndef NEAR_FIELD
 #define NEAR_FIELD 1
 #endif
+#ifndef TEXTURED_MATERIAL
+#define TEXTURED_MATERIAL 0
+#endif
 #define CORNERS_APART (NEAR_FIELD == 2)
+// Untextured, the near field's points hold the radiosity too (mesh/near_field_radiosity.comp).
+#define RADIOSITY_IN_POINTS (NEAR_FIELD == 2 && !TEXTURED_MATERIAL)
 uniform mat4 model;
 uniform mat4 viewProjection;
 uniform mat3 normalMatrix;
@@ -63,7 +68,9 @@ void main() {
     modelNormal = inNormal;
     texcoord = inTexcoord;
 #endif
+#if !RADIOSITY_IN_POINTS
     vertexRadiosity = radiosityOfVertex[v].rgb;
+#endif
 #if VERTEX_EFFECTIVE
     vertexEffective = effectiveOfVertex[v].rgb;
 #endif

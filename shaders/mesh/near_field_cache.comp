@@ -44,12 +44,7 @@ void main() {
     if (s >= pointCount) return;
     uint t = triangleOfPoint[s];
     uint entry = nearFieldTriangle[t];
-    int r = nearFieldDivisions(entry), k = s - nearFieldFirstPoint(entry), j = 0;
-    while (k > r - j) {  // row j holds r + 1 - j points
-        k -= r + 1 - j;
-        ++j;
-    }
-    vec3 w = vec3(float(r - k - j), float(k), float(j)) / float(r);
+    vec3 w = nearFieldPointWeights(s - nearFieldFirstPoint(entry), nearFieldDivisions(entry));
     uint a = indexData[3 * t], b = indexData[3 * t + 1], c = indexData[3 * t + 2];
     vec3 p = w.x * cornerPosition(a) + w.y * cornerPosition(b) + w.z * cornerPosition(c);
     vec3 n = normalMatrix * (w.x * cornerNormal(a) + w.y * cornerNormal(b) + w.z * cornerNormal(c));

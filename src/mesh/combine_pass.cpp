@@ -62,7 +62,7 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.id());
     if (vertexEffective) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.vertexEffective->id());
     if (s.nearFieldCache) {
-        s.nearFieldCache->bind(p);
+        s.nearFieldCache->bind(p, /*withRadiosity=*/s.material == nullptr);
         in.mesh.drawCornersOpaque(p);
     } else {
         in.mesh.drawOpaque(p);

@@ -31,6 +31,7 @@ struct CombineSettings {
     DipoleConstants dipole;       ///< the profile; its single-scattering term is added per pixel
     NearFieldTable nearField;     ///< added per pixel: what the vertex estimate left out (radius 0: none)
     /// The near field evaluated once per light change, interpolated per pixel instead (or none).
+    /// Untextured, its points hold the vertices' radiosity too (NearFieldCache::addRadiosity).
     const NearFieldCache* nearFieldCache = nullptr;
     bool perVertex = false;       ///< no map lookups, the vertices' radiosity (MeshCombine::PerVertex, VertexEstimate)
     /// A textured material: the cached radiosity takes each pixel's own texel (textured_material.glsl).

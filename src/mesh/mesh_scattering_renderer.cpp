@@ -114,6 +114,7 @@ struct MeshScatteringRenderer::Impl {
     detail::VertexAdjacency adjacency;  // of the mesh, for the vertex-radiosity pass
     float surfaceEdgeLength = 0.0f;     // of the mesh, in its own units (MeshCombine::Automatic)
     int vertexRadiosityFrames = -1;
+    int pointsRadiosityFrames = -1;  // the vertex estimate's frames the near field's points hold (-1: none)
     std::optional<ScatteringMapInputs> vertexRadiosityInputs;
     detail::MapLookupSettings vertexRadiosityLookup;
     detail::ScatteringCameras cameras;
@@ -294,7 +295,10 @@ struct MeshScatteringRenderer::Impl {
             cameras = detail::makeScatteringCameras(options.cameras, mesh->bounds);
             scatteringMapInputs = inputs;
             updateProfile();
-            if (usesNearFieldCache()) timed("near-field", [&] { evaluateNearFieldCache(); });
+            if (usesNearFieldCache()) {
+                timed("near-field", [&] { evaluateNearFieldCache(); });
+                pointsRadiosityFrames = -1;
+            }
         }
         if (radiosityFrames() >= options.accumulationFrames) return;
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
@@ -430,6 +434,11 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         r.vertexRadiosityFrames = r.scatteringMaps->frames();
         r.vertexRadiosityInputs = r.scatteringMapInputs;
         r.vertexRadiosityLookup = settings.lookup;
+    }
+    // Untextured, the near field's points hold the vertex estimate's radiosity as well.
+    if (settings.nearFieldCache && !settings.material && r.pointsRadiosityFrames != r.vertexEstimate->frames()) {
+        r.timed("near-field-radiosity", [&] { r.nearFieldCache->addRadiosity(*r.mesh, r.vertexEstimate->radiosity()); });
+        r.pointsRadiosityFrames = r.vertexEstimate->frames();
     }
     r.timed("combine", [&] {
         target.bindForDrawing();

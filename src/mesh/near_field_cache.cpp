@@ -68,6 +68,8 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
         m_pointCount = layout.pointTriangles.size();
         m_values = storage(m_pointCount * texelsPerPoint * 8, nullptr, "near field (points)");
         m_valuesView = gl::Texture::createBufferView(m_values, GL_RGBA16F, "near field (points)");
+        m_withRadiosity = storage(m_pointCount * texelsPerPoint * 16, nullptr, "near field (points with radiosity)");
+        m_withRadiosityView = gl::Texture::createBufferView(m_withRadiosity, GL_RGBA32F, "near field (points with radiosity)");
         m_spacing = in.spacing;
         m_texelsPerPoint = texelsPerPoint;
     }
@@ -107,10 +109,26 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
     for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
 
-void NearFieldCache::bind(const gl::Program& program) const {
+void NearFieldCache::addRadiosity(const GpuMesh& mesh, const gl::Buffer& vertexRadiosity) {
+    if (!m_radiosityProgram)
+        m_radiosityProgram = gl::Program::link({{GL_COMPUTE_SHADER, "mesh/near_field_radiosity.comp"}});
+    const gl::Program& p = *m_radiosityProgram;
+    p.set("pointCount", static_cast<int>(m_pointCount));
+    p.set("texelsPerPoint", m_texelsPerPoint);
+    const GLuint buffers[] = {mesh.indices.id(), m_pointTriangles.id(), m_triangles.id(), vertexRadiosity.id(),
+                              m_values.id(),     m_withRadiosity.id()};
+    for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers[b]);
+    p.use();
+    glDispatchCompute(static_cast<GLuint>((m_pointCount + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glUseProgram(0);
+    for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+}
+
+void NearFieldCache::bind(const gl::Program& program, bool withRadiosity) const {
     program.set("nearFieldPoints", units::kNearFieldPoints);
     program.set("nearFieldTexelsPerPoint", m_texelsPerPoint);
-    m_valuesView.bind(units::kNearFieldPoints);
+    (withRadiosity ? m_withRadiosityView : m_valuesView).bind(units::kNearFieldPoints);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_triangles.id());
 }
 

@@ -57,18 +57,24 @@ public:
     /// Evaluates the near field at every point, laying the points out again if the spacing changed.
     void evaluate(const NearFieldCacheInputs& in);
     std::size_t pointCount() const { return m_pointCount; }
-    /// For the combine (NEAR_FIELD 2, drawn with GpuMesh::drawCornersOpaque): the points as a
-    /// buffer texture on their unit (lighting/texture_units.h), the triangles' entries as
-    /// storage buffer 4 (shaders/mesh/combine.vert).
-    void bind(const gl::Program& program) const;
+    /// Adds the vertices' radiosity (rgb per vertex), interpolated to every point, to the points'
+    /// near field, for an untextured combine to read both from the points; after evaluate() and
+    /// whenever the radiosity changed (shaders/mesh/near_field_radiosity.comp).
+    void addRadiosity(const GpuMesh& mesh, const gl::Buffer& vertexRadiosity);
+    /// For the combine (NEAR_FIELD 2, drawn with GpuMesh::drawCornersOpaque): the points, with
+    /// the radiosity added or without, as a buffer texture on their unit
+    /// (lighting/texture_units.h), the triangles' entries as storage buffer 4
+    /// (shaders/mesh/combine.vert).
+    void bind(const gl::Program& program, bool withRadiosity) const;
 
 private:
-    std::optional<gl::Program> m_program;  // linked on first use
+    std::optional<gl::Program> m_program, m_radiosityProgram;  // linked on first use
     std::vector<float> m_longestEdges;
     gl::Buffer m_triangles, m_pointTriangles, m_values;
     std::vector<glm::vec4> m_ringTables;  // packNearFieldRings of the table last uploaded
     gl::Buffer m_rings;                   // m_ringTables on the GPU
-    gl::Texture m_valuesView;  // the combine reads the points as a buffer texture
+    gl::Buffer m_withRadiosity;  // m_values with the radiosity added (addRadiosity)
+    gl::Texture m_valuesView, m_withRadiosityView;  // the combine reads the points as a buffer texture
     float m_spacing = 0.0f;
     std::size_t m_pointCount = 0;
     int m_texelsPerPoint = 0;  // RGBA16F: the near field and light 0's visibility, then 4 lights' each
