@@ -255,8 +255,9 @@ void runSceneTable(BenchmarkContext& bench, const sss::SceneDescription& scene, 
 struct PlotSpec;
 PlotSpec runErrorSweep(BenchmarkContext& bench, const std::string& which);
 /// Records of the real meshes at 2 cm, 20 cm and 2 m in marble and skin1, every method at its
-/// defaults against the CPU reference (benchmarks/mesh_scale_sweep.cpp).
-void meshScaleSweep(BenchmarkContext& bench);
+/// defaults against the CPU reference (benchmarks/mesh_scale_sweep.cpp); with a plot, one series
+/// per method of its scenes' regeneration time against error.
+void meshScaleSweep(BenchmarkContext& bench, PlotSpec* plot = nullptr);
 
 // ---- data sets shared by the tables -------------------------------------------------------------
 

@@ -16,8 +16,6 @@
 
 namespace {
 
-const unsigned kPalette[] = {0x1f77b4, 0xff7f0e, 0x2ca02c, 0xd62728, 0x9467bd, 0x8c564b, 0xe377c2, 0x7f7f7f};
-
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -61,9 +59,9 @@ void realMeshRows(BenchmarkContext& bench, PlotSpec* plot) {
                 return vertexEstimate ? "vertex-estimate-n" + std::to_string(samples) : "k" + std::to_string(cameras);
             }
         };
-        PlotSeries mapsSeries{model + ": maps, K 8 / 16", {}, kPalette[(plot ? plot->series.size() : 0) % 8]};
+        PlotSeries mapsSeries{model + ": maps, K 8 / 16", {}, kPlotPalette[(plot ? plot->series.size() : 0) % 8]};
         PlotSeries estimateSeries{model + ": vertex estimate", {},
-                                  kPalette[(plot ? plot->series.size() + 1 : 0) % 8]};
+                                  kPlotPalette[(plot ? plot->series.size() + 1 : 0) % 8]};
         for (const Config config : {Config{8}, Config{16}, Config{8, 24, true}, Config{8, 48, true}, Config{8, 96, true},
                                     Config{8, 384, true}}) {
             const int cameras = config.cameras;
@@ -147,7 +145,7 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
             plot = {"real meshes: regeneration time against error (CPU reference)",
                     "time to regenerate: light buffer + 8 frames (ms)", "relative RMSE", {}};
             realMeshRows(bench, &plot);
-            meshScaleSweep(bench);
+            meshScaleSweep(bench, &plot);
         }
         return plot;
     }
@@ -224,7 +222,7 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
         mo.specular = 0.0f;
         for (int cameras : cameraCounts) {
             PlotSeries series{"K " + std::to_string(cameras) + ", maps " + std::to_string(resolution), {},
-                              kPalette[plot.series.size() % 8]};
+                              kPlotPalette[plot.series.size() % 8]};
             for (int samples : sampleCounts) {
                 mo.cameras = cameras;
                 mo.samples = samples;
@@ -235,7 +233,7 @@ PlotSpec meshSweep(BenchmarkContext& bench) {
         // Evaluate-once: the radiosity at the sphere's vertices, no maps (the resolution is the
         // light buffer's).
         PlotSeries series{"vertex estimate, light buffer " + std::to_string(resolution), {},
-                          kPalette[plot.series.size() % 8]};
+                          kPlotPalette[plot.series.size() % 8]};
         mo.combine = sss::MeshCombine::VertexEstimate;
         for (int samples : quick ? std::vector<int>{8} : std::vector<int>{24, 96, 384}) {
             mo.samples = samples;
@@ -371,7 +369,7 @@ PlotSpec volumeSweep(BenchmarkContext& bench) {
             if (!preintegration && termination != 0.99f) continue;
             char label[64];
             std::snprintf(label, sizeof label, "LV %.2f, ET %.2f%s", scale, termination, preintegration ? "" : ", post");
-            PlotSeries series{label, {}, kPalette[plot.series.size() % 8]};
+            PlotSeries series{label, {}, kPlotPalette[plot.series.size() % 8]};
             for (float step : steps) {
                 sss::VolumeRenderOptions vo;
                 vo.shading = sss::VolumeShading::Scattering;

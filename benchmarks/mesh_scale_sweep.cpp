@@ -4,6 +4,7 @@
 // many diffusion lengths wide: the regime of life-size statues and skin.
 
 #include "bench.h"
+#include "plot.h"
 #include "sss/procedural.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -216,7 +217,7 @@ bool methodWanted(BenchmarkContext& bench, const std::string& method) {
     return !anyListed || std::find(only.begin(), only.end(), method) != only.end();
 }
 
-void meshScaleSweep(BenchmarkContext& bench) {
+void meshScaleSweep(BenchmarkContext& bench, PlotSpec* plot) {
     const Options& o = bench.options();
     std::vector<std::pair<std::string, sss::Mesh>> meshes;
     for (const std::string model : {"bunny", "buddha", "dragon"})
@@ -236,6 +237,9 @@ void meshScaleSweep(BenchmarkContext& bench) {
         const glm::vec3 extent = head->bounds().max - head->bounds().min;
         scenes.push_back({"head", "skin1", &*head, std::max({extent.x, extent.y, extent.z}), 1.0});
     }
+    std::vector<PlotSeries> series;  // per method: (regeneration ms, relRMSE) of every scene
+    for (const Method& method : methods())
+        series.push_back({method.name, {}, kPlotPalette[series.size() % std::size(kPlotPalette)], false});
     for (const SweepScene& s : scenes) {
         const sss::Mesh& mesh = *s.mesh;
         const sss::Camera camera = framedCamera(mesh.bounds());
@@ -260,7 +264,8 @@ void meshScaleSweep(BenchmarkContext& bench) {
         sss::MeshScatteringRenderer blinnPhong;
         blinnPhong.setMesh(mesh);
         blinnPhong.setLights({key});
-        for (const Method& method : methods()) {
+        for (std::size_t m = 0; m < methods().size(); ++m) {
+            const Method& method = methods()[m];
             if (!methodWanted(bench, method.name)) continue;
             sss::MeshRenderOptions mo;
             mo.shading = sss::MeshShading::Scattering;
@@ -295,7 +300,11 @@ void meshScaleSweep(BenchmarkContext& bench) {
                       << ", edges " << renderer.edgeToDiffusionLength() << " diffusion lengths) relRMSE "
                       << r.details["rel_rmse"] << " specks " << r.details["specks"] << " (all "
                       << r.details["specks_all"] << ") regenerated in " << regenerateMs << " ms\n";
+            series[m].points.emplace_back(regenerateMs, r.details["rel_rmse"].get<double>());
             bench.addRecord(std::move(r));
         }
     }
+    if (plot)
+        for (PlotSeries& line : series)
+            if (!line.points.empty()) plot->series.push_back(std::move(line));
 }

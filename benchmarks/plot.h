@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+/// Colours for series that have no meaning of their own, in order.
+inline constexpr unsigned kPlotPalette[] = {0x1f77b4, 0xff7f0e, 0x2ca02c, 0xd62728, 0x9467bd, 0x8c564b, 0xe377c2, 0x7f7f7f};
+
 struct PlotSeries {
     std::string label;
     std::vector<std::pair<double, double>> points;  ///< (x, y), both > 0
