@@ -26,6 +26,11 @@
 #ifndef NEAR_FIELD
 #define NEAR_FIELD 1
 #endif
+// Untextured, the near field's points hold the vertices' radiosity too (mesh/near_field_radiosity.comp).
+#define RADIOSITY_IN_POINTS (NEAR_FIELD == 2 && !TEXTURED_MATERIAL)
+#if RADIOSITY_IN_POINTS && !PER_VERTEX
+#error "the points hold the vertices' radiosity, not the maps'"
+#endif
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/dirpole.glsl"
@@ -45,7 +50,9 @@ in vec2 texcoord;
 #include "mesh/map_lookup.glsl"
 #endif
 
+#if !RADIOSITY_IN_POINTS
 in vec3 vertexRadiosity;     // the vertex-radiosity pass's value, interpolated
+#endif
 #if VERTEX_EFFECTIVE
 in vec3 vertexEffective;
 #endif
@@ -58,11 +65,6 @@ uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0
 // A compile-time constant: skipped behind a uniform instead, the per-pixel near field's code
 // still cost a quarter of a fixed frame on llvmpipe.
 #define PER_PIXEL_NEAR_FIELD (NEAR_FIELD == 1)
-// Untextured, the near field's points hold the vertices' radiosity too (mesh/near_field_radiosity.comp).
-#define RADIOSITY_IN_POINTS (NEAR_FIELD == 2 && !TEXTURED_MATERIAL)
-#if RADIOSITY_IN_POINTS && !PER_VERTEX
-#error "the points hold the vertices' radiosity, not the maps'"
-#endif
 #if NEAR_FIELD == 2
 #include "mesh/near_field_points.glsl"
 uniform samplerBuffer nearFieldPoints;  // per point nearFieldTexelsPerPoint (near_field_cache.comp)

@@ -1,5 +1,5 @@
 // The combine's vertices (shaders/mesh/combine.frag). With NEAR_FIELD 2 every triangle's
-// corners arrive apart (GpuMesh::drawCorners: vertex 3t + k is corner k of triangle t) and the
+// corners arrive apart (GpuMesh::drawCornersOpaque: vertex 3t + k is corner k of triangle t) and the
 // shader reads the mesh itself, so each fragment gets its triangle's near-field grid as a flat
 // value and where it lies in the grid as interpolated weights, instead of fetching them per
 // pixel: on small triangles a fragment costs about what its triangle does.
@@ -23,9 +23,11 @@ out vec3 modelNormal;
 out vec3 worldPosition;
 out vec3 worldNormal;
 out vec2 texcoord;
+#if !RADIOSITY_IN_POINTS
 out vec3 vertexRadiosity;
 // Per vertex, from src/mesh/vertex_radiosity_pass.cpp: rgb radiosity (filled everywhere).
 layout(std430, binding = 0) readonly buffer VertexRadiosity { vec4 radiosityOfVertex[]; };
+#endif
 #if VERTEX_EFFECTIVE
 // A textured vertex estimate's entries' part of the rule per vertex (shaders/mesh/vertex_estimate.comp).
 out vec3 vertexEffective;

@@ -17,7 +17,7 @@ struct GpuMesh {
     gl::Buffer vertices;
     gl::Buffer indices;
     gl::VertexArray vertexArray;
-    gl::VertexArray noAttributes;  ///< for drawCorners, whose shaders read the buffers themselves
+    gl::VertexArray noAttributes;  ///< for drawCornersOpaque, whose shaders read the buffers themselves
     GLsizei indexCount = 0;
     Bounds bounds;
     bool hasTexcoords = false;

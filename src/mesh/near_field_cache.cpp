@@ -68,8 +68,6 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
         m_pointCount = layout.pointTriangles.size();
         m_values = storage(m_pointCount * texelsPerPoint * 8, nullptr, "near field (points)");
         m_valuesView = gl::Texture::createBufferView(m_values, GL_RGBA16F, "near field (points)");
-        m_withRadiosity = storage(m_pointCount * texelsPerPoint * 16, nullptr, "near field (points with radiosity)");
-        m_withRadiosityView = gl::Texture::createBufferView(m_withRadiosity, GL_RGBA32F, "near field (points with radiosity)");
         m_spacing = in.spacing;
         m_texelsPerPoint = texelsPerPoint;
     }
@@ -104,7 +102,8 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m_rings.id());
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_pointCount + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // the combine reads the points as a buffer texture
+    // The combine reads the points as a buffer texture, addRadiosity as storage.
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(0);
     for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
@@ -112,6 +111,11 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
 void NearFieldCache::addRadiosity(const GpuMesh& mesh, const gl::Buffer& vertexRadiosity) {
     if (!m_radiosityProgram)
         m_radiosityProgram = gl::Program::link({{GL_COMPUTE_SHADER, "mesh/near_field_radiosity.comp"}});
+    if (const std::size_t texels = m_pointCount * m_texelsPerPoint; texels != m_withRadiosityTexels) {
+        m_withRadiosity = storage(texels * 16, nullptr, "near field (points with radiosity)");
+        m_withRadiosityView = gl::Texture::createBufferView(m_withRadiosity, GL_RGBA32F, "near field (points with radiosity)");
+        m_withRadiosityTexels = texels;
+    }
     const gl::Program& p = *m_radiosityProgram;
     p.set("pointCount", static_cast<int>(m_pointCount));
     p.set("texelsPerPoint", m_texelsPerPoint);
