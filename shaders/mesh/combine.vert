@@ -35,22 +35,20 @@ layout(std430, binding = 1) readonly buffer VertexEffective { vec4 effectiveOfVe
 #endif
 
 #if CORNERS_APART
-// The mesh as storage (src/mesh/gpu_mesh.h): 8 floats per vertex (position, normal, texture
-// coordinate) and 3 indices per triangle; per triangle its near-field entry (near_field_points.glsl).
-layout(std430, binding = 2) readonly buffer Vertices { float vertexData[]; };
+// The mesh as storage (GpuMesh::drawCornersOpaque): its vertices and 3 indices per triangle; per
+// triangle its near-field entry (near_field_points.glsl).
+#define MESH_VERTICES_BINDING 2
+#include "mesh/mesh_vertices.glsl"
 layout(std430, binding = 3) readonly buffer Indices { uint indexData[]; };
 layout(std430, binding = 4) readonly buffer NearFieldTriangles { uint nearFieldTriangle[]; };
 flat out uint nearFieldEntry;
 out vec2 nearFieldWeights;  // of corners b and c
 
-int cornerVertex() {
+uint cornerVertex() {
     int corner = gl_VertexID % 3;
     nearFieldEntry = nearFieldTriangle[gl_VertexID / 3];
     nearFieldWeights = vec2(corner == 1, corner == 2);
-    return int(indexData[gl_VertexID]);
-}
-vec3 vertexVec3(int v, int offset) {
-    return vec3(vertexData[8 * v + offset], vertexData[8 * v + offset + 1], vertexData[8 * v + offset + 2]);
+    return indexData[gl_VertexID];
 }
 #else
 layout(location = 0) in vec3 inPosition;
@@ -60,12 +58,12 @@ layout(location = 2) in vec2 inTexcoord;
 
 void main() {
 #if CORNERS_APART
-    int v = cornerVertex();
-    modelPosition = vertexVec3(v, 0);
-    modelNormal = vertexVec3(v, 3);
-    texcoord = vec2(vertexData[8 * v + 6], vertexData[8 * v + 7]);
+    uint v = cornerVertex();
+    modelPosition = meshPosition(v);
+    modelNormal = meshNormal(v);
+    texcoord = meshTexcoord(v);
 #else
-    int v = gl_VertexID;
+    uint v = uint(gl_VertexID);
     modelPosition = inPosition;
     modelNormal = inNormal;
     texcoord = inTexcoord;

@@ -8,8 +8,7 @@ layout(local_size_x = 64) in;
 #include "mesh/near_field.glsl"
 #include "mesh/near_field_points.glsl"
 
-// Model space, 8 floats per vertex (src/mesh/gpu_mesh.cpp): position, normal, texture coordinate.
-layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };
+#include "mesh/mesh_vertices.glsl"
 layout(std430, binding = 1) readonly buffer Indices { uint indexData[]; };
 layout(std430, binding = 2) readonly buffer PointTriangles { uint triangleOfPoint[]; };
 layout(std430, binding = 3) readonly buffer Triangles { uint nearFieldTriangle[]; };
@@ -22,18 +21,16 @@ uniform mat4 model;
 uniform mat3 normalMatrix;
 uniform float eta;
 
-vec3 cornerPosition(uint v) { return vec3(vertexData[8 * v], vertexData[8 * v + 1], vertexData[8 * v + 2]); }
-vec3 cornerNormal(uint v) { return vec3(vertexData[8 * v + 3], vertexData[8 * v + 4], vertexData[8 * v + 5]); }
 
 // The triangle's normal variation (near_field.glsl), world space; zero for a degenerate one.
 NormalVariation normalVariation(uint a, uint b, uint c) {
-    vec3 pa = cornerPosition(a), e1 = cornerPosition(b) - pa, e2 = cornerPosition(c) - pa;
+    vec3 pa = meshPosition(a), e1 = meshPosition(b) - pa, e2 = meshPosition(c) - pa;
     float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), det = d11 * d22 - d12 * d12;
     NormalVariation v = NormalVariation(vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
     if (!(det > 1e-12 * d11 * d22)) return v;
-    vec3 na = normalize(normalMatrix * cornerNormal(a));
-    v.dnB = normalize(normalMatrix * cornerNormal(b)) - na;
-    v.dnC = normalize(normalMatrix * cornerNormal(c)) - na;
+    vec3 na = normalize(normalMatrix * meshNormal(a));
+    v.dnB = normalize(normalMatrix * meshNormal(b)) - na;
+    v.dnC = normalize(normalMatrix * meshNormal(c)) - na;
     v.toB = normalMatrix * ((d22 * e1 - d12 * e2) / det);  // model-space gradients to world space
     v.toC = normalMatrix * ((d11 * e2 - d12 * e1) / det);
     return v;
@@ -46,8 +43,8 @@ void main() {
     uint entry = nearFieldTriangle[t];
     vec3 w = nearFieldPointWeights(s - nearFieldFirstPoint(entry), nearFieldDivisions(entry));
     uint a = indexData[3 * t], b = indexData[3 * t + 1], c = indexData[3 * t + 2];
-    vec3 p = w.x * cornerPosition(a) + w.y * cornerPosition(b) + w.z * cornerPosition(c);
-    vec3 n = normalMatrix * (w.x * cornerNormal(a) + w.y * cornerNormal(b) + w.z * cornerNormal(c));
+    vec3 p = w.x * meshPosition(a) + w.y * meshPosition(b) + w.z * meshPosition(c);
+    vec3 n = normalMatrix * (w.x * meshNormal(a) + w.y * meshNormal(b) + w.z * meshNormal(c));
     float length2 = dot(n, n);
     n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
     vec3 x = (model * vec4(p, 1.0)).xyz;

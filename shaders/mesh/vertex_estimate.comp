@@ -32,8 +32,7 @@ layout(local_size_x = 64) in;
 #include "mesh/textured_material.glsl"
 #endif
 
-// Model space, 8 floats per vertex (src/mesh/gpu_mesh.cpp): position, normal, texture coordinate.
-layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };
+#include "mesh/mesh_vertices.glsl"
 // Per vertex: inner, outer (rgb summed over frames, a: frames) and, textured, logWeighted.
 layout(std430, binding = 1) buffer Sums { vec4 sums[]; };
 layout(std430, binding = 2) writeonly buffer Radiosity { vec4 radiosityOut[]; };
@@ -62,8 +61,8 @@ float facingAwayShare(vec3 x, vec3 n) {
 void main() {
     int i = int(gl_GlobalInvocationID.x);
     if (i >= vertexCount) return;
-    vec3 p = vec3(vertexData[8 * i], vertexData[8 * i + 1], vertexData[8 * i + 2]);
-    vec3 n = normalMatrix * vec3(vertexData[8 * i + 3], vertexData[8 * i + 4], vertexData[8 * i + 5]);
+    vec3 p = meshPosition(uint(i));
+    vec3 n = normalMatrix * meshNormal(uint(i));
     float length2 = dot(n, n);
     n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
     uint state = uint(i) * 9277u + 0x9e3779b9u;  // the same per frame: the sequence continues
@@ -71,7 +70,7 @@ void main() {
     vec3 x = (model * vec4(p, 1.0)).xyz;
     vec3 inner, outer, logWeighted;
 #if TEXTURED_MATERIAL
-    SurfaceMaterial material = materialAt(dipole, vec2(vertexData[8 * i + 6], vertexData[8 * i + 7]), 0.0);
+    SurfaceMaterial material = materialAt(dipole, meshTexcoord(uint(i)), 0.0);
     estimateRadiositySplit(material.params, x, n, state, inner, outer, logWeighted);
     vec3 gathered = max(material.gathered, vec3(MIN_GATHERED));
     vec3 nearFieldScale = gathered / max(referenceGathered, vec3(1e-6)) * nearFieldShareAt(vec3(material.params.albedo));

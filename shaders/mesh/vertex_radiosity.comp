@@ -5,15 +5,15 @@ layout(local_size_x = 64) in;
 
 #include "mesh/map_lookup.glsl"
 
-layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };  // position, normal, texcoord
+#include "mesh/mesh_vertices.glsl"
 layout(std430, binding = 1) writeonly buffer Radiosity { vec4 radiosityOut[]; };
 uniform int vertexCount;
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);
     if (i >= vertexCount) return;
-    vec3 p = vec3(vertexData[8 * i], vertexData[8 * i + 1], vertexData[8 * i + 2]);
-    vec3 n = vec3(vertexData[8 * i + 3], vertexData[8 * i + 4], vertexData[8 * i + 5]);
+    vec3 p = meshPosition(uint(i));
+    vec3 n = meshNormal(uint(i));
     float length2 = dot(n, n);
     n = length2 > 0.0 ? n * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
     MapLookup maps = lookUpScatteringMaps(p, n);

@@ -2,7 +2,7 @@
 // A Mesh uploaded to the GPU: interleaved position, normal and texture-coordinate vertex buffer
 // (zero texture coordinates when the mesh has none), index buffer, VAO (attribute 0 = position,
 // 1 = normal, 2 = texture coordinate). Shared by every mesh pass; the compute passes read the
-// vertex buffer as storage, kFloatsPerVertex floats per vertex.
+// vertex buffer as storage, kFloatsPerVertex floats per vertex (shaders/mesh/mesh_vertices.glsl).
 #include "gl/buffer.h"
 #include "gl/program.h"
 #include "gl/vertex_array.h"

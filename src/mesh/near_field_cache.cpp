@@ -111,10 +111,9 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
 void NearFieldCache::addRadiosity(const GpuMesh& mesh, const gl::Buffer& vertexRadiosity) {
     if (!m_radiosityProgram)
         m_radiosityProgram = gl::Program::link({{GL_COMPUTE_SHADER, "mesh/near_field_radiosity.comp"}});
-    if (const std::size_t texels = m_pointCount * m_texelsPerPoint; texels != m_withRadiosityTexels) {
-        m_withRadiosity = storage(texels * 16, nullptr, "near field (points with radiosity)");
+    if (const std::size_t bytes = m_pointCount * m_texelsPerPoint * 16; m_withRadiosity.size() < bytes) {
+        m_withRadiosity = storage(bytes, nullptr, "near field (points with radiosity)");
         m_withRadiosityView = gl::Texture::createBufferView(m_withRadiosity, GL_RGBA32F, "near field (points with radiosity)");
-        m_withRadiosityTexels = texels;
     }
     const gl::Program& p = *m_radiosityProgram;
     p.set("pointCount", static_cast<int>(m_pointCount));

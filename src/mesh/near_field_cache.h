@@ -73,8 +73,7 @@ private:
     gl::Buffer m_triangles, m_pointTriangles, m_values;
     std::vector<glm::vec4> m_ringTables;  // packNearFieldRings of the table last uploaded
     gl::Buffer m_rings;                   // m_ringTables on the GPU
-    gl::Buffer m_withRadiosity;  // m_values with the radiosity added (addRadiosity, RGBA32F)
-    std::size_t m_withRadiosityTexels = 0;
+    gl::Buffer m_withRadiosity;  // m_values with the radiosity added (addRadiosity, RGBA32F), or larger
     gl::Texture m_valuesView, m_withRadiosityView;  // the combine reads the points as a buffer texture
     float m_spacing = 0.0f;
     std::size_t m_pointCount = 0;
