@@ -18,14 +18,14 @@ float specularPower(float x, float shininess) {
 #endif
 }
 
-// The same with the half vector h = normalize(l + v) given (callers that know it per ray).
-vec3 blinnPhongHalf(vec3 n, vec3 l, vec3 h, vec3 radiance, vec3 diffuse, vec3 specular, float shininess) {
-    float nDotL = max(dot(n, l), 0.0);
+// The same from the cosines n . l and n . h (h = normalize(l + v)), for callers that have them
+// without n (the ray caster's gradient normals).
+vec3 blinnPhongCosines(float nDotL, float nDotH, vec3 radiance, vec3 diffuse, vec3 specular, float shininess) {
     if (nDotL <= 0.0) return vec3(0.0);
-    float spec = specularPower(max(dot(n, h), 0.0), shininess);
+    float spec = specularPower(max(nDotH, 0.0), shininess);
     return radiance * (diffuse * nDotL + specular * spec);
 }
 
 vec3 blinnPhong(vec3 n, vec3 l, vec3 v, vec3 radiance, vec3 diffuse, vec3 specular, float shininess) {
-    return blinnPhongHalf(n, l, normalize(l + v), radiance, diffuse, specular, shininess);
+    return blinnPhongCosines(dot(n, l), dot(n, normalize(l + v)), radiance, diffuse, specular, shininess);
 }

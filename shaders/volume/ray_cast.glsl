@@ -17,6 +17,8 @@
 //   DIRECTIONAL_LIGHTS_ONLY 0|1: every light is directional: gradient shading takes each light's
 //                            half vector once per ray, and no sample needs its world position
 //   INTEGER_SHININESS n    : 1..256: the specular exponent, raised to by squaring; 0: pow()
+//   DIAGONAL_GRADIENT_METRIC 0|1: gradientMetric is diagonal (the model transform neither shears
+//                            nor scales unequally along turned axes): |M g|^2 is three products
 // Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
 #include "common/camera.glsl"
 #include "common/lights.glsl"
@@ -62,6 +64,7 @@ uniform float phaseG;               // its Henyey-Greenstein mean cosine
 #endif
 #if SHADING_GRADIENT
 uniform mat3 gradientToOutward;    // model-space gradient -> outward world normal (unnormalised)
+uniform mat3 gradientMetric;       // its transpose times itself: |gradientToOutward g|^2 = g . gradientMetric g
 uniform vec3 specularColor;
 uniform float shininess;
 uniform float gradientThreshold;   // |gradient| (per voxel) below which shading fades out
@@ -96,10 +99,23 @@ vec3 toTexture(vec3 p) { return (p - boxMin) / (boxMax - boxMin); }
 
 
 #if SHADING_GRADIENT
+// The shading normal, kept in the gradient's space: n is the outward world normal M g / |M g|
+// (M = gradientToOutward) turned to the viewer, so n . x = scale (g . M^T x). A direction known
+// once per ray (the viewer, a directional light, its half vector) is taken to that space once,
+// and a sample pays one dot product per direction instead of a matrix, a normalisation and
+// then the dot products (a fifth of a gradient frame on llvmpipe).
 struct SurfaceNormal {
-    vec3 n;          // world space, facing the viewer (two-sided)
+    vec3 g;          // the gradient, value units per voxel along the model axes
+    float scale;     // +-1 / |M g|, the sign turning n to the viewer; 0 where g has no direction
     float strength;  // 0..1: fades shading out where the gradient is too weak to define n
 };
+
+// M^T x: a world direction in the gradient's space (see SurfaceNormal).
+vec3 toGradientSpace(vec3 x) { return x * gradientToOutward; }
+
+float normalDot(SurfaceNormal surface, vec3 gradientSpaceDirection) {
+    return surface.scale * dot(surface.g, gradientSpaceDirection);
+}
 
 #if GRADIENT_VOLUME
 uniform sampler3D gradientVolume;  // per-voxel central differences d / 2 + 1/2 (volume/gradient.comp)
@@ -110,7 +126,8 @@ uniform sampler3D gradientVolume;  // per-voxel central differences d / 2 + 1/2 
 vec3 shadedDifferences;
 #endif
 
-SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
+// viewer: the direction towards the viewer in the gradient's space.
+SurfaceNormal gradientNormal(vec3 tc, vec3 viewer) {
     // Central differences, one voxel apart on each axis; gradient in value units per voxel.
 #if COMBINED_FETCH
     vec3 g = shadedDifferences * (0.5 * valueScaleOffset.x);
@@ -125,15 +142,16 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 v) {
                   volumeValue(tc + vec3(0, 0, h.z)) - volumeValue(tc - vec3(0, 0, h.z))) *
              0.5 * valueScaleOffset.x;
 #endif
-    // Surfaces face from high to low values; the matrix also scales the gradient by the box so
-    // anisotropic boxes get correct normals (RayCastPass::run).
-    vec3 outward = gradientToOutward * g;
-    // Normalised and turned to the viewer by one factor (a multiplication, not a division per
-    // component). A zero gradient has no direction (normalize would give NaN): the view vector.
-    float outwardSquared = dot(outward, outward);
-    float toViewer = (dot(outward, v) < 0.0 ? -1.0 : 1.0) * inversesqrt(max(outwardSquared, 1e-24));
-    vec3 n = outwardSquared > 1e-24 ? outward * toViewer : v;
-    return SurfaceNormal(n, smoothstep(0.0, gradientThreshold, length(g)));
+    // Surfaces face from high to low values; M also scales the gradient by the box so
+    // anisotropic boxes get correct normals (RayCastPass::run). A zero gradient has no
+    // direction: no light (its strength is zero there too).
+#if DIAGONAL_GRADIENT_METRIC
+    float outwardSquared = dot(g * g, vec3(gradientMetric[0][0], gradientMetric[1][1], gradientMetric[2][2]));
+#else
+    float outwardSquared = dot(g, gradientMetric * g);
+#endif
+    float scale = outwardSquared > 1e-24 ? inversesqrt(outwardSquared) : 0.0;
+    return SurfaceNormal(g, dot(g, viewer) < 0.0 ? -scale : scale, smoothstep(0.0, gradientThreshold, length(g)));
 }
 #endif
 
@@ -185,9 +203,14 @@ Segment pointSegment(float value, float voxels) {
 #if SHADING_GRADIENT || SHADING_SCATTERING
 // Towards the viewer from any point of this pixel's ray: the same all along it (set in main).
 vec3 viewerDirection;
-#if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
-// Each light's half vector normalize(l + v): also the same all along the ray (set in main).
-vec3 rayHalfVectors[MAX_LIGHTS];
+#if SHADING_GRADIENT
+vec3 viewerInGradientSpace;  // toGradientSpace(viewerDirection) (set in main)
+#if DIRECTIONAL_LIGHTS_ONLY
+// Each light's direction and half vector normalize(l + v) in the gradient's space: also the same
+// all along the ray (set in main).
+vec3 rayLightsInGradientSpace[MAX_LIGHTS];
+vec3 rayHalfVectorsInGradientSpace[MAX_LIGHTS];
+#endif
 #endif
 
 #if SHADING_SCATTERING
@@ -385,17 +408,25 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     const vec3 worldPosition = vec3(0.0);  // directional lights do not depend on it
 #endif
 #if SHADING_GRADIENT
-    vec3 v = viewerDirection;
-    SurfaceNormal surface = gradientNormal(tc, v);
+    SurfaceNormal surface = gradientNormal(tc, viewerInGradientSpace);
 #endif
     vec3 lit = ambientStrength * color;
     for (int i = 0; i < LIGHT_COUNT; ++i) {
+#if DIRECTIONAL_LIGHTS_ONLY
+        // The light's own (lightDirectionAt's test of the light's kind, though the same for every
+        // sample, cost llvmpipe a tenth of a gradient frame).
+        vec3 radiance = lightRadiance[i];
+        vec3 l = lightVector[i].xyz;
+#else
         vec3 radiance;
         vec3 l = lightDirectionAt(i, worldPosition, radiance);
+#endif
 #if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
-        vec3 h = rayHalfVectors[i];
+        float nDotL = normalDot(surface, rayLightsInGradientSpace[i]);
+        float nDotH = normalDot(surface, rayHalfVectorsInGradientSpace[i]);
 #elif SHADING_GRADIENT
-        vec3 h = normalize(l + v);
+        float nDotL = normalDot(surface, toGradientSpace(l));
+        float nDotH = normalDot(surface, toGradientSpace(normalize(l + viewerDirection)));
 #endif
 #if SHADING_SCATTERING
 #if PREINTEGRATED
@@ -415,13 +446,11 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
             lit += diffuseStrength * color * radiance * light.rgb;
         }
 #if SHADING_GRADIENT
-        float nDotL = dot(surface.n, l);
         if (nDotL > 0.0)
-            lit += surface.strength * light.a * radiance * specularColor *
-                   specularPower(max(dot(surface.n, h), 0.0), shininess);
+            lit += surface.strength * light.a * radiance * specularColor * specularPower(max(nDotH, 0.0), shininess);
 #endif
 #else
-        lit += blinnPhongHalf(surface.n, l, h, radiance, diffuseStrength * color, specularColor, shininess);
+        lit += blinnPhongCosines(nDotL, nDotH, radiance, diffuseStrength * color, specularColor, shininess);
 #endif
     }
 #if SHADING_SCATTERING
@@ -490,8 +519,14 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #if SHADING_GRADIENT || SHADING_SCATTERING
     viewerDirection = -normalize(mat3(modelToWorld) * ray.direction);
 #endif
-#if SHADING_GRADIENT && DIRECTIONAL_LIGHTS_ONLY
-    for (int i = 0; i < LIGHT_COUNT; ++i) rayHalfVectors[i] = normalize(lightVector[i].xyz + viewerDirection);
+#if SHADING_GRADIENT
+    viewerInGradientSpace = toGradientSpace(viewerDirection);
+#if DIRECTIONAL_LIGHTS_ONLY
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        rayLightsInGradientSpace[i] = toGradientSpace(lightVector[i].xyz);
+        rayHalfVectorsInGradientSpace[i] = toGradientSpace(normalize(lightVector[i].xyz + viewerDirection));
+    }
+#endif
 #endif
 #if SHADING_SCATTERING && DIRECTIONAL_LIGHTS_ONLY
     for (int i = 0; i < LIGHT_COUNT; ++i) rayLightReaches[i] = lightReachTowards(i, lightVector[i].xyz);

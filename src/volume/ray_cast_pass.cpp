@@ -58,8 +58,27 @@ bool usesScatteringCache(const VolumeRenderOptions& o) {
     return o.multipleScatteringCache && usesLightVolume(o.shading) && o.model == VolumeModel::Physical;
 }
 
+namespace {
+
+glm::mat3 normalMatrix(const glm::mat4& model) { return glm::transpose(glm::inverse(glm::mat3(model))); }
+
+// N^T N for the model's normal matrix N: diagonal (to float rounding) when the model is a
+// rotation with a uniform scale, or scales along the volume's own axes.
+bool diagonalMetric(const glm::mat4& model) {
+    const glm::mat3 n = normalMatrix(model);
+    const glm::mat3 metric = glm::transpose(n) * n;
+    const float largest = std::max({metric[0][0], metric[1][1], metric[2][2]});
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row)
+            if (row != column && std::abs(metric[column][row]) > 1e-6f * largest) return false;
+    return true;
+}
+
+}  // namespace
+
 RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
-                                  GradientSource gradients, bool preintegration, bool softwareDevice) {
+                                  const glm::mat4& model, GradientSource gradients, bool preintegration,
+                                  bool softwareDevice) {
     RayCastVariant v;
     v.shading = options.shading;
     v.emptySpaceSkipping = options.emptySpaceSkipping;
@@ -73,6 +92,7 @@ RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std:
     const float shininess = options.shininess;
     if (usesGradient(options.shading) && shininess >= 1.0f && shininess <= 256.0f && shininess == std::floor(shininess))
         v.integerShininess = static_cast<int>(shininess);
+    v.diagonalGradientMetric = diagonalMetric(model);
     v.compute = usesComputeRayCaster(options.rayCaster, softwareDevice);
     v.scatteringCache = usesScatteringCache(options);
     v.reconstruction = options.reconstruction;
@@ -96,6 +116,7 @@ RayCastPass::RayCastPass(const RayCastVariant& variant)
                                    {"PREINTEGRATED", variant.preintegration ? "1" : "0"},
                                    {"DIRECTIONAL_LIGHTS_ONLY", variant.directionalLightsOnly ? "1" : "0"},
                                    {"INTEGER_SHININESS", std::to_string(variant.integerShininess)},
+                                   {"DIAGONAL_GRADIENT_METRIC", variant.diagonalGradientMetric ? "1" : "0"},
                                    {"SCATTERING_CACHE", variant.scatteringCache ? "1" : "0"},
                                    {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(variant.reconstruction)}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
@@ -189,9 +210,11 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         // model units (voxels per unit on each axis, so anisotropic boxes get correct normals),
         // point it from high to low values, then take it to world space as a normal.
         const glm::vec3 voxelsPerUnit = glm::vec3(volume.dims) / size;
-        const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(model)));
+        const glm::mat3 normalToWorld = normalMatrix(model);
         const glm::mat3 highToLow(-voxelsPerUnit.x, 0.0f, 0.0f, 0.0f, -voxelsPerUnit.y, 0.0f, 0.0f, 0.0f, -voxelsPerUnit.z);
-        p.set("gradientToOutward", normalToWorld * highToLow);
+        const glm::mat3 gradientToOutward = normalToWorld * highToLow;
+        p.set("gradientToOutward", gradientToOutward);
+        p.set("gradientMetric", glm::transpose(gradientToOutward) * gradientToOutward);
         p.set("specularColor", options.specular);
         p.set("shininess", options.shininess);
         p.set("gradientThreshold", options.gradientThreshold);

@@ -92,6 +92,10 @@ struct RayCastVariant {
     /// shader then raises to it by repeated squaring (exact, and a few multiplications where
     /// pow() costs a logarithm and an exponential per sample); 0: pow() with the uniform.
     int integerShininess = 0;
+    /// The gradient modes' normal length is |M g| for a gradient g and M the model's normal
+    /// matrix times a diagonal: M^T M is diagonal unless the model shears or scales unequally
+    /// along turned axes, and then the shader takes it from three products instead of a matrix.
+    bool diagonalGradientMetric = true;
     /// The compute ray caster (ray_cast.comp) rather than the fragment one (ray_cast.frag).
     bool compute = false;
     /// Samples add what they scatter of the multiple-scattering cache.
@@ -100,7 +104,8 @@ struct RayCastVariant {
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
 
     static RayCastVariant of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
-                             GradientSource gradients, bool preintegration, bool softwareDevice);
+                             const glm::mat4& model, GradientSource gradients, bool preintegration,
+                             bool softwareDevice);
     bool operator==(const RayCastVariant&) const = default;
 };
 
