@@ -3,6 +3,12 @@
 // >= 0 for every plane and tc lies in [cropMin, cropMax] (open faces at +-1e30).
 #include "common/ray_box.glsl"
 
+// CLIP 0 compiles the tests away where nothing is cut: a switch on a uniform still cost every
+// sample its test on llvmpipe, which runs a branch's body whether or not a lane takes it.
+#ifndef CLIP
+#define CLIP 1
+#endif
+
 #define MAX_CLIP_PLANES 12  // VolumeClip::kMaxPlanes, and a world-space crop box's six faces
 uniform int clipActive;             // 0: nothing is cut
 uniform int clipLight;              // 1: the cut matter is gone for the light as well (no shadows)
@@ -12,6 +18,9 @@ uniform vec3 cropMin;
 uniform vec3 cropMax;
 
 bool clipKeeps(vec3 tc) {
+#if !CLIP
+    return true;
+#endif
     if (clipActive == 0) return true;
     for (int i = 0; i < clipPlaneCount; ++i)
         if (dot(clipPlanes[i].xyz, tc) + clipPlanes[i].w < 0.0) return false;
@@ -19,11 +28,19 @@ bool clipKeeps(vec3 tc) {
 }
 
 // Whether the light passes through the medium at tc (the cut matter casts no shadows).
-bool lightSeesMedium(vec3 tc) { return clipLight == 0 || clipKeeps(tc); }
+bool lightSeesMedium(vec3 tc) {
+#if !CLIP
+    return true;
+#endif
+    return clipLight == 0 || clipKeeps(tc);
+}
 
 // The part of the ray tc(t) = origin + t direction, t in span = (enter, exit), that the clip
 // keeps: one interval, since the kept region is convex (empty when x >= y).
 vec2 clipSpan(vec3 origin, vec3 direction, vec2 span) {
+#if !CLIP
+    return span;
+#endif
     if (clipActive == 0) return span;
     for (int i = 0; i < clipPlaneCount; ++i) {
         float rate = dot(clipPlanes[i].xyz, direction);

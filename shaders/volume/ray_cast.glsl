@@ -2,7 +2,8 @@
 // pixel's premultiplied colour. Two entry points share it: ray_cast.frag (a fullscreen triangle,
 // blended over the target) and ray_cast.comp (the volume's screen rectangle, composited through
 // image load/store); src/volume/ray_cast_pass.cpp picks one (VolumeRenderOptions::rayCaster).
-// Variants (defines set by src/volume/ray_cast_pass.cpp):
+// Variants (defines set by src/volume/ray_cast_pass.cpp; switches that a uniform could hold are
+// defines because llvmpipe runs a branch's body whether or not any lane takes it):
 //   SHADING_GRADIENT 0|1   : Blinn-Phong from the gradient (central differences)
 //   SHADING_SCATTERING 0|1 : light from the light volumes (chromaticity c, intensity l)
 //   EMPTY_SPACE_SKIPPING 0|1 : jump over bricks the transfer function makes fully transparent
@@ -17,6 +18,8 @@
 //   DIRECTIONAL_LIGHTS_ONLY 0|1: every light is directional: gradient shading takes each light's
 //                            half vector once per ray, and no sample needs its world position
 //   INTEGER_SHININESS n    : 1..256: the specular exponent, raised to by squaring; 0: pow()
+//   MESH_SHADOWS 0|1       : meshes of a hybrid scene cast shadows into the volume
+//   CLIP 0|1               : clip planes or a crop box cut the volume (volume/clip.glsl)
 //   DIAGONAL_GRADIENT_METRIC 0|1: gradientMetric is diagonal (the model transform neither shears
 //                            nor scales unequally along turned axes): |M g|^2 is three products
 // Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
@@ -73,12 +76,13 @@ uniform float gradientThreshold;   // |gradient| (per voxel) below which shading
 uniform sampler3D lightVolumes[MAX_LIGHTS];   // one per light: (c, l) arriving at each point
 uniform mat3 worldToModelDirection;           // inverse of modelToWorld's linear part
 uniform float lightVolumeReach;               // light-volume texels towards the light (see shade)
-// Hybrid scenes: meshes between a light and the volume cast hard shadows into it (shadow maps
-// of the meshes from each light; see src/hybrid/shared_lighting.h).
-uniform int meshShadows;
+// Hybrid scenes (MESH_SHADOWS 1): meshes between a light and the volume cast hard shadows into
+// it (shadow maps of the meshes from each light; see src/hybrid/shared_lighting.h).
+#if MESH_SHADOWS
 uniform sampler2DArray meshShadowDepth;
 uniform mat4 worldToShadowClip[MAX_LIGHTS];
 uniform float meshShadowBias;
+#endif
 
 #if EYE_PASS
 uniform sampler3D eyeVolume;    // rgb: scattered light arriving from behind, towards the viewer
@@ -87,11 +91,14 @@ uniform float eyePassStrength;
 
 // At model-space point p.
 float meshVisibility(int light, vec3 p) {
-    if (meshShadows == 0) return 1.0;
+#if !MESH_SHADOWS
+    return 1.0;
+#else
     vec4 clip = worldToShadowClip[light] * (modelToWorld * vec4(p, 1.0));
     vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
     if (any(lessThan(window, vec3(0.0))) || any(greaterThan(window, vec3(1.0)))) return 1.0;
     return window.z - meshShadowBias > texture(meshShadowDepth, vec3(window.xy, float(light))).r ? 0.0 : 1.0;
+#endif
 }
 #endif
 

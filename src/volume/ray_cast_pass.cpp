@@ -76,24 +76,29 @@ bool diagonalMetric(const glm::mat4& model) {
 
 }  // namespace
 
-RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
-                                  const glm::mat4& model, GradientSource gradients, bool preintegration,
-                                  bool softwareDevice) {
+bool castsMeshShadows(const MeshShadowMaps* shadows, std::size_t lightCount) {
+    return shadows && shadows->worldToClip.size() >= lightCount;
+}
+
+RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const RayCastScene& scene) {
+    const std::vector<Light>& lights = scene.lights;
     RayCastVariant v;
     v.shading = options.shading;
     v.emptySpaceSkipping = options.emptySpaceSkipping;
     v.lightCount = lights.size();
     v.eyePass = usesEyePass(options);
-    v.gradients = gradients;
-    v.preintegration = preintegration;
+    v.gradients = scene.gradients;
+    v.preintegration = scene.preintegration;
     v.directionalLightsOnly = std::all_of(lights.begin(), lights.end(), [](const Light& light) {
         return std::holds_alternative<DirectionalLight>(light);
     });
     const float shininess = options.shininess;
     if (usesGradient(options.shading) && shininess >= 1.0f && shininess <= 256.0f && shininess == std::floor(shininess))
         v.integerShininess = static_cast<int>(shininess);
-    v.diagonalGradientMetric = diagonalMetric(model);
-    v.compute = usesComputeRayCaster(options.rayCaster, softwareDevice);
+    v.diagonalGradientMetric = diagonalMetric(scene.model);
+    v.clipped = scene.clip != nullptr;
+    v.meshShadows = usesLightVolume(options.shading) && castsMeshShadows(scene.meshShadows, lights.size());
+    v.compute = usesComputeRayCaster(options.rayCaster, scene.softwareDevice);
     v.scatteringCache = usesScatteringCache(options);
     v.reconstruction = options.reconstruction;
     return v;
@@ -117,6 +122,8 @@ RayCastPass::RayCastPass(const RayCastVariant& variant)
                                    {"DIRECTIONAL_LIGHTS_ONLY", variant.directionalLightsOnly ? "1" : "0"},
                                    {"INTEGER_SHININESS", std::to_string(variant.integerShininess)},
                                    {"DIAGONAL_GRADIENT_METRIC", variant.diagonalGradientMetric ? "1" : "0"},
+                                   {"CLIP", variant.clipped ? "1" : "0"},
+                                   {"MESH_SHADOWS", variant.meshShadows ? "1" : "0"},
                                    {"SCATTERING_CACHE", variant.scatteringCache ? "1" : "0"},
                                    {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(variant.reconstruction)}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
@@ -224,10 +231,8 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         }
     }
     if (usesLightVolume(m_variant.shading)) {
-        const bool shadowed = meshShadows && meshShadows->worldToClip.size() >= lights.size();
-        p.set("meshShadows", shadowed ? 1 : 0);
-        p.set("meshShadowDepth", units::kMeshShadowDepth);
-        if (shadowed) {
+        if (m_variant.meshShadows) {
+            p.set("meshShadowDepth", units::kMeshShadowDepth);
             for (size_t i = 0; i < lights.size(); ++i)
                 p.set("worldToShadowClip[" + std::to_string(i) + "]", meshShadows->worldToClip[i]);
             // About two shadow-map texels' worth of depth (the maps span the scene's diameter).

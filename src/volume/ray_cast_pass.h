@@ -76,6 +76,21 @@ struct RayCastInputs {
 /// so a gradient-shaded sample reads one texel for both.
 enum class GradientSource { OnTheFly, Volume, VolumeWithValues };
 
+/// What a ray-cast program depends on besides the options (RayCastVariant::of).
+struct RayCastScene {
+    const std::vector<Light>& lights;
+    const glm::mat4& model;
+    const VolumeClip* clip = nullptr;             ///< null: nothing cut
+    const MeshShadowMaps* meshShadows = nullptr;  ///< hybrid scenes: meshes seen from the lights
+    GradientSource gradients = GradientSource::OnTheFly;
+    bool preintegration = false;
+    bool softwareDevice = false;
+};
+
+/// Whether `shadows` (null: none) hold a map for each of `lightCount` lights, which the ray
+/// caster then reads.
+bool castsMeshShadows(const MeshShadowMaps* shadows, std::size_t lightCount);
+
 /// What a ray-cast program is compiled for: every switch the shader takes as a constant. The
 /// renderer rebuilds the pass when the variant its options and lights call for changes.
 struct RayCastVariant {
@@ -96,6 +111,10 @@ struct RayCastVariant {
     /// matrix times a diagonal: M^T M is diagonal unless the model shears or scales unequally
     /// along turned axes, and then the shader takes it from three products instead of a matrix.
     bool diagonalGradientMetric = true;
+    /// Clip planes or a crop box cut the volume; without, the shader has no clip tests.
+    bool clipped = false;
+    /// Meshes cast shadows into the volume (hybrid scenes); without, no shadow-map lookups.
+    bool meshShadows = false;
     /// The compute ray caster (ray_cast.comp) rather than the fragment one (ray_cast.frag).
     bool compute = false;
     /// Samples add what they scatter of the multiple-scattering cache.
@@ -103,9 +122,7 @@ struct RayCastVariant {
     /// The field between voxel centres (VolumeRenderOptions::reconstruction).
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
 
-    static RayCastVariant of(const VolumeRenderOptions& options, const std::vector<Light>& lights,
-                             const glm::mat4& model, GradientSource gradients, bool preintegration,
-                             bool softwareDevice);
+    static RayCastVariant of(const VolumeRenderOptions& options, const RayCastScene& scene);
     bool operator==(const RayCastVariant&) const = default;
 };
 

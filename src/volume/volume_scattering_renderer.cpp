@@ -466,8 +466,13 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
         : detail::gradientVolumeHoldsValues(*m_impl->volume) ? detail::GradientSource::VolumeWithValues
                                                                : detail::GradientSource::Volume;
     const detail::RayCastVariant variant =
-        detail::RayCastVariant::of(m_impl->options, m_impl->lights, m_impl->model, gradientSource, preintegrated,
-                                   m_impl->softwareDevice());
+        detail::RayCastVariant::of(m_impl->options, {.lights = m_impl->lights,
+                                                     .model = m_impl->model,
+                                                     .clip = m_impl->clipOrNull(),
+                                                     .meshShadows = m_impl->meshShadows,
+                                                     .gradients = gradientSource,
+                                                     .preintegration = preintegrated,
+                                                     .softwareDevice = m_impl->softwareDevice()});
     if (!m_impl->rayCast || m_impl->rayCast->variant() != variant) m_impl->rayCast.emplace(variant);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);

@@ -142,8 +142,8 @@ TEST_CASE("GPU gradient shading matches the CPU reference under a model that str
     Scene scene = shellScene();
     scene.model = glm::scale(glm::mat4(1.0f), {1.0f, 1.4f, 0.7f}) *
                   glm::rotate(glm::mat4(1.0f), glm::radians(40.0f), glm::normalize(glm::vec3{1.0f, 1.0f, 0.0f}));
-    REQUIRE_FALSE(detail::RayCastVariant::of({.shading = VolumeShading::Gradient}, kLights, scene.model,
-                                             detail::GradientSource::VolumeWithValues, false, true)
+    REQUIRE_FALSE(detail::RayCastVariant::of({.shading = VolumeShading::Gradient},
+                                             {.lights = kLights, .model = scene.model, .softwareDevice = true})
                       .diagonalGradientMetric);
     const ConvergedReference reference = renderReference(scene);
     printReference("gradient shell, stretched along turned axes", reference);
