@@ -56,6 +56,11 @@ uniform int brickVoxels;
 // brickVoxels is a power of two, so the product is exact and the brick the same.
 uniform vec3 textureToBrick;
 ivec3 lastBrick;  // set once per ray (main)
+// The ray leaves brick b at the least of b * brickExitStep + brickExitOffset over the axes (its far
+// faces; both set once per ray in main): a multiply-add per skip instead of a box intersection,
+// which llvmpipe computed at every sample, since it runs a branch whether or not a lane takes it.
+vec3 brickExitStep;
+vec3 brickExitOffset;
 #endif
 
 #if SHADING_GRADIENT || SHADING_SCATTERING
@@ -522,6 +527,10 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
     Ray ray = pixelRay(ndc);
 #if EMPTY_SPACE_SKIPPING
     lastBrick = textureSize(occupancy, 0) - 1;
+    vec3 brickSize = vec3(brickVoxels) / vec3(volumeDims) * (boxMax - boxMin);
+    vec3 inverseDirection = safeInverse(ray.direction);
+    brickExitStep = brickSize * inverseDirection;
+    brickExitOffset = (boxMin - ray.origin) * inverseDirection + max(brickExitStep, vec3(0.0));
 #endif
 #if SHADING_GRADIENT || SHADING_SCATTERING
     viewerDirection = -normalize(mat3(modelToWorld) * ray.direction);
@@ -622,10 +631,7 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #endif
                 // Leave the brick in whole steps, so the samples taken are exactly those a caster
                 // without skipping would take (and the skipped ones would all be transparent).
-                vec3 brickSize = vec3(brickVoxels) / vec3(volumeDims) * (boxMax - boxMin);
-                vec3 lo = boxMin + vec3(brick) * brickSize, hi = lo + brickSize;
-                vec3 inv = safeInverse(ray.direction);
-                vec3 tFar = max((lo - ray.origin) * inv, (hi - ray.origin) * inv);
+                vec3 tFar = vec3(brick) * brickExitStep + brickExitOffset;
                 float exitT = min(min(tFar.x, tFar.y), tFar.z);
 #if PREINTEGRATED
                 // Land on the brick's last sample, which opens the segment to the next one: no
