@@ -115,7 +115,7 @@ vec3 toTexture(vec3 p) { return (p - boxMin) / (boxMax - boxMin); }
 // (M = gradientToOutward) turned to the viewer, so n . x = scale (g . M^T x). A direction known
 // once per ray (the viewer, a directional light, its half vector) is taken to that space once,
 // and a sample pays one dot product per direction instead of a matrix, a normalisation and
-// then the dot products (a fifth of a gradient frame on llvmpipe).
+// then the dot products (about 7 % of a gradient frame on llvmpipe).
 struct SurfaceNormal {
     vec3 g;          // the gradient, value units per voxel along the model axes
     float scale;     // +-1 / |M g|, the sign turning n to the viewer; 0 where g has no direction

@@ -62,8 +62,8 @@ namespace {
 
 glm::mat3 normalMatrix(const glm::mat4& model) { return glm::transpose(glm::inverse(glm::mat3(model))); }
 
-// N^T N for the model's normal matrix N: diagonal (to float rounding) when the model is a
-// rotation with a uniform scale, or scales along the volume's own axes.
+// N^T N for the model's normal matrix N: diagonal (to float rounding) when the model scales
+// along the volume's own axes, then turns (a uniform scale included).
 bool diagonalMetric(const glm::mat4& model) {
     const glm::mat3 n = normalMatrix(model);
     const glm::mat3 metric = glm::transpose(n) * n;
@@ -74,11 +74,12 @@ bool diagonalMetric(const glm::mat4& model) {
     return true;
 }
 
-}  // namespace
-
+// Whether `shadows` (null: none) hold a map for each of `lightCount` lights.
 bool castsMeshShadows(const MeshShadowMaps* shadows, std::size_t lightCount) {
     return shadows && shadows->worldToClip.size() >= lightCount;
 }
+
+}  // namespace
 
 RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const RayCastScene& scene) {
     const std::vector<Light>& lights = scene.lights;

@@ -87,10 +87,6 @@ struct RayCastScene {
     bool softwareDevice = false;
 };
 
-/// Whether `shadows` (null: none) hold a map for each of `lightCount` lights, which the ray
-/// caster then reads.
-bool castsMeshShadows(const MeshShadowMaps* shadows, std::size_t lightCount);
-
 /// What a ray-cast program is compiled for: every switch the shader takes as a constant. The
 /// renderer rebuilds the pass when the variant its options and lights call for changes.
 struct RayCastVariant {
@@ -108,8 +104,9 @@ struct RayCastVariant {
     /// pow() costs a logarithm and an exponential per sample); 0: pow() with the uniform.
     int integerShininess = 0;
     /// The gradient modes' normal length is |M g| for a gradient g and M the model's normal
-    /// matrix times a diagonal: M^T M is diagonal unless the model shears or scales unequally
-    /// along turned axes, and then the shader takes it from three products instead of a matrix.
+    /// matrix times a diagonal. M^T M is diagonal unless the model shears or scales unequally
+    /// along turned axes; where it is, the shader takes |M g|^2 from three products instead of
+    /// a matrix.
     bool diagonalGradientMetric = true;
     /// Clip planes or a crop box cut the volume; without, the shader has no clip tests.
     bool clipped = false;
