@@ -18,6 +18,8 @@
 //   DIRECTIONAL_LIGHTS_ONLY 0|1: every light is directional: gradient shading takes each light's
 //                            half vector once per ray, and no sample needs its world position
 //   INTEGER_SHININESS n    : 1..256: the specular exponent, raised to by squaring; 0: pow()
+//   PHYSICAL_MODEL 0|1     : physical single scattering (sss::VolumeModel::Physical): grey
+//                            light, l alone; 0: the paper's model, chromaticity c as well
 //   MESH_SHADOWS 0|1       : meshes of a hybrid scene cast shadows into the volume
 //   CLIP 0|1               : clip planes or a crop box cut the volume (volume/clip.glsl)
 //   DIAGONAL_GRADIENT_METRIC 0|1: gradientMetric is diagonal (the model transform neither shears
@@ -67,7 +69,6 @@ vec3 brickExitOffset;
 uniform mat4 modelToWorld;
 uniform float ambientStrength;
 uniform float diffuseStrength;
-uniform int physicalModel;          // 1: physical single scattering (sss::VolumeModel::Physical)
 uniform float phaseG;               // its Henyey-Greenstein mean cosine
 #endif
 #if SHADING_GRADIENT
@@ -320,10 +321,19 @@ float reachShare(int i, vec3 tc, LightReach full, vec3 worldPosition) {
 }
 
 // `light` ((c, l) at tc + reach) carried back to tc through the data, in pieces about a voxel
-// long.
+// long. The physical model's light is grey (it reads l alone): there the pieces' transmittances
+// multiply, and one power corrects their product for the pieces' length instead of one per piece.
 vec4 carriedBack(vec4 light, vec3 tc, vec3 reach, float reachVoxels) {
     int pieces = clamp(int(ceil(reachVoxels)), 1, 16);
     float pieceVoxels = reachVoxels / float(pieces);
+#if PREINTEGRATED
+    float pieceSteps = pieceVoxels / opacityExponent;  // the table's opacities are per ray step
+#else
+    float pieceSteps = pieceVoxels;  // the transfer function's are per voxel
+#endif
+#if PHYSICAL_MODEL
+    float transmitted = 1.0;
+#endif
 #if PREINTEGRATED
     // Each piece classified as a segment between its two ends (the data linear between them), as
     // the eye ray's: point samples a voxel apart miss most of a thin opaque layer's steep rise,
@@ -334,18 +344,30 @@ vec4 carriedBack(vec4 light, vec3 tc, vec3 reach, float reachVoxels) {
         Segment piece = classifySegment(far, near);
         far = near;
         float a = piece.premultiplied.a;
-        if (a <= 0.0 || !lightSeesMedium(tc + reach * ((float(k) + 0.5) / float(pieces)))) continue;
+        bool seen = lightSeesMedium(tc + reach * ((float(k) + 0.5) / float(pieces)));
+#if PHYSICAL_MODEL
+        transmitted *= seen ? 1.0 - min(a, 1.0) : 1.0;
+#else
+        if (a <= 0.0 || !seen) continue;
         vec3 colour = piece.premultiplied.rgb / a;
-        a = correctOpacity(a, pieceVoxels, opacityExponent);
+        a = correctOpacity(a, pieceSteps, 1.0);
         light = vec4((1.0 - a) * light.rgb + a * colour, (1.0 - a) * light.a);
+#endif
     }
 #else
     for (int k = pieces - 1; k >= 0; --k) {
         vec3 tcK = tc + reach * ((float(k) + 0.5) / float(pieces));
         vec4 medium = lightSeesMedium(tcK) ? classify(volumeValue(tcK)) : vec4(0.0);
-        float a = correctOpacity(medium.a, pieceVoxels, 1.0);
+#if PHYSICAL_MODEL
+        transmitted *= 1.0 - min(medium.a, 1.0);
+#else
+        float a = correctOpacity(medium.a, pieceSteps, 1.0);
         light = vec4((1.0 - a) * light.rgb + a * medium.rgb, (1.0 - a) * light.a);
+#endif
     }
+#endif
+#if PHYSICAL_MODEL
+    light.a *= pow(transmitted, pieceSteps);
 #endif
     return light;
 }
@@ -405,6 +427,12 @@ float layerMean(float x) {
 // keeps a surface lit at a grazing angle from being shaded by the light one point deep in it
 // (docs/opaque-surfaces.md derives it).
 vec4 segmentLight(int i) {
+#if PHYSICAL_MODEL
+    // Grey light: l alone, in every channel.
+    float frontL = max(frontLight[i].a, 1e-20);
+    float bL = log(frontL / max(backLight[i].a, 1e-20));
+    return vec4(frontL * layerMean(segmentOpticalDepth + bL) / layerMean(segmentOpticalDepth));
+#endif
     vec4 front = max(frontLight[i], vec4(1e-20));
     vec4 b = log(front / max(backLight[i], vec4(1e-20)));
     float a = segmentOpticalDepth;
@@ -446,17 +474,17 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
 #else
         vec4 light = arrivingLight(i, p, tc);
 #endif
-        if (physicalModel != 0) {
-            // Single scattering: albedo (TF colour) x phase function between the light's travel
-            // direction -l and the way to the viewer x the light that arrives (grey extinction:
-            // no chromaticity).
-            float cosTheta = dot(-l, viewerDirection);
-            float d = 1.0 + phaseG * phaseG - 2.0 * phaseG * cosTheta;
-            float phase = (1.0 - phaseG * phaseG) / (12.5663706 * d * sqrt(d));
-            lit += color * radiance * (light.a * phase);
-        } else {
-            lit += diffuseStrength * color * radiance * light.rgb;
-        }
+#if PHYSICAL_MODEL
+        // Single scattering: albedo (TF colour) x phase function between the light's travel
+        // direction -l and the way to the viewer x the light that arrives (grey extinction: no
+        // chromaticity).
+        float cosTheta = dot(-l, viewerDirection);
+        float d = 1.0 + phaseG * phaseG - 2.0 * phaseG * cosTheta;
+        float phase = (1.0 - phaseG * phaseG) / (12.5663706 * d * sqrt(d));
+        lit += color * radiance * (light.a * phase);
+#else
+        lit += diffuseStrength * color * radiance * light.rgb;
+#endif
 #if SHADING_GRADIENT
         if (nDotL > 0.0)
             lit += surface.strength * light.a * radiance * specularColor * specularPower(max(nDotH, 0.0), shininess);
@@ -470,7 +498,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     lit += color * cachedInScattering(tc);
 #endif
 #if EYE_PASS
-    if (physicalModel == 0) lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;
+    lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;  // the paper's model only
 #endif
     return lit;
 #else

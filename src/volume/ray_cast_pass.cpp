@@ -99,6 +99,7 @@ RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const RayC
     v.diagonalGradientMetric = diagonalMetric(scene.model);
     v.clipped = scene.clip != nullptr;
     v.meshShadows = usesLightVolume(options.shading) && castsMeshShadows(scene.meshShadows, lights.size());
+    v.physicalModel = usesLightVolume(options.shading) && options.model == VolumeModel::Physical;
     v.compute = usesComputeRayCaster(options.rayCaster, scene.softwareDevice);
     v.scatteringCache = usesScatteringCache(options);
     v.reconstruction = options.reconstruction;
@@ -125,6 +126,7 @@ RayCastPass::RayCastPass(const RayCastVariant& variant)
                                    {"DIAGONAL_GRADIENT_METRIC", variant.diagonalGradientMetric ? "1" : "0"},
                                    {"CLIP", variant.clipped ? "1" : "0"},
                                    {"MESH_SHADOWS", variant.meshShadows ? "1" : "0"},
+                                   {"PHYSICAL_MODEL", variant.physicalModel ? "1" : "0"},
                                    {"SCATTERING_CACHE", variant.scatteringCache ? "1" : "0"},
                                    {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(variant.reconstruction)}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
@@ -205,10 +207,8 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         p.set("modelToWorld", model);
         // Emission adds to the ambient term: both are light-independent fractions of the TF colour.
         // The physical model has neither (single scattering only).
-        const bool physical = options.model == VolumeModel::Physical && usesLightVolume(m_variant.shading);
-        p.set("ambientStrength", physical ? 0.0f : options.ambient + options.emission);
+        p.set("ambientStrength", m_variant.physicalModel ? 0.0f : options.ambient + options.emission);
         p.set("diffuseStrength", options.diffuse);
-        p.set("physicalModel", physical ? 1 : 0);
         p.set("phaseG", options.anisotropy);
         setCameraUniforms(p, in.camera);
         setLightUniforms(p, lights);

@@ -112,6 +112,8 @@ struct RayCastVariant {
     bool clipped = false;
     /// Meshes cast shadows into the volume (hybrid scenes); without, no shadow-map lookups.
     bool meshShadows = false;
+    /// Physical single scattering (VolumeModel::Physical in a light-volume mode): grey light.
+    bool physicalModel = false;
     /// The compute ray caster (ray_cast.comp) rather than the fragment one (ray_cast.frag).
     bool compute = false;
     /// Samples add what they scatter of the multiple-scattering cache.
