@@ -427,16 +427,17 @@ float layerMean(float x) {
 // keeps a surface lit at a grazing angle from being shaded by the light one point deep in it
 // (docs/opaque-surfaces.md derives it).
 vec4 segmentLight(int i) {
+    float a = segmentOpticalDepth;
 #if PHYSICAL_MODEL
     // Grey light: l alone, in every channel.
-    float frontL = max(frontLight[i].a, 1e-20);
-    float bL = log(frontL / max(backLight[i].a, 1e-20));
-    return vec4(frontL * layerMean(segmentOpticalDepth + bL) / layerMean(segmentOpticalDepth));
-#endif
+    float front = max(frontLight[i].a, 1e-20);
+    float b = log(front / max(backLight[i].a, 1e-20));
+    return vec4(front * layerMean(a + b) / layerMean(a));
+#else
     vec4 front = max(frontLight[i], vec4(1e-20));
     vec4 b = log(front / max(backLight[i], vec4(1e-20)));
-    float a = segmentOpticalDepth;
     return front * vec4(layerMean(a + b.x), layerMean(a + b.y), layerMean(a + b.z), layerMean(a + b.w)) / layerMean(a);
+#endif
 }
 #endif
 #endif
