@@ -21,7 +21,6 @@ uniform mat4 model;
 uniform mat3 normalMatrix;
 uniform float eta;
 
-
 // The triangle's normal variation (near_field.glsl), world space; zero for a degenerate one.
 NormalVariation normalVariation(uint a, uint b, uint c) {
     vec3 pa = meshPosition(a), e1 = meshPosition(b) - pa, e2 = meshPosition(c) - pa;

@@ -18,29 +18,29 @@ uniform vec3 cropMin;
 uniform vec3 cropMax;
 
 bool clipKeeps(vec3 tc) {
-#if !CLIP
-    return true;
-#endif
+#if CLIP
     if (clipActive == 0) return true;
     for (int i = 0; i < clipPlaneCount; ++i)
         if (dot(clipPlanes[i].xyz, tc) + clipPlanes[i].w < 0.0) return false;
     return all(greaterThanEqual(tc, cropMin)) && all(lessThanEqual(tc, cropMax));
+#else
+    return true;
+#endif
 }
 
 // Whether the light passes through the medium at tc (the cut matter casts no shadows).
 bool lightSeesMedium(vec3 tc) {
-#if !CLIP
+#if CLIP
+    return clipLight == 0 || clipKeeps(tc);
+#else
     return true;
 #endif
-    return clipLight == 0 || clipKeeps(tc);
 }
 
 // The part of the ray tc(t) = origin + t direction, t in span = (enter, exit), that the clip
 // keeps: one interval, since the kept region is convex (empty when x >= y).
 vec2 clipSpan(vec3 origin, vec3 direction, vec2 span) {
-#if !CLIP
-    return span;
-#endif
+#if CLIP
     if (clipActive == 0) return span;
     for (int i = 0; i < clipPlaneCount; ++i) {
         float rate = dot(clipPlanes[i].xyz, direction);
@@ -54,5 +54,6 @@ vec2 clipSpan(vec3 origin, vec3 direction, vec2 span) {
     vec3 near = min(t0, t1), far = max(t0, t1);
     span.x = max(span.x, max(max(near.x, near.y), near.z));
     span.y = min(span.y, min(min(far.x, far.y), far.z));
+#endif
     return span;
 }

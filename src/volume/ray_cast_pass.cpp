@@ -96,7 +96,8 @@ RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const RayC
     const float shininess = options.shininess;
     if (usesGradient(options.shading) && shininess >= 1.0f && shininess <= 256.0f && shininess == std::floor(shininess))
         v.integerShininess = static_cast<int>(shininess);
-    v.diagonalGradientMetric = diagonalMetric(scene.model);
+    // Only where gradients shade: elsewhere a model change would recompile the caster for nothing.
+    v.diagonalGradientMetric = !usesGradient(options.shading) || diagonalMetric(scene.model);
     v.clipped = scene.clip != nullptr;
     v.meshShadows = usesLightVolume(options.shading) && castsMeshShadows(scene.meshShadows, lights.size());
     v.physicalModel = usesLightVolume(options.shading) && options.model == VolumeModel::Physical;
