@@ -41,6 +41,15 @@
 #ifndef SLAB
 #define SLAB 0
 #endif
+// The slice texture holds SLICE_PADDING texels of outsideLight around each slice (slice texel t
+// is texel t + SLICE_PADDING). PADDED_LOOKUPS 1 (SLAB 0, where the CPU bounded every lookup's
+// reach within the padding): the lookups read it without testing the slice's edges.
+#ifndef SLICE_PADDING
+#define SLICE_PADDING 0
+#endif
+#ifndef PADDED_LOOKUPS
+#define PADDED_LOOKUPS 0
+#endif
 #if SLAB
 // TILE (slice texels per workgroup and side) and SLAB_SIDE (TILE + 2 x slices x halo at most)
 // come from light_volume_pass.cpp.
@@ -121,7 +130,12 @@ vec4 previousTexel(ivec2 texel) { return inSlice(texel) ? unpackLight(slab[slabI
 
 #else
 vec4 previousTexel(ivec2 texel) {
-    return inSlice(texel) ? texelFetch(previousSlices, ivec3(texel, 2 * sweep + pass % 2), 0) : outsideLight;
+    ivec3 stored = ivec3(texel + SLICE_PADDING, 2 * sweep + pass % 2);
+#if PADDED_LOOKUPS
+    return texelFetch(previousSlices, stored, 0);
+#else
+    return inSlice(texel) ? texelFetch(previousSlices, stored, 0) : outsideLight;
+#endif
 }
 #endif
 
@@ -131,7 +145,7 @@ vec4 previousTexel(ivec2 texel) {
 // differ from the slabs' by the unit's 8-bit weights.
 vec4 previousLight(vec2 position) {
 #if !SLAB
-    return texture(previousSlices, vec3(position / slicesTextureSize, float(2 * sweep + pass % 2)));
+    return texture(previousSlices, vec3((position + float(SLICE_PADDING)) / slicesTextureSize, float(2 * sweep + pass % 2)));
 #endif
     vec2 corner = position - 0.5;
     ivec2 i = ivec2(floor(corner));
@@ -284,7 +298,7 @@ void main() {
         int index = invocation + i * kThreads;
         if (index >= slabSide * slabSide) break;
         ivec2 texel = slabOrigin + ivec2(index % slabSide, index / slabSide);
-        vec4 stored = texelFetch(previousSlices, ivec3(texel, 2 * sweep + pass % 2), 0);
+        vec4 stored = texelFetch(previousSlices, ivec3(texel + SLICE_PADDING, 2 * sweep + pass % 2), 0);
         slab[slabIndex(texel)] = packLight(pass > 0 && inSlice(texel) ? stored : outsideLight);
     }
     barrier();
@@ -303,7 +317,7 @@ void main() {
             leaving[i] = packLight(inSlice(uv) ? propagateVoxel(uv, firstW + j, inTile) : outsideLight);
             // Stored already rounded, so the texture holds exactly what shared memory does.
             if (lastSlice && inTile && inSlice(uv))
-                imageStore(currentSlices, ivec3(uv, 2 * sweep + 1 - pass % 2), unpackLight(leaving[i]));
+                imageStore(currentSlices, ivec3(uv + SLICE_PADDING, 2 * sweep + 1 - pass % 2), unpackLight(leaving[i]));
         }
         barrier();  // every lookup into the previous slice is done
         for (int i = 0; i < kItems; ++i) {
@@ -322,6 +336,7 @@ void main() {
     int w = firstSlice[sweep] + pass;
     if (uv.x >= dims.x || uv.y >= dims.y || w >= dims.z) return;
     // Rounded as the slabs round, so the next slice's lookups read what theirs do.
-    imageStore(currentSlices, ivec3(uv, 2 * sweep + 1 - pass % 2), unpackLight(packLight(propagateVoxel(uv, w, true))));
+    imageStore(currentSlices, ivec3(uv + SLICE_PADDING, 2 * sweep + 1 - pass % 2),
+               unpackLight(packLight(propagateVoxel(uv, w, true))));
 }
 #endif

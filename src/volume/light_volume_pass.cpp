@@ -28,6 +28,10 @@ constexpr int kMaxSweeps = 6;        // MAX_SWEEPS in light_propagation.comp
 // dispatch.
 constexpr int kSweepTile = 32;
 constexpr int kSweepSlabSide = 64;
+// Texels of outsideLight around every slice of the slice texture: where a sweep's lookups reach
+// no farther, one slice per dispatch reads them without testing each tap against the slice's
+// edges (those tests were a seventh of the paper model's sweep on llvmpipe).
+constexpr int kSlicePadding = 4;
 
 // What bounds how far a voxel's previous-slice lookups reach.
 struct LookupGeometry {
@@ -75,6 +79,18 @@ struct SweepSlab {
     int slices = 1;
     int halo = 0;
 };
+
+// Whether every voxel's Catmull-Rom lookup into the previous slice stays within the slice
+// texture's padding (the cone's ring taps are filtered, with outsideLight as the border).
+bool lookupsWithinPadding(const std::vector<LightSweep>& sweeps, const LookupGeometry& lookups, glm::vec3 voxelSize) {
+    const LookupGeometry centreOnly{lookups.light, lookups.voxelCentreMin, lookups.voxelCentreMax, 0.0f};
+    return std::all_of(sweeps.begin(), sweeps.end(), [&](const LightSweep& sweep) {
+        const int u = (sweep.axis + 1) % 3, v = (sweep.axis + 2) % 3;
+        const std::optional<int> reach =
+            lookupReach(centreOnly, u, v, sweep, glm::vec3(voxelSize[u], voxelSize[v], voxelSize[sweep.axis]));
+        return reach && *reach <= kSlicePadding;
+    });
+}
 
 // The slabs of `sweeps` (light_propagation.comp's SLAB 1), or none where a sweep's reach is
 // unbounded (a light inside the volume, light along a slice) or no more than one slice per
@@ -235,17 +251,23 @@ void LightVolumePass::setDoublingUniforms(const gl::Program& p, const DoublingSc
 
 LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass), m_softwareDevice(gl::currentDeviceIsSoftware()) {}
 
-const gl::Program& LightVolumePass::program(bool chromaticity, bool slab, VolumeReconstruction reconstruction) {
-    std::optional<gl::Program>& p = m_programs[chromaticity ? 1 : 0][slab ? 1 : 0][static_cast<int>(reconstruction)];
-    if (!p)
-        p = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
-                              {{"EYE_PASS", m_eyePass ? "1" : "0"},
-                               {"CHROMATICITY", chromaticity ? "1" : "0"},
-                               {"SLAB", slab ? "1" : "0"},
-                               {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)},
-                               {"TILE", std::to_string(kSweepTile)},
-                               {"SLAB_SIDE", std::to_string(kSweepSlabSide)}});
-    return *p;
+const gl::Program& LightVolumePass::program(const PropagationVariant& v) {
+    auto found = m_programs.find(v);
+    if (found == m_programs.end()) {
+        const auto flag = [](bool on) { return on ? "1" : "0"; };
+        found = m_programs
+                    .emplace(v, gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
+                                                  {{"EYE_PASS", flag(m_eyePass)},
+                                                   {"CHROMATICITY", flag(v.chromaticity)},
+                                                   {"SLAB", flag(v.slab)},
+                                                   {"PADDED_LOOKUPS", flag(v.paddedLookups)},
+                                                   {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)},
+                                                   {"TILE", std::to_string(kSweepTile)},
+                                                   {"SLAB_SIDE", std::to_string(kSweepSlabSide)},
+                                                   {"SLICE_PADDING", std::to_string(kSlicePadding)}}))
+                    .first;
+    }
+    return found->second;
 }
 
 void LightVolumePass::run(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
@@ -293,8 +315,12 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     const int maxSlices = settings.maxSlicesPerDispatch > 0 ? settings.maxSlicesPerDispatch
                                                              : deviceSlicesPerDispatch(m_softwareDevice, chromaticity);
     const std::vector<SweepSlab> slabs = planSlabs(sweeps, lookups, voxelSize, maxSlices);
+    const PropagationVariant variant{.chromaticity = chromaticity,
+                                     .slab = !slabs.empty(),
+                                     .paddedLookups = slabs.empty() && lookupsWithinPadding(sweeps, lookups, voxelSize),
+                                     .reconstruction = settings.reconstruction};
 
-    const gl::Program& p = program(chromaticity, !slabs.empty(), settings.reconstruction);
+    const gl::Program& p = program(variant);
     if (m_eyePass) p.set("litColour", units::kLitColour);
     p.set("lightVolume", 0);   // image unit
     p.set("lightVolumeDims", dims);
@@ -395,11 +421,12 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
                                 glm::vec4 outside, gl::Texture& output) {
     const glm::ivec3 dims = output.size();
     const glm::ivec2 largestSlice = layout.largestSlice;
+    const glm::ivec2 paddedSlice = largestSlice + 2 * kSlicePadding;
     const int count = layout.sweeps;
     const int blendedSweep = layout.blendedSweep;
     // Grown, never shrunk: lights of different kinds (2 or 6 sweeps) share one array.
-    if (!m_slices || glm::ivec2(m_slices.size()) != largestSlice || m_slices.size().z < 2 * count) {
-        m_slices = gl::Texture::create2DArray(GL_RGBA16F, largestSlice.x, largestSlice.y, 2 * count, "light volume slices");
+    if (!m_slices || glm::ivec2(m_slices.size()) != paddedSlice || m_slices.size().z < 2 * count) {
+        m_slices = gl::Texture::create2DArray(GL_RGBA16F, paddedSlice.x, paddedSlice.y, 2 * count, "light volume slices");
         m_slices.setWrap(GL_CLAMP_TO_BORDER);  // what enters from outside the volume (SLAB 0)
     }
     if (!layout.slab) {
@@ -418,7 +445,7 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     p.set("currentSlices", 1);
     p.set("blendedVolume", 2);  // image unit
     p.set("outsideLight", outside);
-    p.set("slicesTextureSize", glm::vec2(largestSlice));
+    p.set("slicesTextureSize", glm::vec2(paddedSlice));
 
     bindMedium(medium);
     m_slices.bind(2);

@@ -136,9 +136,17 @@ private:
                         const std::function<void(const gl::Program&, int)>& setLevel);
     /// Mixes the blended sweep's volume `blended` into `output` with `weight`.
     void blend(const gl::Texture& blended, float weight, const gl::Texture& output);
-    /// The propagation program for this pass, `chromaticity` and `slab`, linked on first use.
-    const gl::Program& program(bool chromaticity, bool slab, VolumeReconstruction reconstruction);
-    std::optional<gl::Program> m_programs[2][2][2];  // [chromaticity][slab][reconstruction]
+    /// Which light_propagation.comp program a sweep runs.
+    struct PropagationVariant {
+        bool chromaticity = true;
+        bool slab = false;           ///< several slices per dispatch (SLAB)
+        bool paddedLookups = false;  ///< one slice per dispatch, every lookup within the padding
+        VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
+        auto operator<=>(const PropagationVariant&) const = default;
+    };
+    /// The propagation program for this pass and `variant`, linked on first use.
+    const gl::Program& program(const PropagationVariant& variant);
+    std::map<PropagationVariant, gl::Program> m_programs;
     std::optional<gl::Program> m_blendProgram;
     std::map<DoublingVariant, gl::Program> m_doublingPrograms;
     bool m_eyePass = false;
