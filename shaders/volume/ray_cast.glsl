@@ -522,6 +522,9 @@ vec4 classifyStep(float value) {
 #endif
 
 #if EMPTY_SPACE_SKIPPING
+ivec3 brickAt(vec3 tc) { return clamp(ivec3(tc * textureToBrick), ivec3(0), lastBrick); }
+bool inEmptyBrick(vec3 tc) { return texelFetch(occupancy, brickAt(tc), 0).r == 0.0; }
+
 // The last sample index (samples at tFirst + i * stepLength) inside `brick`, which the ray
 // leaves in whole steps, so the samples taken are exactly those a caster without skipping would
 // take (and the skipped ones would all be transparent).
@@ -553,7 +556,7 @@ vec4 nextVisibleSample(inout int i, float tFirst, vec2 span, vec3 tcOrigin, vec3
         if (t >= span.y) break;
         vec3 tc = tcOrigin + t * tcDirection;
 #if EMPTY_SPACE_SKIPPING
-        ivec3 brick = clamp(ivec3(tc * textureToBrick), ivec3(0), lastBrick);
+        ivec3 brick = brickAt(tc);
         if (texelFetch(occupancy, brick, 0).r == 0.0) {
             i = max(i, lastStepIn(brick, tFirst));  // the loop adds one
             continue;
@@ -648,8 +651,8 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
     float alpha = 0.0;
 #if PREINTEGRATED && SHADING_SCATTERING
     frontLit = false;
-    vec4 ahead;       // the next sample, taken one step early
-    bool aheadValid;  // it lies on the ray (else it is the ray's end, for the look-ahead only)
+    vec4 ahead;              // the next sample taken, one step early
+    Segment aheadSegment;    // the segment that ends there
 #endif
     if (span.x < span.y) {
         float tFirst = span.x + (jitterEnabled != 0 ? fract(pixelJitter(fragCoord) + jitterShift) : 0.5) * stepLength;
@@ -670,8 +673,8 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
         Segment first = pointSegment(previous, (firstEnd - span.x) / stepLength * opacityExponent);
 #if SHADING_SCATTERING
         ahead = sampleVolume(tcOrigin + min(tFirst + stepLength, span.y) * tcDirection);
-        aheadValid = tFirst + stepLength < span.y;
-        bool firstLit = first.premultiplied.a > 0.0 || classifySegment(previous, ahead.w).premultiplied.a > 0.0;
+        aheadSegment = classifySegment(previous, ahead.w);
+        bool firstLit = first.premultiplied.a > 0.0 || aheadSegment.premultiplied.a > 0.0;
         if (first.premultiplied.a > 0.0) evaluateFrontLightAt(ray.origin + span.x * ray.direction);
         if (firstLit) evaluateLightAt(firstPoint);
 #endif
@@ -697,6 +700,47 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
             composite(ray.origin + t * ray.direction, tcOrigin + t * tcDirection, tf.rgb, tf.a, color, alpha);
             if (alpha >= earlyTermination) break;
         }
+#elif PREINTEGRATED && SHADING_SCATTERING
+        // Each pass takes the next sample (and its segment) one step early, past empty bricks:
+        // one fetch and one classification per sample. (Taken where the sample is used, after
+        // the skip, llvmpipe paid a second fetch and classification at every sample.)
+        for (int i = firstStep; i < maxSteps; ++i) {
+            float t = tFirst + float(i) * stepLength;
+            if (t >= span.y) {
+                reachedEnd = true;
+                tEnd = t;
+                break;
+            }
+            vec3 p = ray.origin + t * ray.direction;
+            float value = ahead.w;
+            Segment segment = aheadSegment;
+#if COMBINED_FETCH
+            shadedDifferences = mix(previousDifferences, ahead.xyz, segment.depth);
+            previousDifferences = ahead.xyz;
+#endif
+            // The next sample: one step on, or, where it and this one lie in empty bricks, the
+            // last sample of its brick (which opens the segment to the one after it).
+            int next = i + 1;
+            bool nextLands = false;
+#if EMPTY_SPACE_SKIPPING
+            bool emptyHere = inEmptyBrick(tcOrigin + t * tcDirection);
+            vec3 nextTc = tcOrigin + (tFirst + float(next) * stepLength) * tcDirection;
+            ivec3 nextBrick = brickAt(nextTc);
+            if (emptyHere && texelFetch(occupancy, nextBrick, 0).r == 0.0) {
+                next = max(next, lastStepIn(nextBrick, tFirst));
+                nextLands = true;
+            }
+#endif
+            ahead = sampleVolume(tcOrigin + min(tFirst + float(next) * stepLength, span.y) * tcDirection);
+            // A landing sample's segment starts at itself (the skipped ones were clear).
+            aheadSegment = classifySegment(nextLands ? ahead.w : value, ahead.w);
+            bool lightHere = segment.premultiplied.a > 0.0 || (!nextLands && aheadSegment.premultiplied.a > 0.0);
+            if (lightHere) evaluateLightAt(p);
+            compositeSegment(segment, p, stepLength, ray.direction, color, alpha);
+            passLightOn(lightHere && !nextLands);
+            i = next - 1;  // the loop adds one
+            if (alpha >= earlyTermination) break;
+        }
 #else
         for (int i = firstStep; i < maxSteps; ++i) {
             float t = tFirst + float(i) * stepLength;
@@ -710,7 +754,7 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
             vec3 p = ray.origin + t * ray.direction;
             vec3 tc = tcOrigin + t * tcDirection;
 #if EMPTY_SPACE_SKIPPING
-            ivec3 brick = clamp(ivec3(tc * textureToBrick), ivec3(0), lastBrick);
+            ivec3 brick = brickAt(tc);
             bool emptyBrick = texelFetch(occupancy, brick, 0).r == 0.0;
 #if PREINTEGRATED
             // The segment from the last sample taken into an empty brick may still hold medium at
@@ -724,21 +768,13 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
                 // sample before it is needed, and the next segment's light is looked ahead to.
                 i = max(i, lastStepIn(brick, tFirst)) - 1;  // the loop adds one
                 landing = true;
-#if SHADING_SCATTERING
-                aheadValid = false;
-                frontLit = false;
-#endif
 #else
                 i = max(i, lastStepIn(brick, tFirst));  // the loop adds one
 #endif
                 continue;
             }
 #endif
-#if PREINTEGRATED && SHADING_SCATTERING
-            vec4 sampled = aheadValid ? ahead : sampleVolume(tc);
-#else
             vec4 sampled = sampleVolume(tc);
-#endif
             float value = sampled.w;
 #if PREINTEGRATED
             // Landed in an empty brick: no segment ends here (and this sample's value is clear).
@@ -751,17 +787,7 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
             shadedDifferences = mix(previousDifferences, sampled.xyz, segment.depth);
             previousDifferences = sampled.xyz;
 #endif
-#if SHADING_SCATTERING
-            ahead = sampleVolume(tcOrigin + min(t + stepLength, span.y) * tcDirection);
-            aheadValid = t + stepLength < span.y;
-            bool lightHere = segment.premultiplied.a > 0.0 ||
-                             classifySegment(value, ahead.w).premultiplied.a > 0.0;
-            if (lightHere) evaluateLightAt(p);
-#endif
             compositeSegment(segment, p, stepLength, ray.direction, color, alpha);
-#if SHADING_SCATTERING
-            passLightOn(lightHere);
-#endif
             previous = value;
 #if EMPTY_SPACE_SKIPPING
             segmentOpen = !emptyBrick;
