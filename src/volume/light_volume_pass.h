@@ -85,6 +85,7 @@ public:
         int passes = 0;              ///< dispatches (ray doubling: over both of its grids)
         bool slab = false;           ///< several slices per dispatch through shared memory
         int slicesPerPass = 1;       ///< the most slices a dispatch advances a sweep
+        int columnVoxels = 1;        ///< one slice per dispatch: voxels along v per invocation
         int blendedSweep = -1;       ///< the sweep mixed in afterwards, if any
         float blendedWeight = 0.0f;
         /// Compute dispatches in all: the passes and the blend.
@@ -141,6 +142,7 @@ private:
         bool chromaticity = true;
         bool slab = false;           ///< several slices per dispatch (SLAB)
         bool paddedLookups = false;  ///< one slice per dispatch, every lookup within the padding
+        int columnVoxels = 1;        ///< voxels along v per invocation (COLUMN_VOXELS)
         VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
         auto operator<=>(const PropagationVariant&) const = default;
     };
