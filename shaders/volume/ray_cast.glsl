@@ -539,9 +539,9 @@ int lastStepIn(ivec3 brick, float tFirst) {
 // Scattering shades a sample at several times the cost of taking it (the light volume and the
 // light carried back through the data), and llvmpipe shades in every loop pass whether or not a
 // lane's sample is visible. So an inner loop takes each ray to its next visible sample, and the
-// outer loop shades only those (measured on llvmpipe: the bonsai's fixed frame 18 % faster; the
-// nesting made gradient and pre-integrated frames, whose visible samples cost less or come
-// more often, slower).
+// outer loop shades only those (measured on llvmpipe: the bonsai's fixed frame 18 % faster).
+// Pre-integrated scattering nests its own loop the same way (castRay). Gradient frames, whose
+// shading costs little, were slower nested (benchmarks/README.md, Table 5.4).
 #define VISIBLE_SAMPLE_LOOP 1
 #else
 #define VISIBLE_SAMPLE_LOOP 0
@@ -703,41 +703,53 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #elif PREINTEGRATED && SHADING_SCATTERING
         // Each pass takes the next sample (and its segment) one step early, past empty bricks:
         // one fetch and one classification per sample. (Taken where the sample is used, after
-        // the skip, llvmpipe paid a second fetch and classification at every sample.)
+        // the skip, llvmpipe paid a second fetch and classification at every sample.) The inner
+        // loop takes each ray to its next sample next to a segment that holds medium; the outer
+        // one lights and composites only those (see VISIBLE_SAMPLE_LOOP).
         for (int i = firstStep; i < maxSteps; ++i) {
-            float t = tFirst + float(i) * stepLength;
-            if (t >= span.y) {
-                reachedEnd = true;
-                tEnd = t;
-                break;
-            }
-            vec3 p = ray.origin + t * ray.direction;
-            float value = ahead.w;
-            Segment segment = aheadSegment;
-#if COMBINED_FETCH
-            shadedDifferences = mix(previousDifferences, ahead.xyz, segment.depth);
-            previousDifferences = ahead.xyz;
-#endif
-            // The next sample: one step on, or, where it and this one lie in empty bricks, the
-            // last sample of its brick (which opens the segment to the one after it).
+            bool lightHere = false;
+            Segment segment;
+            vec3 p = vec3(0.0);
             int next = i + 1;
             bool nextLands = false;
-#if EMPTY_SPACE_SKIPPING
-            bool emptyHere = inEmptyBrick(tcOrigin + t * tcDirection);
-            vec3 nextTc = tcOrigin + (tFirst + float(next) * stepLength) * tcDirection;
-            ivec3 nextBrick = brickAt(nextTc);
-            if (emptyHere && texelFetch(occupancy, nextBrick, 0).r == 0.0) {
-                next = max(next, lastStepIn(nextBrick, tFirst));
-                nextLands = true;
-            }
+            for (; i < maxSteps; ++i) {
+                float t = tFirst + float(i) * stepLength;
+                if (t >= span.y) {
+                    reachedEnd = true;
+                    tEnd = t;
+                    break;
+                }
+                p = ray.origin + t * ray.direction;
+                float value = ahead.w;
+                segment = aheadSegment;
+#if COMBINED_FETCH
+                shadedDifferences = mix(previousDifferences, ahead.xyz, segment.depth);
+                previousDifferences = ahead.xyz;
 #endif
-            ahead = sampleVolume(tcOrigin + min(tFirst + float(next) * stepLength, span.y) * tcDirection);
-            // A landing sample's segment starts at itself (the skipped ones were clear).
-            aheadSegment = classifySegment(nextLands ? ahead.w : value, ahead.w);
-            bool lightHere = segment.premultiplied.a > 0.0 || (!nextLands && aheadSegment.premultiplied.a > 0.0);
-            if (lightHere) evaluateLightAt(p);
+                // The next sample: one step on, or, where it and this one lie in empty bricks,
+                // the last sample of its brick (which opens the segment to the one after it).
+                next = i + 1;
+                nextLands = false;
+#if EMPTY_SPACE_SKIPPING
+                bool emptyHere = inEmptyBrick(tcOrigin + t * tcDirection);
+                ivec3 nextBrick = brickAt(tcOrigin + (tFirst + float(next) * stepLength) * tcDirection);
+                if (emptyHere && texelFetch(occupancy, nextBrick, 0).r == 0.0) {
+                    next = max(next, lastStepIn(nextBrick, tFirst));
+                    nextLands = true;
+                }
+#endif
+                ahead = sampleVolume(tcOrigin + min(tFirst + float(next) * stepLength, span.y) * tcDirection);
+                // A landing sample's segment starts at itself (the skipped ones were clear).
+                aheadSegment = classifySegment(nextLands ? ahead.w : value, ahead.w);
+                lightHere = segment.premultiplied.a > 0.0 || (!nextLands && aheadSegment.premultiplied.a > 0.0);
+                if (lightHere) break;
+                passLightOn(false);  // this segment holds nothing to composite
+                i = next - 1;        // the loop adds one
+            }
+            if (!lightHere) break;
+            evaluateLightAt(p);
             compositeSegment(segment, p, stepLength, ray.direction, color, alpha);
-            passLightOn(lightHere && !nextLands);
+            passLightOn(!nextLands);
             i = next - 1;  // the loop adds one
             if (alpha >= earlyTermination) break;
         }
