@@ -177,7 +177,7 @@ vec4 catmullRomWeights(float f) {
 // Written out tap by tap: on llvmpipe a loop over the taps or a branch that skips them where
 // the middle four agree measured 5-10 % slower.
 struct LookupFootprint {
-    ivec2 corner;  // the texel at weights (x, x)
+    ivec2 corner;  // the middle 2x2's first texel, weighted wx.y and wy.y
     vec4 wx, wy;
 };
 

@@ -30,7 +30,7 @@ constexpr int kSweepTile = 32;
 constexpr int kSweepSlabSide = 64;
 // Texels of outsideLight around every slice of the slice texture: where a sweep's lookups reach
 // no farther, one slice per dispatch reads them without testing each tap against the slice's
-// edges (those tests were a seventh of the paper model's sweep on llvmpipe).
+// edges (those tests were an eighth of the paper model's sweep on llvmpipe).
 constexpr int kSlicePadding = 4;
 // Voxels along v each invocation propagates under a directional light on a software rasteriser,
 // sharing their lookups' rows (light_propagation.comp, COLUMN_VOXELS); measured on llvmpipe
