@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <map>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -37,6 +38,18 @@ constexpr int kSlicePadding = 4;
 // (bonsai, interleaved): the sweep 1.07x faster with 4, 1.15x with 8, 1.2x with 16. One on
 // hardware GPUs, which need the invocations (a 256^2 slice in columns of 16 is 4096 of them).
 constexpr int kSoftwareColumnVoxels = 16;
+
+const char* flag(bool on) { return on ? "1" : "0"; }
+
+// The compute program `shader` for `variant`, linked with defines() on first use.
+template <class Variant, class Defines>
+const gl::Program& linkedOnce(std::map<Variant, gl::Program>& programs, const Variant& variant, const char* shader,
+                              Defines defines) {
+    auto found = programs.find(variant);
+    if (found == programs.end())
+        found = programs.emplace(variant, gl::Program::link({{GL_COMPUTE_SHADER, shader}}, defines())).first;
+    return found->second;
+}
 
 // What bounds how far a voxel's previous-slice lookups reach.
 struct LookupGeometry {
@@ -257,23 +270,17 @@ void LightVolumePass::setDoublingUniforms(const gl::Program& p, const DoublingSc
 LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass), m_softwareDevice(gl::currentDeviceIsSoftware()) {}
 
 const gl::Program& LightVolumePass::program(const PropagationVariant& v) {
-    auto found = m_programs.find(v);
-    if (found == m_programs.end()) {
-        const auto flag = [](bool on) { return on ? "1" : "0"; };
-        found = m_programs
-                    .emplace(v, gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_propagation.comp"}},
-                                                  {{"EYE_PASS", flag(m_eyePass)},
-                                                   {"CHROMATICITY", flag(v.chromaticity)},
-                                                   {"SLAB", flag(v.slab)},
-                                                   {"PADDED_LOOKUPS", flag(v.paddedLookups)},
-                                                   {"COLUMN_VOXELS", std::to_string(v.columnVoxels)},
-                                                   {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)},
-                                                   {"TILE", std::to_string(kSweepTile)},
-                                                   {"SLAB_SIDE", std::to_string(kSweepSlabSide)},
-                                                   {"SLICE_PADDING", std::to_string(kSlicePadding)}}))
-                    .first;
-    }
-    return found->second;
+    return linkedOnce(m_programs, v, "volume/light_propagation.comp", [&] {
+        return ShaderDefines{{"EYE_PASS", flag(m_eyePass)},
+                                         {"CHROMATICITY", flag(v.chromaticity)},
+                                         {"SLAB", flag(v.slab)},
+                                         {"PADDED_LOOKUPS", flag(v.paddedLookups)},
+                                         {"COLUMN_VOXELS", std::to_string(v.columnVoxels)},
+                                         {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)},
+                                         {"TILE", std::to_string(kSweepTile)},
+                                         {"SLAB_SIDE", std::to_string(kSweepSlabSide)},
+                                         {"SLICE_PADDING", std::to_string(kSlicePadding)}};
+    });
 }
 
 void LightVolumePass::run(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
@@ -348,19 +355,13 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
 }
 
 const gl::Program& LightVolumePass::doublingProgram(const DoublingVariant& v) {
-    auto found = m_doublingPrograms.find(v);
-    if (found == m_doublingPrograms.end()) {
-        const auto flag = [](bool on) { return on ? "1" : "0"; };
-        found = m_doublingPrograms
-                    .emplace(v, gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_doubling.comp"}},
-                                                  {{"GRID_COLOUR", flag(v.colourGrid)},
-                                                   {"LEVEL0", flag(v.firstLevel)},
-                                                   {"LAST", flag(v.last)},
-                                                   {"CHROMATICITY", flag(v.chromaticity)},
-                                                   {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)}}))
-                    .first;
-    }
-    return found->second;
+    return linkedOnce(m_doublingPrograms, v, "volume/light_doubling.comp", [&] {
+        return ShaderDefines{{"GRID_COLOUR", flag(v.colourGrid)},
+                                         {"LEVEL0", flag(v.firstLevel)},
+                                         {"LAST", flag(v.last)},
+                                         {"CHROMATICITY", flag(v.chromaticity)},
+                                         {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)}};
+    });
 }
 
 void LightVolumePass::doubleRays(const LightVolumeMedium& medium, const Light& light, const glm::mat4& model,
