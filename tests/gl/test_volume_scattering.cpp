@@ -185,13 +185,14 @@ TEST_CASE("any number of slices per dispatch gives the same light volume", "[gl]
     };
     for (const Variant& v : {Variant{&blobs, true, false}, Variant{&blobs, false, true}, Variant{&deep, true, true}}) {
         for (const SweepCase& c : cases) {
-            const auto run = [&](int maxSlices, int* slicesUsed = nullptr) {
+            const auto run = [&](int maxSlices, detail::LightVolumePass::SweepLayout* layout = nullptr) {
                 detail::LightVolumeSettings settings{.resolutionScale = c.scale, .chromaticity = v.chromaticity};
                 settings.maxSlicesPerDispatch = maxSlices;
-                return propagate(*v.volume, tf, c.light, settings, {.on = v.skipping}, slicesUsed);
+                return propagate(*v.volume, tf, c.light, settings, {.on = v.skipping}, layout);
             };
-            int slicesUsed = 0;
-            const LightVolumeReadback one = run(1), two = run(2), many = run(16, &slicesUsed);
+            detail::LightVolumePass::SweepLayout oneLayout, manyLayout;
+            const LightVolumeReadback one = run(1, &oneLayout), two = run(2), many = run(16, &manyLayout);
+            const int slicesUsed = manyLayout.slicesPerPass;
             REQUIRE(one.texels.size() == many.texels.size());
             size_t differing = 0, shadowed = 0;
             for (size_t i = 0; i < many.texels.size(); ++i) {
@@ -213,6 +214,11 @@ TEST_CASE("any number of slices per dispatch gives the same light volume", "[gl]
             // has six unbounded sweeps: both fall back to one slice per dispatch.
             const bool fallsBack = &c == &cases[1] || &c == &cases[2];
             CHECK((fallsBack ? slicesUsed == 1 : slicesUsed >= 2));
+            // Software rasterisers propagate a directional light's voxels in columns that share
+            // their lookups' rows (COLUMN_VOXELS), which the comparison with the slabs covers; the
+            // nearly axial light's lookups reach past the slices' padding, so it takes one voxel.
+            const bool columns = softwareDevice && std::holds_alternative<DirectionalLight>(c.light) && !fallsBack;
+            CHECK((oneLayout.columnVoxels > 1) == columns);
         }
     }
     gl.requireNoErrors();

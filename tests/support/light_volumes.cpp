@@ -40,8 +40,8 @@ const SweepCase kSweepCases[4] = {{DirectionalLight{.direction = {0.8f, -0.5f, 0
                                   {DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 0.35f}};
 
 LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, const Light& light,
-                              detail::LightVolumeSettings settings, Skipping skipping, int* slicesPerDispatch,
-                              const VolumeClip* clip) {
+                              detail::LightVolumeSettings settings, Skipping skipping,
+                              detail::LightVolumePass::SweepLayout* layout, const VolumeClip* clip) {
     const detail::GpuVolume gpu = detail::GpuVolume::upload(volume);
     const std::vector<glm::vec4> table = tf.table(256);
     gl::Texture tfTexture = gl::Texture::create2D(GL_RGBA32F, 256, 1, "test transfer function");
@@ -59,7 +59,7 @@ LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, 
               .occupiedNeighbourhoods = occupancy ? &occupancy->occupiedNeighbourhoods() : nullptr,
               .clip = clip},
              light, glm::mat4(1.0f), settings, output);
-    if (slicesPerDispatch) *slicesPerDispatch = pass.lastLayout().slicesPerPass;
+    if (layout) *layout = pass.lastLayout();
     LightVolumeReadback r{output.size(), std::vector<glm::vec4>(static_cast<size_t>(output.size().x * output.size().y * output.size().z))};
     glGetTextureImage(output.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(r.texels.size() * sizeof(glm::vec4)),
                       r.texels.data());

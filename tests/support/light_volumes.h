@@ -51,9 +51,9 @@ struct SweepCase {
 extern const SweepCase kSweepCases[4];
 
 /// Runs the light-volume pass alone on `volume` under `tf` and reads the light volume back;
-/// `slicesPerDispatch`, if given, receives the sweep's most slices per dispatch.
+/// `layout`, if given, receives how the pass laid out its dispatches.
 LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, const Light& light,
                               detail::LightVolumeSettings settings = {}, Skipping skipping = {},
-                              int* slicesPerDispatch = nullptr, const VolumeClip* clip = nullptr);
+                              detail::LightVolumePass::SweepLayout* layout = nullptr, const VolumeClip* clip = nullptr);
 
 }  // namespace sss::test::light_volumes
