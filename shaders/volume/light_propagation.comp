@@ -337,6 +337,12 @@ vec4 propagateVoxel(ivec2 uv, VoxelLight ray, vec4 centre, bool store) {
     return light;
 }
 
+// Stores the light leaving slice texel uv for the next dispatch's lookups, rounded to half floats
+// as the slabs' shared memory rounds, so the next slice reads what theirs would.
+void storeLeaving(ivec2 uv, uvec2 halves) {
+    imageStore(currentSlices, ivec3(uv + SLICE_PADDING, 2 * sweep + 1 - pass % 2), unpackLight(halves));
+}
+
 vec4 propagateVoxel(ivec2 uv, int w, bool store) {
     VoxelLight ray = voxelLight(uv, w);
     return propagateVoxel(uv, ray, arrivingAlongRay(uv, ray.shift), store);
@@ -378,9 +384,7 @@ void main() {
             ivec2 uv = regionOrigin + ivec2(index % side, index / side);
             bool inTile = all(greaterThanEqual(uv, tileOrigin)) && all(lessThan(uv, tileOrigin + TILE));
             leaving[i] = packLight(inSlice(uv) ? propagateVoxel(uv, firstW + j, inTile) : outsideLight);
-            // Stored already rounded, so the texture holds exactly what shared memory does.
-            if (lastSlice && inTile && inSlice(uv))
-                imageStore(currentSlices, ivec3(uv + SLICE_PADDING, 2 * sweep + 1 - pass % 2), unpackLight(leaving[i]));
+            if (lastSlice && inTile && inSlice(uv)) storeLeaving(uv, leaving[i]);
         }
         barrier();  // every lookup into the previous slice is done
         for (int i = 0; i < kItems; ++i) {
@@ -403,8 +407,7 @@ void main() {
     for (int k = 0; k < COLUMN_VOXELS; ++k) {
         ivec2 uv = first + ivec2(0, k);
         if (uv.y >= dims.y) break;
-        vec4 leaving = propagateVoxel(uv, voxelLight(uv, w), centres[k], true);
-        imageStore(currentSlices, ivec3(uv + SLICE_PADDING, 2 * sweep + 1 - pass % 2), unpackLight(packLight(leaving)));
+        storeLeaving(uv, packLight(propagateVoxel(uv, voxelLight(uv, w), centres[k], true)));
     }
 }
 #else
@@ -414,8 +417,6 @@ void main() {
     ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
     int w = firstSlice[sweep] + pass;
     if (uv.x >= dims.x || uv.y >= dims.y || w >= dims.z) return;
-    // Rounded as the slabs round, so the next slice's lookups read what theirs do.
-    imageStore(currentSlices, ivec3(uv + SLICE_PADDING, 2 * sweep + 1 - pass % 2),
-               unpackLight(packLight(propagateVoxel(uv, w, true))));
+    storeLeaving(uv, packLight(propagateVoxel(uv, w, true)));
 }
 #endif

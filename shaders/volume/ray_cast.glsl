@@ -660,8 +660,8 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
         // Each sample stands for the segment from the previous sample to it; the stretches before
         // the first sample and after the last are classified by one value each (outside the
         // loop: inside it, llvmpipe ran the whole ray twice as slowly). `previous` is the value of
-        // the last sample taken; segmentOpen: that sample lay outside empty bricks, so the
-        // segment from it may hold medium.
+        // the last sample taken; segmentOpen (the one-loop form): that sample lay outside empty
+        // bricks, so the segment from it may hold medium.
         float firstEnd = min(tFirst, span.y);
         vec3 firstPoint = ray.origin + firstEnd * ray.direction;
         vec4 firstSample = sampleVolume(toTexture(firstPoint));
@@ -682,8 +682,10 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #if SHADING_SCATTERING
         passLightOn(firstLit);
 #endif
+#if !SHADING_SCATTERING
         bool segmentOpen = true;
         bool landing = false;  // the loop has just skipped bricks and lands on their last sample
+#endif
         const int firstStep = 1;
         bool reachedEnd = false;  // the loop left the ray at its end (not by early termination)
         float tEnd = 0.0;         // where: the first sample position at or past span.y
