@@ -12,7 +12,9 @@
 // with integer atomics and stochastic rounding: unbiased, and the same sums whatever the order of
 // the adds, so a cache does not depend on how the GPU schedules its photons. Slots per cell:
 // fluence r, g, b, then the flux vector of r, of g and of b (x, y, z each), then the mean
-// channel's second moment xx - 1/3, yy - 1/3, xy, xz, yz.
+// channel's second moment xx - 1/3, yy - 1/3, xy, xz, yz, then the fluence of light scattered
+// once (r, g, b) and the same times the direct light E at the voxel (r, g, b): the moments of
+// the once-scattered fluence's regression on E (fluence_resolve.comp).
 //
 // Photons are resumable, as the path tracer's paths (path_trace.comp says why): a dispatch
 // spends at most `stepsPerDispatch` units per invocation and keeps each photon's state in
@@ -22,6 +24,7 @@
 #include "volume/clip.glsl"
 #include "common/spot_cone.glsl"
 #include "volume/medium_walk.glsl"
+#include "volume/direct_light.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -47,7 +50,7 @@ uniform vec2 lightSpotCosines[MAX_LIGHTS];
 const int kRouletteStartBounce = 3;  // as the path tracer
 const uint kMaxStepsPerPhoton = 1u << 24;
 const int kWalkStepsPerEvent = 16;
-const int kSlotsPerCell = 17;
+const int kSlotsPerCell = 23;
 
 // std430: 80 bytes.
 struct PhotonState {
@@ -89,7 +92,8 @@ void addFixed(uint slot, float quanta) {
 void deposit(vec3 p) {
     vec3 tc = (p - boxMin) / (boxMax - boxMin);
     ivec3 dims = textureSize(volumeTexture, 0);
-    float weight = voxelExtinction(clamp(ivec3(tc * vec3(dims)), ivec3(0), dims - 1)) / majorant;
+    ivec3 voxel = clamp(ivec3(tc * vec3(dims)), ivec3(0), dims - 1);
+    float weight = voxelExtinction(voxel) / majorant;
     if (!(weight > 0.0)) return;
     ivec3 c = clamp(ivec3(tc * vec3(cacheCells)), ivec3(0), cacheCells - 1);
     uint base = uint((c.z * cacheCells.y + c.y) * cacheCells.x + c.x) * uint(kSlotsPerCell);
@@ -106,6 +110,15 @@ void deposit(vec3 p) {
     addFixed(base + 14u, mean * d.x * d.y);
     addFixed(base + 15u, mean * d.x * d.z);
     addFixed(base + 16u, mean * d.y * d.z);
+    if (bounce == 1) {
+        // Light scattered once, and the same times the direct light at the voxel's centre (the
+        // density pass's moments take E there too).
+        float direct = directLightAt((vec3(voxel) + 0.5) / vec3(dims));
+        for (int channel = 0; channel < 3; ++channel) {
+            addFixed(base + uint(17 + channel), q[channel]);
+            addFixed(base + uint(20 + channel), q[channel] * direct);
+        }
+    }
 }
 
 // One tentative collision or brick crossing of the photon's walk.

@@ -261,20 +261,38 @@ uniform sampler3D cacheFluence;
 uniform sampler3D cacheFlux;
 uniform sampler3D cacheFluxLengths;
 uniform sampler3D cacheSecondMoment;
+uniform sampler3D cacheDirectSlope;           // w B (rgb) and w mean E (FluenceCache::directSlope)
+uniform float cacheDirectWeight[MAX_LIGHTS];  // volume/direct_light.glsl's weights
 uniform float cacheLevel;  // coarser while the cache refines (FluenceCache::readLevel)
 vec3 cacheViewDirection;  // model space, towards the viewer (set in castRay)
 
-vec3 cachedInScattering(vec3 tc) {
+const float kDirectBeyondLargest = 2.0;
+
+// direct: the light arriving unscattered at the sample, as volume/direct_light.glsl weighs it.
+vec3 cachedInScattering(vec3 tc, float direct) {
     vec4 weighted = textureLod(cacheFluence, tc, cacheLevel);
     if (!(weighted.a > 0.0)) return vec3(0.0);
     vec3 phi = weighted.rgb / weighted.a;
+    // Within a cell, the light scattered once follows the direct light that scatters it: the
+    // cell's slope (FluenceCache::directSlope) moves the sample's fluence by its direct light's
+    // difference from the cell's mean. Within a mean free path of a lit surface that fluence
+    // levels off while the direct light keeps rising, so the direct light is taken at most
+    // kDirectBeyondLargest times the largest a voxel centre of the cell has
+    // (docs/multiple-scattering.md). The slope needs more photons than the mean: it fades in over
+    // the last factor of 8 of the photon budget (levels 1 to 0); and however noisy, it keeps the
+    // fluence within 0 and 3 times the cell's mean.
+    vec4 slope = textureLod(cacheDirectSlope, tc, cacheLevel) / weighted.a;
+    vec4 lengthsAndLargest = textureLod(cacheFluxLengths, tc, cacheLevel);
+    float slopeShare = clamp(1.0 - cacheLevel, 0.0, 1.0);
+    float regressed = min(direct, kDirectBeyondLargest * lengthsAndLargest.a / weighted.a);
+    vec3 phiHere = clamp(phi + slopeShare * slope.rgb * (regressed - slope.a), vec3(0.0), 3.0 * phi);
     vec4 fluxAndYz = textureLod(cacheFlux, tc, cacheLevel);
     vec3 flux = fluxAndYz.xyz;
     float fluxLength = length(flux);
     // Each channel's flux along the mean channel's: its share of the channels' flux lengths
     // times the mean vector's length. Noise (few photons, coarse levels' averages) shortens the
     // mean vector but lengthens each cell's own, which alone gave near-delta lobes.
-    vec3 lengths = textureLod(cacheFluxLengths, tc, cacheLevel).rgb;
+    vec3 lengths = lengthsAndLargest.rgb;
     float meanLength = (lengths.r + lengths.g + lengths.b) / 3.0;
     vec3 k = meanLength > 0.0 ? min(lengths * (fluxLength / meanLength) / max(weighted.rgb, vec3(1e-30)), vec3(0.99))
                               : vec3(0.0);
@@ -294,7 +312,7 @@ vec3 cachedInScattering(vec3 tc) {
     float measured = meanPhi > 0.0 ? 1.5 * vMv / meanPhi : 0.0;
     float p2 = 1.5 * cosTheta * cosTheta - 0.5;
     lobe += (5.0 / 12.5663706) * phaseG * phaseG * (measured - k * k * p2);
-    return phi * max(lobe, vec3(0.0));
+    return phiHere * max(lobe, vec3(0.0));
 }
 #endif
 
@@ -452,6 +470,9 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     SurfaceNormal surface = gradientNormal(tc, viewerInGradientSpace);
 #endif
     vec3 lit = ambientStrength * color;
+#if SCATTERING_CACHE
+    float direct = 0.0;  // the light arriving unscattered (cachedInScattering)
+#endif
     for (int i = 0; i < LIGHT_COUNT; ++i) {
 #if DIRECTIONAL_LIGHTS_ONLY
         // The light's own (lightDirectionAt's test of the light's kind, though the same for every
@@ -483,6 +504,9 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
         float d = 1.0 + phaseG * phaseG - 2.0 * phaseG * cosTheta;
         float phase = (1.0 - phaseG * phaseG) / (12.5663706 * d * sqrt(d));
         lit += color * radiance * (light.a * phase);
+#if SCATTERING_CACHE
+        direct += cacheDirectWeight[i] * light.a;
+#endif
 #else
         lit += diffuseStrength * color * radiance * light.rgb;
 #endif
@@ -496,7 +520,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     }
 #if SHADING_SCATTERING
 #if SCATTERING_CACHE
-    lit += color * cachedInScattering(tc);
+    lit += color * cachedInScattering(tc, direct);
 #endif
 #if EYE_PASS
     lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;  // the paper's model only

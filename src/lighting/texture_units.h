@@ -39,6 +39,7 @@ inline constexpr int kCacheFluence = 17;
 inline constexpr int kCacheFlux = 18;
 inline constexpr int kCacheFluxLengths = 19;
 inline constexpr int kCacheSecondMoment = 20;
+inline constexpr int kCacheDirectSlope = 21;
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

@@ -3,6 +3,7 @@
 #include "core/light_geometry.h"
 #include "gl/device.h"
 #include "lighting/light_uniforms.h"
+#include "lighting/texture_units.h"
 #include "sss/log.h"
 #include "volume/clip_uniforms.h"
 
@@ -21,7 +22,7 @@
 namespace sss::detail {
 
 namespace {
-constexpr int kSlotsPerCell = 17;            // fluence_photons.comp
+constexpr int kSlotsPerCell = 23;            // fluence_photons.comp
 constexpr std::size_t kPhotonStateBytes = 80;
 constexpr int kMaxPhotonSlots = 1 << 15;     // photons in flight at once (2.5 MiB of state)
 constexpr int kStepsPerDispatch = 1024;      // as the path tracer: under llvmpipe's loop limit
@@ -90,36 +91,40 @@ FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
                                         {{"MAX_LIGHTS", std::to_string(kMaxLights)},
                                          {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
       m_densityProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_density.comp"}},
-                                         {{"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
+                                         {{"MAX_LIGHTS", std::to_string(kMaxLights)},
+                                          {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
       m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})) {
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");
     m_resumable = gl::currentDeviceIsSoftware();
 }
 
-void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameMedium) {
+void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells) {
     const std::size_t count = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
     if (cells != m_cells) {
-        sameMedium = false;
         m_sums = gl::Buffer::create(count * kSlotsPerCell * 2 * sizeof(std::uint32_t), nullptr, 0, "fluence-cache sums");
         m_weights = gl::Buffer::create(count * sizeof(float), nullptr, 0, "fluence-cache cell weights");
+        m_directMoments = gl::Buffer::create(count * 4 * sizeof(float), nullptr, 0, "fluence-cache direct-light moments");
         m_levels = std::min(kMaxLevels, 1 + static_cast<int>(std::log2(static_cast<float>(glm::compMax(cells)))));
         m_fluence = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache", m_levels);
         m_flux = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux", m_levels);
         m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths", m_levels);
         m_secondMoment = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache second moment", m_levels);
-        for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+        m_directSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache direct-light slope", m_levels);
+        for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
             t->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
         m_cells = cells;
     }
     const std::uint32_t zero = 0;
     glClearNamedBufferData(m_sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
         for (int level = 0; level < m_levels; ++level) glClearTexImage(t->id(), level, GL_RGBA, GL_FLOAT, black);
     m_photons = 0;
     m_cellVolume = glm::compMul(in.volume.box.size()) / static_cast<float>(count);
-    if (!sameMedium) computeWeights(in);
+    // The weights depend on the medium alone, but the same pass takes the direct light's moments,
+    // which change with the lights.
+    computeWeights(in);
 }
 
 void FluenceCache::computeWeights(const FluenceCacheInputs& in) {
@@ -128,15 +133,45 @@ void FluenceCache::computeWeights(const FluenceCacheInputs& in) {
     const glm::vec3 voxelSize = in.volume.box.size() / glm::vec3(in.volume.dims);
     p.set("voxelVolume", voxelSize.x * voxelSize.y * voxelSize.z);
     p.set("cacheCells", m_cells);
+    bindDirectLight(p, in);
     in.volume.texture.bind(0);
     in.transferFunction.bind(1);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_directMoments.id());
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
                       static_cast<GLuint>((m_cells.z + 3) / 4));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
+}
+
+std::vector<float> directLightWeights(const std::vector<Light>& lights, const glm::mat4& model, const Bounds& box) {
+    const glm::vec3 centre(model * glm::vec4(box.center(), 1.0f));
+    std::vector<float> weights;
+    for (const Light& light : lights) {
+        const glm::vec3 radiance = lightRadiance(light);
+        float weight = (radiance.x + radiance.y + radiance.z) / 3.0f;
+        if (const auto position = lightPosition(light)) {
+            const glm::vec3 offset = *position - centre;
+            weight /= std::max(glm::dot(offset, offset), 1e-8f);
+        }
+        weights.push_back(weight);
+    }
+    return weights;
+}
+
+void FluenceCache::bindDirectLight(const gl::Program& p, const FluenceCacheInputs& in) const {
+    const std::vector<float> weights = directLightWeights(in.lights, in.model, in.volume.box);
+    const int count = in.lightVolumes ? static_cast<int>(std::min(in.lightVolumes->size(), weights.size())) : 0;
+    for (int i = 0; i < count; ++i) {
+        const std::string index = "[" + std::to_string(i) + "]";
+        p.set("lightVolumes" + index, units::kLightVolumes + i);
+        (*in.lightVolumes)[static_cast<std::size_t>(i)].bind(static_cast<GLuint>(units::kLightVolumes + i));
+        p.set("directLightWeight" + index, weights[static_cast<std::size_t>(i)]);
+    }
+    p.set("directLightCount", count);
 }
 
 void FluenceCache::setMediumUniforms(const gl::Program& p, const FluenceCacheInputs& in) const {
@@ -197,6 +232,7 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons) {
     p.set("photonsPerInvocation", perSlot);
     p.set("firstPhoton", static_cast<unsigned>(m_photons));
     p.set("stepsPerDispatch", m_resumable ? kStepsPerDispatch : std::numeric_limits<int>::max());
+    bindDirectLight(p, in);
     in.volume.texture.bind(0);
     in.transferFunction.bind(1);
     in.majorants.bind(2);
@@ -245,18 +281,22 @@ void FluenceCache::resolve() {
     p.set("cellVolume", m_cellVolume);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_sums.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_directMoments.id());
     m_fluence.bindImage(0, GL_WRITE_ONLY);
     m_flux.bindImage(1, GL_WRITE_ONLY);
     m_fluxLengths.bindImage(2, GL_WRITE_ONLY);
     m_secondMoment.bindImage(3, GL_WRITE_ONLY);
+    m_directSlope.bindImage(4, GL_WRITE_ONLY);
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
                       static_cast<GLuint>((m_cells.z + 3) / 4));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by the mipmaps too
-    for (GLuint unit = 0; unit < 4; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
+    for (GLuint unit = 0; unit < 5; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     // Every texture holds weighted sums (premultiplied by the cell's weight), so a level's box
     // filter gives its larger cells' weighted means.
-    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment}) glGenerateTextureMipmap(t->id());
+    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
+        glGenerateTextureMipmap(t->id());
 }
 
 }  // namespace sss::detail

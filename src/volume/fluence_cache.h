@@ -4,7 +4,10 @@
 // (rgb) and its flux vector per channel (the first angular moment), in model space. The ray
 // caster adds what a sample scatters of it towards the eye to the light volume's single
 // scattering: the radiance taken as a Henyey-Greenstein lobe about the flux with the same first
-// moment, convolved with the phase function (docs/multiple-scattering.md).
+// moment, convolved with the phase function (docs/multiple-scattering.md). Within a cell, the
+// light scattered once is regressed on the direct light (the light volumes), which the eye knows
+// at every sample: so a sample in the first mean free path of a lit dense surface reads more of it
+// than the cell's mean over its depth.
 //
 // It is built by photons from the lights (shaders/volume/fluence_photons.comp): the path
 // tracer's medium, delta tracking and scattering, with the collision estimator of each cell's
@@ -37,7 +40,14 @@ struct FluenceCacheInputs {
     float anisotropy = 0.5f;           ///< Henyey-Greenstein g
     int maxBounces = 100000;           ///< scatterings in all, the eye's included
     const VolumeClip* clip = nullptr;  ///< cut matter casts no shadows unless the clip says so
+    /// One per light, as the eye reads them: the direct light the cells' fluence is regressed on.
+    const std::vector<gl::Texture>* lightVolumes = nullptr;
 };
+
+/// Each light's weight in the direct light the cache regresses its once-scattered fluence on
+/// (shaders/volume/direct_light.glsl): its mean radiance channel, and for point and spot lights
+/// the inverse square of their distance from the box's centre (world units).
+std::vector<float> directLightWeights(const std::vector<Light>& lights, const glm::mat4& model, const Bounds& box);
 
 /// Cells of the cache along each axis: `resolution` along the box's longest side, the others in
 /// proportion, at most one per voxel and at most 32 voxels wide.
@@ -47,10 +57,9 @@ class FluenceCache {
 public:
     explicit FluenceCache(VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear);
     VolumeReconstruction reconstruction() const { return m_reconstruction; }
-    /// Empties the cache for new inputs, at `cells` cells. `sameMedium`: the volume, transfer
-    /// function, model transform and clip are those of the last restart (only the lights or the
-    /// scattering changed), so the cells' weights are kept.
-    void restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameMedium);
+    /// Empties the cache for new inputs, at `cells` cells, and takes each cell's weight and
+    /// direct-light moments from the medium and the light volumes.
+    void restart(const FluenceCacheInputs& in, glm::ivec3 cells);
     /// Traces `photons` more photons into the sums and updates the textures to their mean.
     void add(const FluenceCacheInputs& in, int photons);
 
@@ -66,6 +75,9 @@ public:
     /// Per cell: the mean channel's traceless second angular moment xx - 1/3, yy - 1/3, xy, xz
     /// times the weight, model space (RGBA32F); yz is flux()'s alpha.
     const gl::Texture& secondMoment() const { return m_secondMoment; }
+    /// Per cell: rgb slope of the fluence against the direct light times the weight, and the
+    /// cell's mean direct light times the weight (RGBA32F; fluence_resolve.comp).
+    const gl::Texture& directSlope() const { return m_directSlope; }
     /// The mip level to read while the cache refines towards `budget` photons: each level up has
     /// 8 times the photons per cell, so log8(budget / photons) reads about the noise the finest
     /// level will have once refined (0 once it is; at most the coarsest level).
@@ -79,7 +91,8 @@ public:
 private:
     void setUniforms(const FluenceCacheInputs& in);
     void setMediumUniforms(const gl::Program& p, const FluenceCacheInputs& in) const;
-    /// Each cell's integral of the weight s (fluence_density.comp).
+    void bindDirectLight(const gl::Program& p, const FluenceCacheInputs& in) const;
+    /// Each cell's integral of the weight s, and the direct light's moments (fluence_density.comp).
     void computeWeights(const FluenceCacheInputs& in);
     void dispatchPhotons(int invocations);
     void resolve();
@@ -91,9 +104,10 @@ private:
     glm::ivec3 m_cells{0};
     gl::Buffer m_sums;            // 17 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
+    gl::Buffer m_directMoments;   // per cell, the integrals of s E and s E^2 (fluence_density.comp)
     gl::Buffer m_photonStates;
     gl::Buffer m_status;
-    gl::Texture m_fluence, m_flux, m_fluxLengths, m_secondMoment;
+    gl::Texture m_fluence, m_flux, m_fluxLengths, m_secondMoment, m_directSlope;
     std::uint64_t m_photons = 0;
     float m_cellVolume = 1.0f;    // model units^3
     float m_powerUnit = 0.0f;     // power a photon of weight 1 carries (see setUniforms)

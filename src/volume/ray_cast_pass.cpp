@@ -252,11 +252,15 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
             p.set("cacheFlux", units::kCacheFlux);
             p.set("cacheFluxLengths", units::kCacheFluxLengths);
             p.set("cacheSecondMoment", units::kCacheSecondMoment);
+            p.set("cacheDirectSlope", units::kCacheDirectSlope);
             p.set("cacheLevel", in.cacheLevel);
             in.cache->fluence().bind(units::kCacheFluence);
             in.cache->flux().bind(units::kCacheFlux);
             in.cache->fluxLengths().bind(units::kCacheFluxLengths);
             in.cache->secondMoment().bind(units::kCacheSecondMoment);
+            in.cache->directSlope().bind(units::kCacheDirectSlope);
+            const std::vector<float> weights = directLightWeights(in.lights, model, in.volume.box);
+            for (size_t i = 0; i < weights.size(); ++i) p.set("cacheDirectWeight[" + std::to_string(i) + "]", weights[i]);
         }
         // Reads the light volume this many texels towards the light and carries the light back
         // through the data (shaders/volume/ray_cast.glsl, shade()).

@@ -76,6 +76,7 @@ struct FluenceCacheKey {
     VolumeClip clip;
     glm::ivec3 cells{0};
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
+    float lightVolumeScale = 0.0f;  // the cache regresses on the light volumes (FluenceCache)
     bool operator==(const FluenceCacheKey&) const = default;
 };
 
@@ -217,7 +218,8 @@ struct VolumeScatteringRenderer::Impl {
     void updateFluenceCache() {
         const glm::ivec3 cells = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution);
         FluenceCacheKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
-                            model, options.anisotropy, options.maxBounces, clip, cells, options.reconstruction};
+                            model, options.anisotropy, options.maxBounces, clip, cells, options.reconstruction,
+                            lightVolumeScaleInUse};
         const auto photons = static_cast<std::uint64_t>(options.cachePhotons);
         if (fluenceKey == key && fluenceCache->photons() >= photons) return;  // refined: nothing to trace
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
@@ -233,13 +235,10 @@ struct VolumeScatteringRenderer::Impl {
                                                 .lights = lights,
                                                 .anisotropy = options.anisotropy,
                                                 .maxBounces = options.maxBounces,
-                                                .clip = clipOrNull()};
+                                                .clip = clipOrNull(),
+                                                .lightVolumes = &lightVolumes};
         if (fluenceKey != key) {
-            const auto medium = [](const FluenceCacheKey& k) {
-                return std::tie(k.volumeGeneration, k.transferFunctionRevision, k.transferFunctionEntries, k.model, k.clip,
-                                k.cells, k.reconstruction);
-            };
-            fluenceCache->restart(inputs, cells, fluenceKey && medium(*fluenceKey) == medium(key));
+            fluenceCache->restart(inputs, cells);
             fluenceKey = std::move(key);
         }
         const std::uint64_t left = photons - std::min(photons, fluenceCache->photons());
