@@ -37,7 +37,7 @@ void main() {
                 float s = voxelExtinction(ivec3(x, y, z)) * overlap.x * overlap.y * overlap.z;
                 sum += s;
                 if (s > 0.0) {
-                    float e = directLightAt((v + 0.5) / vec3(dims));
+                    float e = directLightAtVoxel(ivec3(x, y, z), dims);
                     direct += s * vec2(e, e * e);
                     largest = max(largest, e);
                 }

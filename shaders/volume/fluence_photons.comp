@@ -113,7 +113,7 @@ void deposit(vec3 p) {
     if (bounce == 1) {
         // Light scattered once, and the same times the direct light at the voxel's centre (the
         // density pass's moments take E there too).
-        float direct = directLightAt((vec3(voxel) + 0.5) / vec3(dims));
+        float direct = directLightAtVoxel(voxel, dims);
         for (int channel = 0; channel < 3; ++channel) {
             addFixed(base + uint(17 + channel), q[channel]);
             addFixed(base + uint(20 + channel), q[channel] * direct);

@@ -38,6 +38,11 @@ constexpr int kMaxLevels = 4;
 
 float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
+// The light volumes the direct light sums (one per light; none before they exist).
+int directLightCount(const FluenceCacheInputs& in) {
+    return in.lightVolumes ? static_cast<int>(std::min(in.lightVolumes->size(), in.lights.size())) : 0;
+}
+
 // A light as photons leave it, in model space.
 struct Emitter {
     glm::vec4 modelVector;  ///< w 0: unit direction towards the light; w 1: position
@@ -87,19 +92,24 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution)
 
 FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     : m_reconstruction(reconstruction),
-      m_photonProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_photons.comp"}},
-                                        {{"MAX_LIGHTS", std::to_string(kMaxLights)},
-                                         {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
-      m_densityProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_density.comp"}},
-                                         {{"MAX_LIGHTS", std::to_string(kMaxLights)},
-                                          {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
       m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})) {
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");
     m_resumable = gl::currentDeviceIsSoftware();
 }
 
+void FluenceCache::linkPrograms(int directLights) {
+    if (directLights == m_directLights) return;
+    const detail::ShaderDefines defines{{"MAX_LIGHTS", std::to_string(kMaxLights)},
+                              {"DIRECT_LIGHTS", std::to_string(directLights)},
+                              {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)}};
+    m_photonProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_photons.comp"}}, defines);
+    m_densityProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_density.comp"}}, defines);
+    m_directLights = directLights;
+}
+
 void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells) {
+    linkPrograms(directLightCount(in));
     const std::size_t count = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
     if (cells != m_cells) {
         m_sums = gl::Buffer::create(count * kSlotsPerCell * 2 * sizeof(std::uint32_t), nullptr, 0, "fluence-cache sums");
@@ -164,14 +174,12 @@ std::vector<float> directLightWeights(const std::vector<Light>& lights, const gl
 
 void FluenceCache::bindDirectLight(const gl::Program& p, const FluenceCacheInputs& in) const {
     const std::vector<float> weights = directLightWeights(in.lights, in.model, in.volume.box);
-    const int count = in.lightVolumes ? static_cast<int>(std::min(in.lightVolumes->size(), weights.size())) : 0;
-    for (int i = 0; i < count; ++i) {
+    for (int i = 0; i < m_directLights; ++i) {
         const std::string index = "[" + std::to_string(i) + "]";
         p.set("lightVolumes" + index, units::kLightVolumes + i);
         (*in.lightVolumes)[static_cast<std::size_t>(i)].bind(static_cast<GLuint>(units::kLightVolumes + i));
         p.set("directLightWeight" + index, weights[static_cast<std::size_t>(i)]);
     }
-    p.set("directLightCount", count);
 }
 
 void FluenceCache::setMediumUniforms(const gl::Program& p, const FluenceCacheInputs& in) const {
@@ -221,6 +229,7 @@ void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
 
 void FluenceCache::add(const FluenceCacheInputs& in, int photons) {
     if (photons <= 0 || m_cells.x == 0) return;
+    linkPrograms(directLightCount(in));
     setUniforms(in);
     const gl::Program& p = m_photonProgram;
     const int slots = std::min(photons, kMaxPhotonSlots);

@@ -92,6 +92,9 @@ private:
     void setUniforms(const FluenceCacheInputs& in);
     void setMediumUniforms(const gl::Program& p, const FluenceCacheInputs& in) const;
     void bindDirectLight(const gl::Program& p, const FluenceCacheInputs& in) const;
+    /// (Re)links the photon and density programs for `directLights` light volumes (a
+    /// compile-time count: shaders/volume/direct_light.glsl).
+    void linkPrograms(int directLights);
     /// Each cell's integral of the weight s, and the direct light's moments (fluence_density.comp).
     void computeWeights(const FluenceCacheInputs& in);
     void dispatchPhotons(int invocations);
@@ -100,6 +103,7 @@ private:
     VolumeReconstruction m_reconstruction;
     gl::Program m_photonProgram;
     gl::Program m_densityProgram;
+    int m_directLights = -1;      // what the two programs above were linked for
     gl::Program m_resolveProgram;
     glm::ivec3 m_cells{0};
     gl::Buffer m_sums;            // 17 slots per cell, 64-bit fixed point (fluence_photons.comp)
