@@ -217,8 +217,9 @@ struct VolumeRenderOptions {
     // VolumeModel::Physical; docs/multiple-scattering.md):
     /// Adds the light scattered more than once to the light volume's single scattering, from a
     /// view-independent cache: per cell of a grid over the box, the fluence of the light that has
-    /// scattered at least once and its flux vector, which each sample scatters towards the eye
-    /// with the phase function (the radiance taken as linear in direction). Photons from the
+    /// scattered at least once, its first and second angular moments, and the slope of the light
+    /// scattered once against the direct light; each sample scatters it towards the eye with the
+    /// phase function, its fluence moved by its own direct light along that slope. Photons from the
     /// lights fill it by the path tracer's estimator (delta tracking, HG scattering, Russian
     /// roulette; maxBounces and anisotropy apply), cachePhotonsPerFrame per render()
     /// until it holds cachePhotons; camera moves reuse it, and a change of the lights, transfer
@@ -226,10 +227,10 @@ struct VolumeRenderOptions {
     /// scene cast no shadows into it (default: off).
     bool multipleScatteringCache = false;
     /// Cells of the cache along the box's longest side, the other sides in proportion, at most
-    /// one per voxel and at most 32 voxels wide, 1..1024. Finer cells follow the fluence into
-    /// dense matter better once refined (bonsai: 20 % relRMSE against the path tracer at 64,
-    /// 14 % at 128; first frames, read at coarser levels, 34 % and 30 %) and cost memory: about
-    /// 210 bytes per cell, 53 MiB at 64^3, 430 MiB at 128^3 (default: 64).
+    /// one per voxel and at most 32 voxels wide, 1..1024. Measured once refined against the path
+    /// tracer (relRMSE): bonsai 10.9 % at 64 and 11.6 % at 128, engine 21.3 % and 20.4 %; first
+    /// frames, read at coarser levels, 30-35 %. Memory: about 300 bytes per cell, 74 MiB at 64^3,
+    /// 590 MiB at 128^3 (default: 64).
     int cacheResolution = 64;
     /// Photons each render() adds while the cache refines, 1..2^24 (default: 65536).
     int cachePhotonsPerFrame = 1 << 16;
