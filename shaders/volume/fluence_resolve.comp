@@ -45,11 +45,11 @@ void main() {
     vec4 moment = vec4(slotValue(base + 12u), slotValue(base + 13u), slotValue(base + 14u), slotValue(base + 15u)) * scale;
     imageStore(flux, c, vec4((red + green + blue) / 3.0, slotValue(base + 16u) * scale));
     imageStore(secondMoment, c, moment);
-    imageStore(fluxLengths, c, vec4(length(red), length(green), length(blue), cellDirect[cellIndex].z * cellWeight[cellIndex] / cellVolume));
+    float w = cellWeight[cellIndex] / cellVolume;
+    imageStore(fluxLengths, c, vec4(length(red), length(green), length(blue), w * cellDirect[cellIndex].z));
     // The once-scattered fluence regressed on the direct light E within the cell (weight s): its
     // slope B = cov(phi1, E) / var(E), the variance raised by kSlopeDamping times the mean of E^2
     // so that cells whose E barely varies (all lit or all in shadow) keep a small slope.
-    float w = cellWeight[cellIndex] / cellVolume;
     vec2 moments = cellDirect[cellIndex].xy / cellVolume;  // w E, w E^2 (cell means)
     vec3 slope = vec3(0.0);
     if (w > 0.0) {

@@ -100,9 +100,9 @@ FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
 
 void FluenceCache::linkPrograms(int directLights) {
     if (directLights == m_directLights) return;
-    const detail::ShaderDefines defines{{"MAX_LIGHTS", std::to_string(kMaxLights)},
-                              {"DIRECT_LIGHTS", std::to_string(directLights)},
-                              {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)}};
+    const ShaderDefines defines{{"MAX_LIGHTS", std::to_string(kMaxLights)},
+                               {"DIRECT_LIGHTS", std::to_string(directLights)},
+                               {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)}};
     m_photonProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_photons.comp"}}, defines);
     m_densityProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_density.comp"}}, defines);
     m_directLights = directLights;
