@@ -9,6 +9,7 @@
 #include <glm/vec4.hpp>
 
 #include <initializer_list>
+#include <map>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -72,5 +73,16 @@ private:
     explicit Program(GLuint id) : Object(id) {}
     mutable std::unordered_map<std::string, GLint> m_locations;
 };
+
+/// The compute program `shader` for `variant`, linked with defines() on its first use and kept
+/// in `programs` (passes compiled per variant of their inputs).
+template <class Variant, class Defines>
+const Program& linkedOnce(std::map<Variant, Program>& programs, const Variant& variant, const char* shader,
+                          Defines defines) {
+    auto found = programs.find(variant);
+    if (found == programs.end())
+        found = programs.emplace(variant, Program::link({{GL_COMPUTE_SHADER, shader}}, defines())).first;
+    return found->second;
+}
 
 }  // namespace sss::gl

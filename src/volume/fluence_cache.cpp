@@ -98,20 +98,25 @@ FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     m_resumable = gl::currentDeviceIsSoftware();
 }
 
-void FluenceCache::linkPrograms(int directLights) {
-    if (directLights == m_directLights) return;
-    const ShaderDefines defines{{"MAX_LIGHTS", std::to_string(kMaxLights)},
-                               {"DIRECT_LIGHTS", std::to_string(directLights)},
-                               {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)}};
-    m_photonProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_photons.comp"}}, defines);
-    m_densityProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_density.comp"}}, defines);
-    m_directLights = directLights;
+ShaderDefines FluenceCache::defines() const {
+    return {{"MAX_LIGHTS", std::to_string(kMaxLights)},
+            {"DIRECT_LIGHTS", std::to_string(m_directLights)},
+            {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)}};
 }
 
-void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells) {
-    linkPrograms(directLightCount(in));
+const gl::Program& FluenceCache::photonProgram() {
+    return gl::linkedOnce(m_photonPrograms, m_directLights, "volume/fluence_photons.comp", [&] { return defines(); });
+}
+
+const gl::Program& FluenceCache::densityProgram() {
+    return gl::linkedOnce(m_densityPrograms, m_directLights, "volume/fluence_density.comp", [&] { return defines(); });
+}
+
+void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameDensityInputs) {
+    m_directLights = directLightCount(in);
     const std::size_t count = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
     if (cells != m_cells) {
+        sameDensityInputs = false;
         m_sums = gl::Buffer::create(count * kSlotsPerCell * 2 * sizeof(std::uint32_t), nullptr, 0, "fluence-cache sums");
         m_weights = gl::Buffer::create(count * sizeof(float), nullptr, 0, "fluence-cache cell weights");
         m_directMoments = gl::Buffer::create(count * 4 * sizeof(float), nullptr, 0, "fluence-cache direct-light moments");
@@ -132,13 +137,11 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells) {
         for (int level = 0; level < m_levels; ++level) glClearTexImage(t->id(), level, GL_RGBA, GL_FLOAT, black);
     m_photons = 0;
     m_cellVolume = glm::compMul(in.volume.box.size()) / static_cast<float>(count);
-    // The weights depend on the medium alone, but the same pass takes the direct light's moments,
-    // which change with the lights.
-    computeWeights(in);
+    if (!sameDensityInputs) computeWeights(in);
 }
 
 void FluenceCache::computeWeights(const FluenceCacheInputs& in) {
-    const gl::Program& p = m_densityProgram;
+    const gl::Program& p = densityProgram();
     setMediumUniforms(p, in);
     const glm::vec3 voxelSize = in.volume.box.size() / glm::vec3(in.volume.dims);
     p.set("voxelVolume", voxelSize.x * voxelSize.y * voxelSize.z);
@@ -195,7 +198,7 @@ void FluenceCache::setMediumUniforms(const gl::Program& p, const FluenceCacheInp
 }
 
 void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
-    const gl::Program& p = m_photonProgram;
+    const gl::Program& p = photonProgram();
     const Bounds& box = in.volume.box;
     setMediumUniforms(p, in);
     p.set("majorants", 2);
@@ -229,9 +232,9 @@ void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
 
 void FluenceCache::add(const FluenceCacheInputs& in, int photons) {
     if (photons <= 0 || m_cells.x == 0) return;
-    linkPrograms(directLightCount(in));
+    m_directLights = directLightCount(in);
     setUniforms(in);
-    const gl::Program& p = m_photonProgram;
+    const gl::Program& p = photonProgram();
     const int slots = std::min(photons, kMaxPhotonSlots);
     const unsigned perSlot = static_cast<unsigned>((photons + slots - 1) / slots);
     if (m_photonStates.size() < static_cast<std::size_t>(slots) * kPhotonStateBytes)
@@ -257,7 +260,7 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons) {
 }
 
 void FluenceCache::dispatchPhotons(int invocations) {
-    const gl::Program& p = m_photonProgram;
+    const gl::Program& p = photonProgram();
     const std::uint32_t zero[2] = {0, 0};
     std::uint32_t status[2] = {0, 0};
     m_status.upload(0, sizeof(zero), zero);

@@ -25,6 +25,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -57,9 +58,10 @@ class FluenceCache {
 public:
     explicit FluenceCache(VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear);
     VolumeReconstruction reconstruction() const { return m_reconstruction; }
-    /// Empties the cache for new inputs, at `cells` cells, and takes each cell's weight and
-    /// direct-light moments from the medium and the light volumes.
-    void restart(const FluenceCacheInputs& in, glm::ivec3 cells);
+    /// Empties the cache for new inputs, at `cells` cells. Unless `sameDensityInputs` (the
+    /// medium, the lights and the light volumes are those of the last restart: only the
+    /// scattering changed), it takes each cell's weight and direct-light moments anew.
+    void restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameDensityInputs);
     /// Traces `photons` more photons into the sums and updates the textures to their mean.
     void add(const FluenceCacheInputs& in, int photons);
 
@@ -93,18 +95,20 @@ private:
     void setUniforms(const FluenceCacheInputs& in);
     void setMediumUniforms(const gl::Program& p, const FluenceCacheInputs& in) const;
     void bindDirectLight(const gl::Program& p, const FluenceCacheInputs& in) const;
-    /// (Re)links the photon and density programs for `directLights` light volumes (a
-    /// compile-time count: shaders/volume/direct_light.glsl).
-    void linkPrograms(int directLights);
+    /// The photon and density programs for m_directLights light volumes (a compile-time count:
+    /// shaders/volume/direct_light.glsl), linked on first use.
+    const gl::Program& photonProgram();
+    const gl::Program& densityProgram();
+    ShaderDefines defines() const;
     /// Each cell's integral of the weight s, and the direct light's moments (fluence_density.comp).
     void computeWeights(const FluenceCacheInputs& in);
     void dispatchPhotons(int invocations);
     void resolve();
 
     VolumeReconstruction m_reconstruction;
-    gl::Program m_photonProgram;
-    gl::Program m_densityProgram;
-    int m_directLights = -1;      // what the two programs above were linked for
+    std::map<int, gl::Program> m_photonPrograms;   // by the number of light volumes
+    std::map<int, gl::Program> m_densityPrograms;
+    int m_directLights = 0;       // light volumes of the current inputs
     gl::Program m_resolveProgram;
     glm::ivec3 m_cells{0};
     gl::Buffer m_sums;            // 17 slots per cell, 64-bit fixed point (fluence_photons.comp)

@@ -11,9 +11,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <map>
-#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -40,16 +40,6 @@ constexpr int kSlicePadding = 4;
 constexpr int kSoftwareColumnVoxels = 16;
 
 const char* flag(bool on) { return on ? "1" : "0"; }
-
-// The compute program `shader` for `variant`, linked with defines() on first use.
-template <class Variant, class Defines>
-const gl::Program& linkedOnce(std::map<Variant, gl::Program>& programs, const Variant& variant, const char* shader,
-                              Defines defines) {
-    auto found = programs.find(variant);
-    if (found == programs.end())
-        found = programs.emplace(variant, gl::Program::link({{GL_COMPUTE_SHADER, shader}}, defines())).first;
-    return found->second;
-}
 
 // What bounds how far a voxel's previous-slice lookups reach.
 struct LookupGeometry {
@@ -270,16 +260,16 @@ void LightVolumePass::setDoublingUniforms(const gl::Program& p, const DoublingSc
 LightVolumePass::LightVolumePass(bool eyePass) : m_eyePass(eyePass), m_softwareDevice(gl::currentDeviceIsSoftware()) {}
 
 const gl::Program& LightVolumePass::program(const PropagationVariant& v) {
-    return linkedOnce(m_programs, v, "volume/light_propagation.comp", [&] {
+    return gl::linkedOnce(m_programs, v, "volume/light_propagation.comp", [&] {
         return ShaderDefines{{"EYE_PASS", flag(m_eyePass)},
-                                         {"CHROMATICITY", flag(v.chromaticity)},
-                                         {"SLAB", flag(v.slab)},
-                                         {"PADDED_LOOKUPS", flag(v.paddedLookups)},
-                                         {"COLUMN_VOXELS", std::to_string(v.columnVoxels)},
-                                         {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)},
-                                         {"TILE", std::to_string(kSweepTile)},
-                                         {"SLAB_SIDE", std::to_string(kSweepSlabSide)},
-                                         {"SLICE_PADDING", std::to_string(kSlicePadding)}};
+                             {"CHROMATICITY", flag(v.chromaticity)},
+                             {"SLAB", flag(v.slab)},
+                             {"PADDED_LOOKUPS", flag(v.paddedLookups)},
+                             {"COLUMN_VOXELS", std::to_string(v.columnVoxels)},
+                             {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)},
+                             {"TILE", std::to_string(kSweepTile)},
+                             {"SLAB_SIDE", std::to_string(kSweepSlabSide)},
+                             {"SLICE_PADDING", std::to_string(kSlicePadding)}};
     });
 }
 
@@ -355,12 +345,12 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
 }
 
 const gl::Program& LightVolumePass::doublingProgram(const DoublingVariant& v) {
-    return linkedOnce(m_doublingPrograms, v, "volume/light_doubling.comp", [&] {
+    return gl::linkedOnce(m_doublingPrograms, v, "volume/light_doubling.comp", [&] {
         return ShaderDefines{{"GRID_COLOUR", flag(v.colourGrid)},
-                                         {"LEVEL0", flag(v.firstLevel)},
-                                         {"LAST", flag(v.last)},
-                                         {"CHROMATICITY", flag(v.chromaticity)},
-                                         {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)}};
+                             {"LEVEL0", flag(v.firstLevel)},
+                             {"LAST", flag(v.last)},
+                             {"CHROMATICITY", flag(v.chromaticity)},
+                             {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(v.reconstruction)}};
     });
 }
 

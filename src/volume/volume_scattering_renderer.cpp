@@ -238,7 +238,12 @@ struct VolumeScatteringRenderer::Impl {
                                                 .clip = clipOrNull(),
                                                 .lightVolumes = &lightVolumes};
         if (fluenceKey != key) {
-            fluenceCache->restart(inputs, cells);
+            // The cells' weights and direct-light moments depend on all but the scattering.
+            const auto densityInputs = [](const FluenceCacheKey& k) {
+                return std::tie(k.volumeGeneration, k.transferFunctionRevision, k.transferFunctionEntries, k.lights,
+                                k.model, k.clip, k.cells, k.reconstruction, k.lightVolumeScale);
+            };
+            fluenceCache->restart(inputs, cells, fluenceKey && densityInputs(*fluenceKey) == densityInputs(key));
             fluenceKey = std::move(key);
         }
         const std::uint64_t left = photons - std::min(photons, fluenceCache->photons());
