@@ -370,6 +370,11 @@ private:
         }
     }
     sss::Image renderImage(bool timed);
+    bool showsPreview() {
+        for (std::size_t i = 0; i < m_compositor.volumeCount(); ++i)
+            if (m_compositor.volume(i).lightVolumePreviewed()) return true;
+        return false;
+    }
     void write(const sss::Image& image, const fs::path& path) const {
         if (path.extension() == ".exr") image.saveExr(path);  // linear radiance, as rendered
         else sss::toDisplay(image, m_scene.output.display).savePng(path);
@@ -419,6 +424,9 @@ sss::Image Render::renderImage(bool timed) {
     if (timed) m_timer.begin();
     m_compositor.render(m_camera, m_target);
     if (timed) m_times.push_back(m_timer.endMilliseconds());
+    // A preview light volume (--light-volume-preview) is for interactive edits: the picture
+    // written is the full one, which the next frame builds.
+    while (showsPreview()) m_compositor.render(m_camera, m_target);
     const int antiAliasing = m_scene.output.antiAliasing;
     if (antiAliasing <= 1 || m_multipleScattering) return m_target.readColor();
     sss::FrameAccumulator accumulator(m_width, m_height);

@@ -279,6 +279,9 @@ void volumeProperties(Cls& cls, sss::TransferFunction& (*tf)(W&)) {
                                "paths per pixel in the multiple-scattering mean")
         .def_property_readonly("cached_photons", [](W& w) { return w.get().cachedPhotons(); },
                                "photons in the multiple-scattering cache (0 when it is off)")
+        .def_property_readonly("light_volume_previewed", [](W& w) { return w.get().lightVolumePreviewed(); },
+                               "the last frame drew a preview light volume (light_volume_preview_scale): the "
+                               "next builds the full one")
         .def("set_clip",
              [](W& w, const std::vector<std::pair<glm::vec3, glm::vec3>>& planes, glm::vec3 cropMin, glm::vec3 cropMax,
                 bool clippedMatterCastsShadows, sss::CropSpace cropSpace, sss::CropSpace planeSpace) {

@@ -176,7 +176,7 @@ void Viewer::renderScene(glm::ivec2 size) {
     if (!m_accumulator || m_accumulator->result().width() != size.x || m_accumulator->result().height() != size.y)
         m_accumulator.emplace(size.x, size.y);
     if (m_model.viewChanged || viewProjection != m_lastViewProjection || !m_model.mapsConverged ||
-        m_model.cacheRefining())
+        m_model.volumeRefining())
         m_accumulator->reset();
     m_model.viewChanged = false;
     m_lastViewProjection = viewProjection;

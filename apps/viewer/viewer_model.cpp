@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 
 namespace viewer {
 namespace {
@@ -236,9 +237,10 @@ bool ViewerModel::pathTracing() const {
     return volume && renderedVolumeOptions().multipleScattering;
 }
 
-bool ViewerModel::cacheRefining() {
+bool ViewerModel::volumeRefining() {
     if (!volume || !compositor || compositor->volumeCount() == 0) return false;
     const sss::VolumeRenderOptions o = renderedVolumeOptions();
+    if (compositor->volume(0).lightVolumePreviewed()) return true;
     return o.multipleScatteringCache &&
            compositor->volume(0).cachedPhotons() < static_cast<std::uint64_t>(o.cachePhotons);
 }
@@ -364,10 +366,13 @@ void ViewerModel::trackProgress() {
     std::uint64_t runs = 0;
     double lastMs = 0.0;
     for (std::size_t i = 0; i < compositor->volumeCount(); ++i)
-        if (const sss::PassStats* p = compositor->volume(i).stats().find("light-volume")) {
-            runs += p->runs;
-            lastMs = p->lastMs;
-        }
+        for (const char* pass : {"light-volume", "light-volume-preview"})
+            if (const sss::PassStats* p = compositor->volume(i).stats().find(pass)) {
+                runs += p->runs;
+                // The pass just run: the preview while one is shown.
+                if (compositor->volume(i).lightVolumePreviewed() == (pass == std::string_view("light-volume-preview")))
+                    lastMs = p->lastMs;
+            }
     if (runs != lightVolumeRuns) {
         lightVolumeRuns = runs;
         lightVolumeBuiltFrame = frameIndex;

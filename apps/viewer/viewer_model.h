@@ -52,8 +52,9 @@ public:
     sss::MeshRenderOptions renderedMeshOptions() const;
     sss::VolumeRenderOptions renderedVolumeOptions() const;
     bool pathTracing() const;
-    /// The volume's multiple-scattering cache is on and still taking photons (each frame adds some).
-    bool cacheRefining();
+    /// The next frame draws the volume better: its light volume is a preview, or its
+    /// multiple-scattering cache is on and still taking photons (each frame adds some).
+    bool volumeRefining();
     sss::Light light() const;
     // A scene file's placement, else side by side when both are there.
     sss::SceneTransform placedMeshTransform() const;

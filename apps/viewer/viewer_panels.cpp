@@ -19,6 +19,9 @@ namespace viewer {
 namespace {
 
 constexpr std::array<int, 5> kMapResolutions{128, 256, 512, 1024, 2048};
+// "preview light edits": the light volume's scale for the frame after an edit (measured in
+// benchmarks/README.md, Table 5.4).
+constexpr float kLightVolumePreviewScale = 0.25f;
 
 bool comboInt(const char* label, int& value, const int* options, std::size_t count) {
     bool changed = false;
@@ -357,6 +360,14 @@ void Panels::volumeSection() {
     if (m_model.volumeScattering) {
         m_model.volumeDirty |= ImGui::SliderFloat("light-volume scale", &m_model.volumeOptions.lightVolumeScale, 0.1f, 1.0f,
                                             "%.2f");
+        bool preview = m_model.volumeOptions.lightVolumePreviewScale > 0.0f;
+        if (ImGui::Checkbox("preview light edits", &preview)) {
+            m_model.volumeOptions.lightVolumePreviewScale = preview ? kLightVolumePreviewScale : 0.0f;
+            m_model.volumeDirty = true;
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("on: the frame after a light or transfer-function edit draws a light volume at a quarter\n"
+                              "of the scale, the next frame the full one (for slow GPUs)");
         // LightVolumeFallback::Reduce lowered it: the asked-for light volume does not fit the GPU.
         const float inUse = m_model.compositor->volume(0).lightVolumeScaleInUse();
         if (inUse > 0.0f && inUse < m_model.volumeOptions.lightVolumeScale)
@@ -394,7 +405,9 @@ void Panels::volumeSection() {
     if (m_model.volumeScattering) {
         const bool recent = m_model.frameIndex - m_model.lightVolumeBuiltFrame < 3 && m_model.lightVolumeRuns > 0;
         if (recent)
-            ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "light volume rebuilt (%.1f ms)", m_model.lightVolumeMs);
+            ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "light volume %s (%.1f ms)",
+                               m_model.compositor->volume(0).lightVolumePreviewed() ? "preview" : "rebuilt",
+                               m_model.lightVolumeMs);
         else
             ImGui::TextColored(ImVec4(0.5f, 0.9f, 0.5f, 1.0f), "light volume up to date");
     }

@@ -145,6 +145,9 @@ struct OptionTable<VolumeRenderOptions> {
             {}, "--no-gradient-volume"},
         OptionField<O, float>{&O::lightVolumeScale, "lightVolumeScale", "light-volume resolution relative to the data",
                               between(0, 1, true), "--light-volume-scale", "S"},
+        OptionField<O, float>{&O::lightVolumePreviewScale, "lightVolumePreviewScale",
+            "interactive light editing: the first frame after a light-volume change builds it at this scale, the "
+            "next at --light-volume-scale; 0 = off", between(0, 1), "--light-volume-preview", "S"},
         OptionField<O, float>{&O::lightVolumeReach, "lightVolumeReach",
             "light-volume texels towards the light at which each sample reads the light volume, then carries the "
             "light back through the data", between(0, 16), "--light-volume-reach", "T"},

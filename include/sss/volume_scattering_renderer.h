@@ -160,6 +160,14 @@ struct VolumeRenderOptions {
     // Light volume (Scattering, ScatteringGradient):
     /// Light-volume resolution relative to the data, in (0, 1] (default: 1, as the thesis).
     float lightVolumeScale = 1.0f;
+    /// For interactive light editing on slow devices: the first render() after a change of
+    /// what the light volume depends on (lights, transfer function, volume, model transform,
+    /// clip, these options) builds it at this resolution scale instead, and the next render()
+    /// that changes none of it builds it at lightVolumeScale. 0, or a value at or above
+    /// lightVolumeScale, builds it at lightVolumeScale at once. lightVolumePreviewed() says
+    /// which the last frame drew. Measured in sss-bench --table 5.4 (its error against the
+    /// full light volume and its time) (default: 0, off).
+    float lightVolumePreviewScale = 0.0f;
     /// How far towards the light, in light-volume texels (0..16), each sample reads the light
     /// volume; the light is then carried back to the sample through the data at one-voxel
     /// steps. Interpolating the light volume next to a dense or thin structure mixes in the dark
@@ -281,6 +289,9 @@ public:
     /// options().lightVolumeScale unless LightVolumeFallback::Reduce had to lower it (0 before
     /// the first build).
     float lightVolumeScaleInUse() const;
+    /// True when the last render() drew with a preview light volume
+    /// (VolumeRenderOptions::lightVolumePreviewScale): the next render() builds the full one.
+    bool lightVolumePreviewed() const;
     /// Bytes of GPU memory the gradient volume holds (0 when there is none: gradient modes
     /// unused, VolumeRenderOptions::gradientVolume off, or it did not fit).
     std::size_t gradientVolumeBytes() const;

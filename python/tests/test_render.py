@@ -155,6 +155,23 @@ def test_multiple_scattering_cache_refines_and_brightens(gl):
     assert image[..., :3].sum() > 1.05 * base[..., :3].sum()  # measured 1.10
 
 
+def test_light_volume_preview(gl):
+    """light_volume_preview_scale: one frame after a light change draws a coarser light volume,
+    the next the full one, the same picture as without the preview."""
+    full = sss.VolumeRenderer(shading="scattering")
+    preview = sss.VolumeRenderer(shading="scattering", light_volume_preview_scale=0.25)
+    for renderer in (full, preview):
+        renderer.set_volume(sss.make_blobs_volume(32))
+        renderer.lights = [sss.DirectionalLight(direction=(-1, -0.6, -0.3))]
+    reference = full.render(width=32, height=24)
+    first = preview.render(width=32, height=24)
+    assert preview.light_volume_previewed
+    assert not np.array_equal(first, reference)
+    second = preview.render(width=32, height=24)
+    assert not preview.light_volume_previewed
+    assert np.array_equal(second, reference)
+
+
 def test_scene_handles_and_display(gl, out_dir):
     """A Scene's meshes and volumes are handles whose options can change, stale after clear();
     to_display applies the library's display transform."""

@@ -264,7 +264,7 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         }
         // Reads the light volume this many texels towards the light and carries the light back
         // through the data (shaders/volume/ray_cast.glsl, shade()).
-        p.set("lightVolumeReach", options.lightVolumeReach);
+        p.set("lightVolumeReach", in.lightVolumeReach);
         for (size_t i = 0; i < in.lightVolumes.size(); ++i) {
             const int unit = units::kLightVolumes + static_cast<int>(i);
             p.set("lightVolumes[" + std::to_string(i) + "]", unit);

@@ -54,6 +54,9 @@ struct RayCastInputs {
     const gl::Texture* sceneDepth = nullptr;
     const gl::Texture& occupancy;
     const std::vector<gl::Texture>& lightVolumes;  ///< one per light in the scattering modes
+    /// Texels towards the light at which samples read the light volumes: options.lightVolumeReach,
+    /// scaled down for a preview light volume so that it spans the same voxels.
+    float lightVolumeReach = 0.0f;
     const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights
     const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
     /// The multiple-scattering cache, if it is on, and the mip level to read it at

@@ -123,6 +123,14 @@ struct VolumeScatteringRenderer::Impl {
     std::vector<gl::Texture> lightVolumes;                  // one per light
     std::optional<LightVolumeInputs> lightVolumeInputs;     // what lightVolumes were built from
     float lightVolumeScaleInUse = 0.0f;                     // lower than asked after a fallback
+    // options.lightVolumePreviewScale: a preview built in the current frame stays for the rest of
+    // it (a hybrid compositor updates the light volumes before render()); the next frame with the
+    // same inputs replaces a shown one.
+    enum class Preview { None, ThisFrame, Shown } preview = Preview::None;
+    float lightVolumeReachInUse() const {
+        return preview == Preview::None ? options.lightVolumeReach
+                                        : options.lightVolumeReach * lightVolumeScaleInUse / options.lightVolumeScale;
+    }
     // Eye pass (optional): the voxels' scattered light, carried towards the viewer.
     std::optional<detail::EyePass> eyePass;
     std::optional<detail::GradientVolumePass> gradientPass;
@@ -193,7 +201,7 @@ struct VolumeScatteringRenderer::Impl {
             return false;
         }
     }
-    std::optional<std::tuple<LightVolumeInputs, glm::vec3, float, float, VolumeClip>> eyeInputs;
+    std::optional<std::tuple<LightVolumeInputs, float, glm::vec3, float, float, VolumeClip>> eyeInputs;
     const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
     // Multiple scattering: the path tracer, its running sums and what they were built from.
     std::optional<detail::PathTracePass> pathTrace;
@@ -311,10 +319,15 @@ struct VolumeScatteringRenderer::Impl {
                                                 .propagation = options.lightPropagation};
         const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
                                        lights, model, asked, lightClip() ? clip : VolumeClip{}};
-        if (lightVolumeInputs == inputs) return;  // view-independent: camera moves cost nothing
+        const bool changed = lightVolumeInputs != inputs;
+        // View-independent: camera moves cost nothing.
+        if (!changed && preview != Preview::Shown) return;
+        const bool buildPreview =
+            changed && options.lightVolumePreviewScale > 0.0f && options.lightVolumePreviewScale < asked.resolutionScale;
         if (!lightVolumePass) lightVolumePass.emplace();
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         detail::LightVolumeSettings settings = asked;
+        if (buildPreview) settings.resolutionScale = options.lightVolumePreviewScale;
         float& scale = settings.resolutionScale;
         std::uint64_t dispatches = 0;
         for (;;) {
@@ -348,13 +361,16 @@ struct VolumeScatteringRenderer::Impl {
             }
         }
         lightVolumeScaleInUse = scale;
-        passTimer.end("light-volume", mark, passTiming());
-        stats.recordDispatches("light-volume", dispatches);
+        const char* pass = buildPreview ? "light-volume-preview" : "light-volume";
+        passTimer.end(pass, mark, passTiming());
+        stats.recordDispatches(pass, dispatches);
         lightVolumeInputs = inputs;
+        preview = buildPreview ? Preview::ThisFrame : Preview::None;
     }
 
     void updateEyePass(const Camera& camera) {
-        const auto inputs = std::make_tuple(*lightVolumeInputs, camera.forward(), options.ambient + options.emission,
+        const auto inputs = std::make_tuple(*lightVolumeInputs, lightVolumeScaleInUse, camera.forward(),
+                                            options.ambient + options.emission,
                                             options.diffuse, clip);
         if (eyeInputs == inputs) return;
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
@@ -441,6 +457,9 @@ void VolumeScatteringRenderer::setOptions(const VolumeRenderOptions& options) {
 const VolumeRenderOptions& VolumeScatteringRenderer::options() const { return m_impl->options; }
 const RenderStats& VolumeScatteringRenderer::stats() const { return m_impl->stats; }
 float VolumeScatteringRenderer::lightVolumeScaleInUse() const { return m_impl->lightVolumeScaleInUse; }
+bool VolumeScatteringRenderer::lightVolumePreviewed() const {
+    return m_impl->preview != Impl::Preview::None && detail::usesLightVolume(m_impl->options.shading);
+}
 int VolumeScatteringRenderer::accumulatedSamples() const { return m_impl->pathSamples; }
 std::uint64_t VolumeScatteringRenderer::cachedPhotons() const {
     return m_impl->fluenceCache ? m_impl->fluenceCache->photons() : 0;
@@ -450,6 +469,13 @@ std::size_t VolumeScatteringRenderer::gradientVolumeBytes() const {
 }
 
 void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target) {
+    // However this frame ends, a preview built for it has been shown.
+    struct EndOfFrame {
+        Impl& r;
+        ~EndOfFrame() {
+            if (r.preview == Impl::Preview::ThisFrame) r.preview = Impl::Preview::Shown;
+        }
+    } endOfFrame{*m_impl};
     if (!m_impl->volume)
         throw Error(ErrorKind::InvalidArgument, "VolumeScatteringRenderer::render: no volume set (call setVolume first)");
     if (m_impl->options.multipleScattering) {
@@ -499,6 +525,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .sceneDepth = variant.compute ? nullptr : &r.sceneDepth,
                     .occupancy = r.occupancy->texture(),
                     .lightVolumes = r.lightVolumes,
+                    .lightVolumeReach = r.lightVolumeReachInUse(),
                     .meshShadows = r.meshShadows,
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
                     .cache = scatteringCache ? &*r.fluenceCache : nullptr,
@@ -533,7 +560,8 @@ std::optional<VolumeShadows> VolumeRendererAccess::shadows(const VolumeScatterin
     const Bounds& box = impl.volume->box;
     const glm::mat4 modelToTexture = glm::scale(glm::mat4(1.0f), 1.0f / box.size()) *
                                      glm::translate(glm::mat4(1.0f), -box.min);
-    return VolumeShadows{&impl.lightVolumes, modelToTexture * glm::inverse(impl.model), impl.stats.runs("light-volume")};
+    return VolumeShadows{&impl.lightVolumes, modelToTexture * glm::inverse(impl.model),
+                         impl.stats.runs("light-volume") + impl.stats.runs("light-volume-preview")};
 }
 
 Bounds VolumeRendererAccess::worldBounds(const VolumeScatteringRenderer& r) {

@@ -441,3 +441,26 @@ TEST_CASE("every renderer leaves the GL state it found (src/lighting/gl_state.h)
     check("display encoder");
     gl.requireNoErrors();
 }
+
+TEST_CASE("a hybrid frame shows its volume's preview light volume, and the next frame the full one",
+          "[gl][hybrid][preview]") {
+    test::GlTestScope gl;
+    // The compositor updates the light volumes (for the meshes' shadows) before it draws the
+    // volume: the preview must last the whole frame, not be replaced within it.
+    HybridCompositor scene;
+    scene.setLights({DirectionalLight{.direction = {-0.5f, -0.5f, -1.0f}}});
+    scene.addMesh(makeUvSphere(), glm::scale(glm::translate(glm::mat4(1.0f), {0.3f, 0.0f, 0.6f}), glm::vec3(0.2f)));
+    VolumeRenderOptions options{.shading = VolumeShading::Scattering};
+    options.lightVolumePreviewScale = 0.5f;
+    VolumeScatteringRenderer& volume = scene.addVolume(makeBlobsVolume(32), glm::mat4(1.0f), options);
+    volume.setTransferFunction(TransferFunction::preset("bucky"));
+    renderScene(scene, frontCamera(), 1);
+    CHECK(volume.stats().runs("light-volume-preview") == 1);
+    CHECK(volume.stats().runs("light-volume") == 0);
+    CHECK(volume.lightVolumePreviewed());
+    renderScene(scene, frontCamera(), 1);
+    CHECK(volume.stats().runs("light-volume-preview") == 1);
+    CHECK(volume.stats().runs("light-volume") == 1);
+    CHECK_FALSE(volume.lightVolumePreviewed());
+    gl.requireNoErrors();
+}

@@ -603,3 +603,68 @@ TEST_CASE("the optional eye pass: view-dependent, off by default, adds light fro
     CHECK(plain->stats().runs("light-volume") == 1);
     gl.requireNoErrors();
 }
+
+TEST_CASE("a preview light volume draws the frame after a change, the full one the next frame",
+          "[gl][volume][scattering][caching][preview]") {
+    test::GlTestScope gl;
+    const Volume volume = makeBlobsVolume(48);
+    const TransferFunction tf = TransferFunction::preset("bucky");
+    // The eye pass follows the light volume it reads: it must rerun when the full one replaces
+    // the preview.
+    VolumeRenderOptions fullOptions{.shading = VolumeShading::Scattering, .eyePass = true};
+    VolumeRenderOptions previewOptions = fullOptions;
+    previewOptions.lightVolumePreviewScale = 0.25f;
+    VolumeScatteringRenderer preview(previewOptions), full(fullOptions);
+    for (VolumeScatteringRenderer* r : {&preview, &full}) {
+        r->setVolume(volume);
+        r->setTransferFunction(tf);
+    }
+    RenderTarget target(64, 36);
+    Camera camera = orbitCamera(volume.worldBounds(), 30, 20);
+    auto frame = [&](VolumeScatteringRenderer& r) {
+        target.clear(kBackground);
+        r.render(camera, target);
+        return target.readColor();
+    };
+    auto runs = [&](const char* pass) { return preview.stats().runs(pass); };
+    for (const glm::vec3 direction : {glm::vec3(-1.0f, -0.6f, -0.3f), glm::vec3(0.4f, -1.0f, 0.7f)}) {
+        INFO("light towards " << direction.x << ", " << direction.y << ", " << direction.z);
+        const std::uint64_t previews = runs("light-volume-preview"), builds = runs("light-volume");
+        for (VolumeScatteringRenderer* r : {&preview, &full}) r->setLights({DirectionalLight{.direction = direction}});
+        const Image reference = frame(full);
+        const Image first = frame(preview);
+        CHECK(runs("light-volume-preview") == previews + 1);
+        CHECK(runs("light-volume") == builds);
+        CHECK(preview.lightVolumePreviewed());
+        CHECK(preview.lightVolumeScaleInUse() == 0.25f);
+        // A coarser light volume, not a blank or wrong picture: measured 0.045 and 0.043.
+        const ErrorMetrics previewError = computeErrorMetrics(first, reference);
+        CHECK(previewError.relRmse > 1e-3);
+        CHECK(previewError.relRmse < 0.07);
+        const Image second = frame(preview);
+        CHECK(runs("light-volume") == builds + 1);
+        CHECK_FALSE(preview.lightVolumePreviewed());
+        CHECK(computeErrorMetrics(second, reference).maxAbsError == 0.0);
+        frame(preview);
+        CHECK(runs("light-volume") == builds + 1);  // nothing changed: nothing rebuilt
+        CHECK(runs("light-volume-preview") == previews + 1);
+    }
+    SECTION("a camera move after the preview builds the full light volume, not another preview") {
+        preview.setLights({DirectionalLight{.direction = {0.2f, -1.0f, 0.1f}}});
+        frame(preview);
+        camera.orbit(20.0f, 0.0f);
+        frame(preview);
+        CHECK(runs("light-volume-preview") == 3);
+        CHECK(runs("light-volume") == 3);
+    }
+    SECTION("a preview scale at or above the light volume's builds the full one at once") {
+        previewOptions.lightVolumeScale = 0.25f;
+        preview.setOptions(previewOptions);
+        preview.setLights({DirectionalLight{.direction = {0.2f, -1.0f, 0.1f}}});
+        frame(preview);
+        CHECK(runs("light-volume-preview") == 2);
+        CHECK(runs("light-volume") == 3);
+        CHECK_FALSE(preview.lightVolumePreviewed());
+    }
+    gl.requireNoErrors();
+}
