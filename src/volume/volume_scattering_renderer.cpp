@@ -121,12 +121,17 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<detail::RayCastPass> rayCast;  // built for the current shading mode
     std::optional<detail::LightVolumePass> lightVolumePass;  // built on first use
     std::vector<gl::Texture> lightVolumes;                  // one per light
+    // Kept apart from lightVolumes, so that neither is reallocated when the other is built.
+    std::vector<gl::Texture> previewLightVolumes;
     std::optional<LightVolumeInputs> lightVolumeInputs;     // what lightVolumes were built from
     float lightVolumeScaleInUse = 0.0f;                     // lower than asked after a fallback
     // options.lightVolumePreviewScale: a preview built in the current frame stays for the rest of
     // it (a hybrid compositor updates the light volumes before render()); the next frame with the
     // same inputs replaces a shown one.
     enum class Preview { None, ThisFrame, Shown } preview = Preview::None;
+    const std::vector<gl::Texture>& shownLightVolumes() const {
+        return preview == Preview::None ? lightVolumes : previewLightVolumes;
+    }
     float lightVolumeReachInUse() const {
         return preview == Preview::None ? options.lightVolumeReach
                                         : options.lightVolumeReach * lightVolumeScaleInUse / options.lightVolumeScale;
@@ -244,7 +249,7 @@ struct VolumeScatteringRenderer::Impl {
                                                 .anisotropy = options.anisotropy,
                                                 .maxBounces = options.maxBounces,
                                                 .clip = clipOrNull(),
-                                                .lightVolumes = &lightVolumes};
+                                                .lightVolumes = &shownLightVolumes()};
         if (fluenceKey != key) {
             // The cells' weights and direct-light moments depend on all but the scattering.
             const auto densityInputs = [](const FluenceCacheKey& k) {
@@ -329,10 +334,11 @@ struct VolumeScatteringRenderer::Impl {
         detail::LightVolumeSettings settings = asked;
         if (buildPreview) settings.resolutionScale = options.lightVolumePreviewScale;
         float& scale = settings.resolutionScale;
+        std::vector<gl::Texture>& built = buildPreview ? previewLightVolumes : lightVolumes;
         std::uint64_t dispatches = 0;
         for (;;) {
             try {
-                lightVolumes.resize(lights.size());
+                built.resize(lights.size());
                 dispatches = 0;
                 for (size_t i = 0; i < lights.size(); ++i) {
                     lightVolumePass->run({.volume = *volume,
@@ -340,7 +346,7 @@ struct VolumeScatteringRenderer::Impl {
                                           .occupiedNeighbourhoods =
                                               options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr,
                                           .clip = lightClip()},
-                                         lights[i], model, settings, lightVolumes[i]);
+                                         lights[i], model, settings, built[i]);
                     dispatches += static_cast<std::uint64_t>(lightVolumePass->lastLayout().dispatches());
                 }
                 break;
@@ -350,7 +356,7 @@ struct VolumeScatteringRenderer::Impl {
                     std::max({dims.x, dims.y, dims.z}) <= 1)
                     throw;
                 // Free what was allocated before trying the smaller size.
-                lightVolumes.clear();
+                built.clear();
                 if (eyePass) eyePass->release();
                 scale *= 0.5f;
                 const glm::ivec3 reduced = detail::lightVolumeDims(volume->dims, scale);
@@ -366,6 +372,7 @@ struct VolumeScatteringRenderer::Impl {
         stats.recordDispatches(pass, dispatches);
         lightVolumeInputs = inputs;
         preview = buildPreview ? Preview::ThisFrame : Preview::None;
+        if (options.lightVolumePreviewScale == 0.0f) previewLightVolumes.clear();
     }
 
     void updateEyePass(const Camera& camera) {
@@ -375,7 +382,7 @@ struct VolumeScatteringRenderer::Impl {
         if (eyeInputs == inputs) return;
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         if (!eyePass) eyePass.emplace();
-        eyePass->run({*volume, transferFunctionTable, lightVolumes, lights, model, camera.forward(),
+        eyePass->run({*volume, transferFunctionTable, shownLightVolumes(), lights, model, camera.forward(),
                       options.ambient + options.emission, options.diffuse,
                       {.resolutionScale = lightVolumeScaleInUse, .anisotropy = options.anisotropy,
                        .maxSlicesPerDispatch = options.lightSweepSlices, .reconstruction = options.reconstruction},
@@ -524,7 +531,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .transferFunction = r.transferFunctionTable,
                     .sceneDepth = variant.compute ? nullptr : &r.sceneDepth,
                     .occupancy = r.occupancy->texture(),
-                    .lightVolumes = r.lightVolumes,
+                    .lightVolumes = r.shownLightVolumes(),
                     .lightVolumeReach = r.lightVolumeReachInUse(),
                     .meshShadows = r.meshShadows,
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
@@ -554,13 +561,13 @@ void VolumeRendererAccess::updateLightVolumes(VolumeScatteringRenderer& r) {
 
 std::optional<VolumeShadows> VolumeRendererAccess::shadows(const VolumeScatteringRenderer& r) {
     const auto& impl = *r.m_impl;
-    if (!impl.volume || !usesLightVolume(impl.options.shading) || impl.lightVolumes.size() != impl.lights.size())
+    if (!impl.volume || !usesLightVolume(impl.options.shading) || impl.shownLightVolumes().size() != impl.lights.size())
         return std::nullopt;
     // World -> model -> the box's [0,1]^3 texture space.
     const Bounds& box = impl.volume->box;
     const glm::mat4 modelToTexture = glm::scale(glm::mat4(1.0f), 1.0f / box.size()) *
                                      glm::translate(glm::mat4(1.0f), -box.min);
-    return VolumeShadows{&impl.lightVolumes, modelToTexture * glm::inverse(impl.model),
+    return VolumeShadows{&impl.shownLightVolumes(), modelToTexture * glm::inverse(impl.model),
                          impl.stats.runs("light-volume") + impl.stats.runs("light-volume-preview")};
 }
 
