@@ -2,9 +2,14 @@
 // change = a light change (light-volume propagation + ray cast); fixed = ray cast with the
 // light volume; ea = emission-absorption; ea_gradient = gradient Phong; fixed_gradient =
 // scattering plus gradient highlights (ray cast only); *_without_skipping: the change and the
-// light volume with empty-space skipping off.
+// light volume with empty-space skipping off. change_preview: the light change with
+// lightVolumePreviewScale (the frame after the edit; the next one costs a change), timed
+// interleaved with emission-absorption frames of a second renderer, and its image's relRMSE
+// against the full light volume's frame.
 
 #include "bench.h"
+
+#include <sss/image_compare.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -25,6 +30,46 @@ const std::map<std::string, ThesisRow>& thesisRows() {
         {"engine", {34.79, 7.98, 2.81, 8.88, 14.55}},
     };
     return rows;
+}
+
+// The scale the viewer's "preview light edits" uses (apps/viewer/viewer_panels.cpp).
+constexpr float kPreviewScale = 0.25f;
+
+struct PreviewCost {
+    Measurement change, ea;  // interleaved
+    double relRmse = 0.0;    // of the preview frame against the full light volume's
+};
+
+// A light change drawn with a preview light volume, beside emission-absorption frames.
+PreviewCost measurePreview(BenchmarkContext& bench, const FramedVolume& scene, const std::string& id) {
+    sss::VolumeRenderOptions options = thesisVolumeOptions(bench.options(), sss::VolumeShading::Scattering);
+    options.lightVolumePreviewScale = kPreviewScale;
+    sss::VolumeScatteringRenderer preview(options);
+    sss::VolumeScatteringRenderer ea(thesisVolumeOptions(bench.options(), sss::VolumeShading::EmissionAbsorption));
+    showVolume(preview, scene);
+    showVolume(ea, scene);
+    const sss::DirectionalLight other = nudged(scene.key);
+    bool useOther = false;
+    std::vector<Measurement> m = bench.measureInterleaved(
+        {[&](sss::RenderTarget& t) {
+             useOther = !useOther;
+             preview.setLights({useOther ? other : scene.key});
+             preview.render(scene.camera, t);
+         },
+         [&](sss::RenderTarget& t) { ea.render(scene.camera, t); }},
+        {id + "-change-preview", id + "-ea-beside-preview"});
+    sss::RenderTarget target(bench.options().width, bench.options().height);
+    auto draw = [&] {
+        target.clear(glm::vec4(0.0f));
+        preview.render(scene.camera, target);
+        return target.readColor();
+    };
+    preview.setLights({other});
+    draw();
+    preview.setLights({scene.key});
+    const sss::Image previewFrame = draw();
+    const sss::Image fullFrame = draw();
+    return {std::move(m[0]), std::move(m[1]), sss::computeErrorMetrics(previewFrame, fullFrame).relRmse};
 }
 
 }  // namespace
@@ -52,6 +97,7 @@ void runTable54(BenchmarkContext& bench) {
         renderer.setOptions(unskipped);
         const auto [changeUnskipped, fixedUnskipped] =
             measureChangeAndFixed(bench, renderer, camera, key, id + "-without-skipping");
+        const PreviewCost preview = measurePreview(bench, scene, id);
         withShading(sss::VolumeShading::ScatteringGradient);
         const Measurement fixedGradient =
             bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed-gradient");
@@ -79,6 +125,10 @@ void runTable54(BenchmarkContext& bench) {
                      {"light_volume_ms", change.stats.medianMs - fixed.stats.medianMs},
                      {"change_without_skipping_ms", changeUnskipped.stats.medianMs},
                      {"light_volume_without_skipping_ms", changeUnskipped.stats.medianMs - fixedUnskipped.stats.medianMs},
+                     {"change_preview_ms", preview.change.stats.medianMs},
+                     {"ea_beside_preview_ms", preview.ea.stats.medianMs},
+                     {"preview_scale", kPreviewScale},
+                     {"preview_rel_rmse", preview.relRmse},
                      {"change_spread_ms", {change.stats.minMs, change.stats.maxMs}},
                      {"fixed_spread_ms", {fixed.stats.minMs, fixed.stats.maxMs}},
                      {"dims", {d.x, d.y, d.z}},
