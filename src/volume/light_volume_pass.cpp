@@ -308,7 +308,10 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
         doubleRays(medium, light, model, settings, output);
         return;
     }
-    const std::vector<LightSweep> sweeps = planLightSweeps(light, volume.box, dims);
+    std::vector<LightSweep> sweeps = planLightSweeps(light, volume.box, dims);
+    if (!settings.blendSweeps && sweeps.size() == 2 && !sweeps[0].pyramid) sweeps = {{.axis = sweeps[0].axis,
+                                                                                     .reversed = sweeps[0].reversed,
+                                                                                     .firstSlice = sweeps[0].firstSlice}};
     const ChromaticityCone cone = chromaticityCone(settings.anisotropy);
     // The eye pass carries colour whatever the settings say.
     const bool chromaticity = settings.chromaticity || m_eyePass;

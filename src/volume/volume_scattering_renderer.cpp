@@ -332,7 +332,10 @@ struct VolumeScatteringRenderer::Impl {
         if (!lightVolumePass) lightVolumePass.emplace();
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         detail::LightVolumeSettings settings = asked;
-        if (buildPreview) settings.resolutionScale = options.lightVolumePreviewScale;
+        if (buildPreview) {
+            settings.resolutionScale = options.lightVolumePreviewScale;
+            settings.blendSweeps = false;  // the next frame's light volume blends them
+        }
         float& scale = settings.resolutionScale;
         std::vector<gl::Texture>& built = buildPreview ? previewLightVolumes : lightVolumes;
         std::uint64_t dispatches = 0;
