@@ -286,8 +286,8 @@ public:
     void render(const Camera& camera, RenderTarget& target);
 
     /// The light-volume resolution relative to the data that the last light-volume build used:
-    /// options().lightVolumeScale unless LightVolumeFallback::Reduce had to lower it (0 before
-    /// the first build).
+    /// options().lightVolumeScale unless LightVolumeFallback::Reduce had to lower it or the build
+    /// was a preview (VolumeRenderOptions::lightVolumePreviewScale) (0 before the first build).
     float lightVolumeScaleInUse() const;
     /// True when the last render() drew with a preview light volume
     /// (VolumeRenderOptions::lightVolumePreviewScale): the next render() builds the full one.

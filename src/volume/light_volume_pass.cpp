@@ -309,9 +309,10 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
         return;
     }
     std::vector<LightSweep> sweeps = planLightSweeps(light, volume.box, dims);
-    if (!settings.blendSweeps && sweeps.size() == 2 && !sweeps[0].pyramid) sweeps = {{.axis = sweeps[0].axis,
-                                                                                     .reversed = sweeps[0].reversed,
-                                                                                     .firstSlice = sweeps[0].firstSlice}};
+    if (!settings.blendSweeps && sweeps.size() == 2 && !sweeps[0].pyramid) {
+        sweeps.resize(1);  // the principal axis's
+        sweeps[0].weight = 1.0f;
+    }
     const ChromaticityCone cone = chromaticityCone(settings.anisotropy);
     // The eye pass carries colour whatever the settings say.
     const bool chromaticity = settings.chromaticity || m_eyePass;

@@ -124,7 +124,7 @@ struct VolumeScatteringRenderer::Impl {
     // Kept apart from lightVolumes, so that neither is reallocated when the other is built.
     std::vector<gl::Texture> previewLightVolumes;
     std::optional<LightVolumeInputs> lightVolumeInputs;     // what lightVolumes were built from
-    float lightVolumeScaleInUse = 0.0f;                     // lower than asked after a fallback
+    float lightVolumeScaleInUse = 0.0f;                     // as built: a fallback's or a preview's
     // options.lightVolumePreviewScale: a preview built in the current frame stays for the rest of
     // it (a hybrid compositor updates the light volumes before render()); the next frame with the
     // same inputs replaces a shown one.
