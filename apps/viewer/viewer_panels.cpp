@@ -19,9 +19,6 @@ namespace viewer {
 namespace {
 
 constexpr std::array<int, 5> kMapResolutions{128, 256, 512, 1024, 2048};
-// "preview light edits": the light volume's scale for the frame after an edit (measured in
-// benchmarks/README.md, Table 5.4).
-constexpr float kLightVolumePreviewScale = 0.25f;
 
 bool comboInt(const char* label, int& value, const int* options, std::size_t count) {
     bool changed = false;
@@ -362,12 +359,12 @@ void Panels::volumeSection() {
                                             "%.2f");
         bool preview = m_model.volumeOptions.lightVolumePreviewScale > 0.0f;
         if (ImGui::Checkbox("preview light edits", &preview)) {
-            m_model.volumeOptions.lightVolumePreviewScale = preview ? kLightVolumePreviewScale : 0.0f;
+            m_model.volumeOptions.lightVolumePreviewScale = preview ? ViewerOptions::kLightVolumePreviewScale : 0.0f;
             m_model.volumeDirty = true;
         }
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("on: the frame after a light or transfer-function edit draws a light volume at a quarter\n"
-                              "of the scale, the next frame the full one (for slow GPUs)");
+                              "of the scale, the next frame the full one (for slow GPUs; off: every frame the full one)");
         // LightVolumeFallback::Reduce lowered it: the asked-for light volume does not fit the GPU.
         const float inUse = m_model.compositor->volume(0).lightVolumeScaleInUse();
         if (inUse > 0.0f && inUse < m_model.volumeOptions.lightVolumeScale)
