@@ -203,6 +203,8 @@ TEST_CASE("no volume render path waits for the GPU", "[gl][volume][sync]") {
         {{.shading = VolumeShading::Scattering}, "scattering"},
         {{.shading = VolumeShading::ScatteringGradient, .eyePass = true}, "scattering-gradient, eye pass"},
         {{.shading = VolumeShading::Scattering, .rayCaster = RayCaster::Compute}, "scattering, compute"},
+        // Its change frame builds the preview, its "fixed" frame the full light volume.
+        {{.shading = VolumeShading::Scattering, .lightVolumePreviewScale = 0.5f}, "scattering, light-volume preview"},
         {{.shading = VolumeShading::Scattering, .model = VolumeModel::Physical, .multipleScattering = true},
          "path tracer"},
     };
