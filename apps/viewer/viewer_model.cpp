@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <string_view>
 
 namespace viewer {
 namespace {
@@ -365,14 +364,14 @@ void ViewerModel::trackProgress() {
     mapFrames = mapsConverged ? 0 : mapFrames + 1;
     std::uint64_t runs = 0;
     double lastMs = 0.0;
-    for (std::size_t i = 0; i < compositor->volumeCount(); ++i)
-        for (const char* pass : {"light-volume", "light-volume-preview"})
-            if (const sss::PassStats* p = compositor->volume(i).stats().find(pass)) {
-                runs += p->runs;
-                // The pass just run: the preview while one is shown.
-                if (compositor->volume(i).lightVolumePreviewed() == (pass == std::string_view("light-volume-preview")))
-                    lastMs = p->lastMs;
-            }
+    for (std::size_t i = 0; i < compositor->volumeCount(); ++i) {
+        const sss::VolumeScatteringRenderer& volumeRenderer = compositor->volume(i);
+        const sss::RenderStats& stats = volumeRenderer.stats();
+        runs += stats.runs("light-volume") + stats.runs("light-volume-preview");
+        // The build the frame shows: the preview while one is shown.
+        if (const sss::PassStats* p = stats.find(volumeRenderer.lightVolumePreviewed() ? "light-volume-preview" : "light-volume"))
+            lastMs = p->lastMs;
+    }
     if (runs != lightVolumeRuns) {
         lightVolumeRuns = runs;
         lightVolumeBuiltFrame = frameIndex;

@@ -111,9 +111,9 @@ private:
     int m_directLights = 0;       // light volumes of the current inputs
     gl::Program m_resolveProgram;
     glm::ivec3 m_cells{0};
-    gl::Buffer m_sums;            // 17 slots per cell, 64-bit fixed point (fluence_photons.comp)
+    gl::Buffer m_sums;            // 23 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
-    gl::Buffer m_directMoments;   // per cell, the integrals of s E and s E^2 (fluence_density.comp)
+    gl::Buffer m_directMoments;   // per cell, the integrals of s E and s E^2, the largest E (fluence_density.comp)
     gl::Buffer m_photonStates;
     gl::Buffer m_status;
     gl::Texture m_fluence, m_flux, m_fluxLengths, m_secondMoment, m_directSlope;
