@@ -15,16 +15,16 @@ layout(rgba32f, binding = 0) uniform writeonly image3D fluence;
 layout(rgba32f, binding = 1) uniform writeonly image3D flux;
 layout(rgba32f, binding = 2) uniform writeonly image3D fluxLengths;
 layout(rgba32f, binding = 3) uniform writeonly image3D secondMoment;
-layout(rgba32f, binding = 4) uniform writeonly image3D directSlope;  // w B (rgb), w mean E
+// The once-scattered fluence's regression on the direct light E (fluence_slope.comp solves it at
+// each level): w phi1 (rgb) and w E; w phi1 E (rgb) and w E^2.
+layout(rgba32f, binding = 4) uniform writeonly image3D onceMoments;
+layout(rgba32f, binding = 5) uniform writeonly image3D onceTimesDirect;
 layout(std430, binding = 4) readonly buffer DirectMoments { vec4 cellDirect[]; };  // fluence_density.comp
 uniform ivec3 cacheCells;
 uniform float sumsToFluence;  // power per photon / (photons x quanta per unit)
 uniform float cellVolume;     // model units^3
 
 const uint kSlotsPerCell = 23u;
-// Measured on the bench's bonsai and engine (docs/multiple-scattering.md): 0.03 let noise in
-// (engine 25 %), 0.3 took a little of the bonsai's gain (11.4 against 10.8 %).
-const float kSlopeDamping = 0.1;
 
 // A slot's 64-bit two's-complement sum.
 float slotValue(uint slot) { return float(int(sums[2u * slot + 1u])) * 4294967296.0 + float(sums[2u * slot]); }
@@ -47,16 +47,7 @@ void main() {
     imageStore(secondMoment, c, moment);
     float w = cellWeight[cellIndex] / cellVolume;
     imageStore(fluxLengths, c, vec4(length(red), length(green), length(blue), w * cellDirect[cellIndex].z));
-    // The once-scattered fluence regressed on the direct light E within the cell (weight s): its
-    // slope B = cov(phi1, E) / var(E), the variance raised by kSlopeDamping times the mean of E^2
-    // so that cells whose E barely varies (all lit or all in shadow) keep a small slope.
     vec2 moments = cellDirect[cellIndex].xy / cellVolume;  // w E, w E^2 (cell means)
-    vec3 slope = vec3(0.0);
-    if (w > 0.0) {
-        vec3 once = slotVector(base + 17u) * scale, onceTimesE = slotVector(base + 20u) * scale;
-        float meanE = moments.x / w;
-        float variance = max(moments.y / w - meanE * meanE, 0.0);
-        slope = (onceTimesE / w - (once / w) * meanE) / (variance + kSlopeDamping * moments.y / w + 1e-30);
-    }
-    imageStore(directSlope, c, vec4(w * slope, moments.x));
+    imageStore(onceMoments, c, vec4(slotVector(base + 17u) * scale, moments.x));
+    imageStore(onceTimesDirect, c, vec4(slotVector(base + 20u) * scale, moments.y));
 }

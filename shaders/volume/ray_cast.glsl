@@ -278,14 +278,13 @@ vec3 cachedInScattering(vec3 tc, float direct) {
     // difference from the cell's mean. Within a mean free path of a lit surface that fluence
     // levels off while the direct light keeps rising, so the direct light is taken at most
     // kDirectBeyondLargest times the largest a voxel centre of the cell has
-    // (docs/multiple-scattering.md). The slope needs more photons than the mean: it fades in over
-    // the last factor of 8 of the photon budget (levels 1 to 0); and however noisy, it keeps the
-    // fluence within 0 and 3 times the cell's mean.
+    // (docs/multiple-scattering.md). Each level holds its own cells' slope, as noisy at the level
+    // read as the finest once refined; however noisy, it keeps the fluence within 0 and 3 times
+    // the cell's mean.
     vec4 slope = textureLod(cacheDirectSlope, tc, cacheLevel) / weighted.a;
     vec4 lengthsAndLargest = textureLod(cacheFluxLengths, tc, cacheLevel);
-    float slopeShare = clamp(1.0 - cacheLevel, 0.0, 1.0);
     float regressed = min(direct, kDirectBeyondLargest * lengthsAndLargest.a / weighted.a);
-    vec3 phiHere = clamp(phi + slopeShare * slope.rgb * (regressed - slope.a), vec3(0.0), 3.0 * phi);
+    vec3 phiHere = clamp(phi + slope.rgb * (regressed - slope.a), vec3(0.0), 3.0 * phi);
     vec4 fluxAndYz = textureLod(cacheFlux, tc, cacheLevel);
     vec3 flux = fluxAndYz.xyz;
     float fluxLength = length(flux);

@@ -36,9 +36,9 @@ public:
     /// Colour returned outside the texture with GL_CLAMP_TO_BORDER.
     void setBorderColor(glm::vec4 color) const;
     void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
-    /// Binds level 0 (all layers) as image `unit` for imageLoad/imageStore.
-    void bindImage(GLuint unit, GLenum access) const {
-        glBindImageTexture(unit, id(), 0, GL_TRUE, 0, access, m_format);
+    /// Binds a mip level (all layers) as image `unit` for imageLoad/imageStore.
+    void bindImage(GLuint unit, GLenum access, int level = 0) const {
+        glBindImageTexture(unit, id(), level, GL_TRUE, 0, access, m_format);
     }
 
     GLenum target() const { return m_target; }

@@ -92,7 +92,8 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution)
 
 FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     : m_reconstruction(reconstruction),
-      m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})) {
+      m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})),
+      m_slopeProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_slope.comp"}})) {
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");
     m_resumable = gl::currentDeviceIsSoftware();
@@ -126,6 +127,9 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths", m_levels);
         m_secondMoment = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache second moment", m_levels);
         m_directSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache direct-light slope", m_levels);
+        m_onceMoments = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered moments", m_levels);
+        m_onceTimesDirect =
+            gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered direct-light moments", m_levels);
         for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
             t->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
         m_cells = cells;
@@ -298,17 +302,42 @@ void FluenceCache::resolve() {
     m_flux.bindImage(1, GL_WRITE_ONLY);
     m_fluxLengths.bindImage(2, GL_WRITE_ONLY);
     m_secondMoment.bindImage(3, GL_WRITE_ONLY);
-    m_directSlope.bindImage(4, GL_WRITE_ONLY);
+    m_onceMoments.bindImage(4, GL_WRITE_ONLY);
+    m_onceTimesDirect.bindImage(5, GL_WRITE_ONLY);
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
                       static_cast<GLuint>((m_cells.z + 3) / 4));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by the mipmaps too
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
-    for (GLuint unit = 0; unit < 5; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    for (GLuint unit = 0; unit < 6; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     // Every texture holds weighted sums (premultiplied by the cell's weight), so a level's box
     // filter gives its larger cells' weighted means.
-    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
+    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_onceMoments, &m_onceTimesDirect})
         glGenerateTextureMipmap(t->id());
+    resolveSlopes();
+}
+
+void FluenceCache::resolveSlopes() {
+    const gl::Program& p = m_slopeProgram;
+    p.set("cacheFluence", 0);
+    p.set("onceMoments", 1);
+    p.set("onceTimesDirect", 2);
+    p.set("cacheFluxLengths", 3);
+    m_fluence.bind(0);
+    m_onceMoments.bind(1);
+    m_onceTimesDirect.bind(2);
+    m_fluxLengths.bind(3);
+    p.use();
+    for (int level = 0; level < m_levels; ++level) {
+        const glm::ivec3 size = glm::max(m_cells >> level, glm::ivec3(1));
+        p.set("level", level);
+        m_directSlope.bindImage(0, GL_WRITE_ONLY, level);
+        m_fluxLengths.bindImage(1, GL_READ_WRITE, level);
+        glDispatchCompute(static_cast<GLuint>((size.x + 3) / 4), static_cast<GLuint>((size.y + 3) / 4),
+                          static_cast<GLuint>((size.z + 3) / 4));
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);  // the next level reads it
+    }
+    for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 }  // namespace sss::detail

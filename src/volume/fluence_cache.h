@@ -79,7 +79,8 @@ public:
     /// times the weight, model space (RGBA32F); yz is flux()'s alpha.
     const gl::Texture& secondMoment() const { return m_secondMoment; }
     /// Per cell: rgb slope of the fluence against the direct light times the weight, and the
-    /// cell's mean direct light times the weight (RGBA32F; fluence_resolve.comp).
+    /// cell's mean direct light times the weight (RGBA32F; fluence_slope.comp). Each level holds
+    /// the regression within its own cells.
     const gl::Texture& directSlope() const { return m_directSlope; }
     /// The mip level to read while the cache refines towards `budget` photons: each level up has
     /// 8 times the photons per cell, so log8(budget / photons) reads about the noise the finest
@@ -104,12 +105,15 @@ private:
     void computeWeights(const FluenceCacheInputs& in);
     void dispatchPhotons(int invocations);
     void resolve();
+    /// Each level's slope of the once-scattered fluence against the direct light.
+    void resolveSlopes();
 
     VolumeReconstruction m_reconstruction;
     std::map<int, gl::Program> m_photonPrograms;   // by the number of light volumes
     std::map<int, gl::Program> m_densityPrograms;
     int m_directLights = 0;       // light volumes of the current inputs
     gl::Program m_resolveProgram;
+    gl::Program m_slopeProgram;
     glm::ivec3 m_cells{0};
     gl::Buffer m_sums;            // 23 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
@@ -117,6 +121,7 @@ private:
     gl::Buffer m_photonStates;
     gl::Buffer m_status;
     gl::Texture m_fluence, m_flux, m_fluxLengths, m_secondMoment, m_directSlope;
+    gl::Texture m_onceMoments, m_onceTimesDirect;  // the slope's moments (fluence_resolve.comp)
     std::uint64_t m_photons = 0;
     float m_cellVolume = 1.0f;    // model units^3
     float m_powerUnit = 0.0f;     // power a photon of weight 1 carries (see setUniforms)
