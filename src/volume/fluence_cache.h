@@ -73,7 +73,8 @@ public:
     /// second moment's yz (RGBA32F).
     const gl::Texture& flux() const { return m_flux; }
     /// Per cell: rgb length of each channel's flux vector times the weight, and the largest
-    /// direct light among its voxel centres times the weight (RGBA32F).
+    /// direct light among its voxel centres times the weight (RGBA32F; at coarser levels the
+    /// largest of its children's, fluence_slope.comp).
     const gl::Texture& fluxLengths() const { return m_fluxLengths; }
     /// Per cell: the mean channel's traceless second angular moment xx - 1/3, yy - 1/3, xy, xz
     /// times the weight, model space (RGBA32F); yz is flux()'s alpha.
