@@ -5,7 +5,11 @@
 // light volume with empty-space skipping off. change_preview: the light change with
 // lightVolumePreviewScale (the frame after the edit; the next one costs a change), timed
 // interleaved with emission-absorption frames of a second renderer, and its image's relRMSE
-// against the full light volume's frame.
+// against the full light volume's frame. cache_*: the physical model with the multiple-scattering
+// cache (docs/multiple-scattering.md) at the table's settings otherwise: a camera move
+// (cache_fixed, beside physical single scattering without the cache and emission-absorption
+// frames) and a light change (cache_change: the light volume, the cells' moments, the first
+// photons and the frame, beside emission-absorption frames), all interleaved.
 
 #include "bench.h"
 
@@ -72,6 +76,40 @@ PreviewCost measurePreview(BenchmarkContext& bench, const FramedVolume& scene, c
     return {std::move(m[0]), std::move(m[1]), sss::computeErrorMetrics(previewFrame, fullFrame).relRmse};
 }
 
+struct CacheCost {
+    Measurement fixed, single, eaBesideFixed;  // interleaved
+    Measurement change, eaBesideChange;        // interleaved
+};
+
+CacheCost measureCache(BenchmarkContext& bench, const FramedVolume& scene, const std::string& id) {
+    sss::VolumeRenderOptions single = thesisVolumeOptions(bench.options(), sss::VolumeShading::Scattering);
+    single.model = sss::VolumeModel::Physical;
+    sss::VolumeRenderOptions cached = single;
+    cached.multipleScatteringCache = true;
+    // A camera move reads the finest level, as once refined, whatever the photons: one frame's
+    // photons fill this budget.
+    sss::VolumeRenderOptions filled = cached;
+    filled.cachePhotons = filled.cachePhotonsPerFrame;
+    sss::VolumeScatteringRenderer fixedRenderer(filled), singleRenderer(single), changeRenderer(cached);
+    sss::VolumeScatteringRenderer ea(thesisVolumeOptions(bench.options(), sss::VolumeShading::EmissionAbsorption));
+    for (sss::VolumeScatteringRenderer* r : {&fixedRenderer, &singleRenderer, &changeRenderer, &ea}) showVolume(*r, scene);
+    auto draw = [&](sss::VolumeScatteringRenderer& r) { return [&](sss::RenderTarget& t) { r.render(scene.camera, t); }; };
+    std::vector<Measurement> fixed = bench.measureInterleaved(
+        {draw(fixedRenderer), draw(singleRenderer), draw(ea)},
+        {id + "-cache-fixed", id + "-physical-fixed", id + "-ea-beside-cache"});
+    const sss::DirectionalLight other = nudged(scene.key);
+    bool useOther = false;
+    std::vector<Measurement> change = bench.measureInterleaved(
+        {[&](sss::RenderTarget& t) {
+             useOther = !useOther;
+             changeRenderer.setLights({useOther ? other : scene.key});
+             changeRenderer.render(scene.camera, t);
+         },
+         draw(ea)},
+        {id + "-cache-change", id + "-ea-beside-cache-change"});
+    return {std::move(fixed[0]), std::move(fixed[1]), std::move(fixed[2]), std::move(change[0]), std::move(change[1])};
+}
+
 }  // namespace
 
 void runTable54(BenchmarkContext& bench) {
@@ -98,6 +136,7 @@ void runTable54(BenchmarkContext& bench) {
         const auto [changeUnskipped, fixedUnskipped] =
             measureChangeAndFixed(bench, renderer, camera, key, id + "-without-skipping");
         const PreviewCost preview = measurePreview(bench, scene, id);
+        const CacheCost cache = measureCache(bench, scene, id);
         withShading(sss::VolumeShading::ScatteringGradient);
         const Measurement fixedGradient =
             bench.measure([&](sss::RenderTarget& t) { renderer.render(camera, t); }, id + "-fixed-gradient");
@@ -129,6 +168,11 @@ void runTable54(BenchmarkContext& bench) {
                      {"ea_beside_preview_ms", preview.ea.stats.medianMs},
                      {"preview_scale", kPreviewScale},
                      {"preview_rel_rmse", preview.relRmse},
+                     {"cache_fixed_ms", cache.fixed.stats.medianMs},
+                     {"physical_fixed_ms", cache.single.stats.medianMs},
+                     {"ea_beside_cache_ms", cache.eaBesideFixed.stats.medianMs},
+                     {"cache_change_ms", cache.change.stats.medianMs},
+                     {"ea_beside_cache_change_ms", cache.eaBesideChange.stats.medianMs},
                      {"change_spread_ms", {change.stats.minMs, change.stats.maxMs}},
                      {"fixed_spread_ms", {fixed.stats.minMs, fixed.stats.maxMs}},
                      {"dims", {d.x, d.y, d.z}},
