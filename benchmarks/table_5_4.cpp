@@ -39,6 +39,23 @@ const std::map<std::string, ThesisRow>& thesisRows() {
 // The scale the viewer's "preview light edits" uses (apps/viewer/viewer_panels.cpp).
 constexpr float kPreviewScale = 0.25f;
 
+// Light changes of `renderer` (the key light and its nudged twin in turn), interleaved with
+// frames of `ea`: {changes, EA frames}.
+std::vector<Measurement> lightChangesBeside(BenchmarkContext& bench, sss::VolumeScatteringRenderer& renderer,
+                                            sss::VolumeScatteringRenderer& ea, const FramedVolume& scene,
+                                            const std::string& changeId, const std::string& eaId) {
+    const sss::DirectionalLight other = nudged(scene.key);
+    bool useOther = false;
+    return bench.measureInterleaved(
+        {[&](sss::RenderTarget& t) {
+             useOther = !useOther;
+             renderer.setLights({useOther ? other : scene.key});
+             renderer.render(scene.camera, t);
+         },
+         [&](sss::RenderTarget& t) { ea.render(scene.camera, t); }},
+        {changeId, eaId});
+}
+
 struct PreviewCost {
     Measurement change, ea;  // interleaved
     double relRmse = 0.0;    // of the preview frame against the full light volume's
@@ -52,23 +69,14 @@ PreviewCost measurePreview(BenchmarkContext& bench, const FramedVolume& scene, c
     sss::VolumeScatteringRenderer ea(thesisVolumeOptions(bench.options(), sss::VolumeShading::EmissionAbsorption));
     showVolume(preview, scene);
     showVolume(ea, scene);
-    const sss::DirectionalLight other = nudged(scene.key);
-    bool useOther = false;
-    std::vector<Measurement> m = bench.measureInterleaved(
-        {[&](sss::RenderTarget& t) {
-             useOther = !useOther;
-             preview.setLights({useOther ? other : scene.key});
-             preview.render(scene.camera, t);
-         },
-         [&](sss::RenderTarget& t) { ea.render(scene.camera, t); }},
-        {id + "-change-preview", id + "-ea-beside-preview"});
+    std::vector<Measurement> m = lightChangesBeside(bench, preview, ea, scene, id + "-change-preview", id + "-ea-beside-preview");
     sss::RenderTarget target(bench.options().width, bench.options().height);
     auto draw = [&] {
         target.clear(glm::vec4(0.0f));
         preview.render(scene.camera, target);
         return target.readColor();
     };
-    preview.setLights({other});
+    preview.setLights({nudged(scene.key)});
     draw();
     preview.setLights({scene.key});
     const sss::Image previewFrame = draw();
@@ -97,16 +105,8 @@ CacheCost measureCache(BenchmarkContext& bench, const FramedVolume& scene, const
     std::vector<Measurement> fixed = bench.measureInterleaved(
         {draw(fixedRenderer), draw(singleRenderer), draw(ea)},
         {id + "-cache-fixed", id + "-physical-fixed", id + "-ea-beside-cache"});
-    const sss::DirectionalLight other = nudged(scene.key);
-    bool useOther = false;
-    std::vector<Measurement> change = bench.measureInterleaved(
-        {[&](sss::RenderTarget& t) {
-             useOther = !useOther;
-             changeRenderer.setLights({useOther ? other : scene.key});
-             changeRenderer.render(scene.camera, t);
-         },
-         draw(ea)},
-        {id + "-cache-change", id + "-ea-beside-cache-change"});
+    std::vector<Measurement> change =
+        lightChangesBeside(bench, changeRenderer, ea, scene, id + "-cache-change", id + "-ea-beside-cache-change");
     return {std::move(fixed[0]), std::move(fixed[1]), std::move(fixed[2]), std::move(change[0]), std::move(change[1])};
 }
 
