@@ -38,6 +38,12 @@ constexpr int kMaxLevels = 4;
 
 float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
+// One invocation per cell of a grid `cells` wide, in the cache passes' 4^3 workgroups.
+void dispatchOverCells(glm::ivec3 cells) {
+    glDispatchCompute(static_cast<GLuint>((cells.x + 3) / 4), static_cast<GLuint>((cells.y + 3) / 4),
+                      static_cast<GLuint>((cells.z + 3) / 4));
+}
+
 // The light volumes the direct light sums (one per light; none before they exist).
 int directLightCount(const FluenceCacheInputs& in) {
     return in.lightVolumes ? static_cast<int>(std::min(in.lightVolumes->size(), in.lights.size())) : 0;
@@ -156,8 +162,7 @@ void FluenceCache::computeWeights(const FluenceCacheInputs& in) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_directMoments.id());
     p.use();
-    glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
-                      static_cast<GLuint>((m_cells.z + 3) / 4));
+    dispatchOverCells(m_cells);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
@@ -305,8 +310,7 @@ void FluenceCache::resolve() {
     m_onceMoments.bindImage(4, GL_WRITE_ONLY);
     m_onceTimesDirect.bindImage(5, GL_WRITE_ONLY);
     p.use();
-    glDispatchCompute(static_cast<GLuint>((m_cells.x + 3) / 4), static_cast<GLuint>((m_cells.y + 3) / 4),
-                      static_cast<GLuint>((m_cells.z + 3) / 4));
+    dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by the mipmaps too
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
     for (GLuint unit = 0; unit < 6; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -329,12 +333,10 @@ void FluenceCache::resolveSlopes() {
     m_fluxLengths.bind(3);
     p.use();
     for (int level = 0; level < m_levels; ++level) {
-        const glm::ivec3 size = glm::max(m_cells >> level, glm::ivec3(1));
         p.set("level", level);
         m_directSlope.bindImage(0, GL_WRITE_ONLY, level);
         m_fluxLengths.bindImage(1, GL_READ_WRITE, level);
-        glDispatchCompute(static_cast<GLuint>((size.x + 3) / 4), static_cast<GLuint>((size.y + 3) / 4),
-                          static_cast<GLuint>((size.z + 3) / 4));
+        dispatchOverCells(glm::max(m_cells >> level, glm::ivec3(1)));
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);  // the next level reads it
     }
     for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
