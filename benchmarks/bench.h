@@ -167,6 +167,9 @@ sss::DirectionalLight keyLight(const sss::Camera& camera);
 /// `light` turned 3 degrees about +y: alternating the two forces a "change" frame (every
 /// view-independent pass reruns) at almost the same image.
 sss::DirectionalLight nudged(const sss::DirectionalLight& light);
+/// `camera` orbited half a degree to one side on even frames, to the other on odd ones: frame
+/// after frame, a camera move (every view-dependent pass reruns) at almost the same image.
+sss::Camera moved(const sss::Camera& camera, int frame);
 /// The thesis's ray casting, which its tables measured: step 1 voxel, post-classification (the
 /// library's defaults since are step 0.5 with pre-integration); with the run's --ray-caster,
 /// --light-propagation and --passes.

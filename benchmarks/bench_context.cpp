@@ -189,6 +189,12 @@ sss::DirectionalLight nudged(const sss::DirectionalLight& light) {
     return other;
 }
 
+sss::Camera moved(const sss::Camera& camera, int frame) {
+    sss::Camera other = camera;
+    other.setYaw(camera.yaw() + (frame % 2 == 0 ? -0.5f : 0.5f));
+    return other;
+}
+
 double renderUntilConverged(sss::MeshScatteringRenderer& renderer, const sss::Camera& camera, sss::RenderTarget& target) {
     const auto start = std::chrono::steady_clock::now();
     do {

@@ -101,9 +101,13 @@ CacheCost measureCache(BenchmarkContext& bench, const FramedVolume& scene, const
     sss::VolumeScatteringRenderer fixedRenderer(filled), singleRenderer(single), changeRenderer(cached);
     sss::VolumeScatteringRenderer ea(thesisVolumeOptions(bench.options(), sss::VolumeShading::EmissionAbsorption));
     for (sss::VolumeScatteringRenderer* r : {&fixedRenderer, &singleRenderer, &changeRenderer, &ea}) showVolume(*r, scene);
-    auto draw = [&](sss::VolumeScatteringRenderer& r) { return [&](sss::RenderTarget& t) { r.render(scene.camera, t); }; };
+    // Each frame a camera move: the cache's light towards the viewer is evaluated anew
+    // (FluenceCache::evaluateView), as it is while the user turns the view.
+    auto moving = [&](sss::VolumeScatteringRenderer& r) {
+        return [&r, &scene, frame = 0](sss::RenderTarget& t) mutable { r.render(moved(scene.camera, frame++), t); };
+    };
     std::vector<Measurement> fixed = bench.measureInterleaved(
-        {draw(fixedRenderer), draw(singleRenderer), draw(ea)},
+        {moving(fixedRenderer), moving(singleRenderer), moving(ea)},
         {id + "-cache-fixed", id + "-physical-fixed", id + "-ea-beside-cache"});
     std::vector<Measurement> change =
         lightChangesBeside(bench, changeRenderer, ea, scene, id + "-cache-change", id + "-ea-beside-cache-change");

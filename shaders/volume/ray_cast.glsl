@@ -249,69 +249,27 @@ LightReach rayLightReaches[MAX_LIGHTS];
 #endif
 
 #if SCATTERING_CACHE
-// The multiple-scattering cache (src/volume/fluence_cache.h): per cell, the fluence of the light
-// scattered at least once (rgb), the flux vector of its mean channel (model space) and each
-// channel's flux length, all weighted by the cell's medium, which alpha holds (normalised
-// interpolation). The radiance is taken as the HG lobe with the same first moment,
-// phi p_HG(k, w . F / |F|), k = |F| / phi; the HG phase function convolves it to
-// phi p_HG(g k, v . F / |F|) towards the viewer v (the Legendre coefficients of HG lobes
-// multiply: g^l k^l). The lobe's second band is then replaced by the one the photons measured
-// (docs/multiple-scattering.md).
-uniform sampler3D cacheFluence;
-uniform sampler3D cacheFlux;
-uniform sampler3D cacheFluxLengths;
-uniform sampler3D cacheSecondMoment;
-uniform sampler3D cacheDirectSlope;           // w B (rgb) and w mean E (FluenceCache::directSlope)
+// The multiple-scattering cache's light towards this viewer (FluenceCache::evaluateView,
+// volume/fluence_view.comp), per cell and premultiplied by the cell's weight w (normalised
+// interpolation): at the cell's mean direct light, and w; its slope against the direct light,
+// and that mean; the largest direct light it follows.
+uniform sampler3D cacheTowardsViewer;
+uniform sampler3D cacheTowardsViewerSlope;
+uniform sampler3D cacheTowardsViewerCap;
 uniform float cacheDirectWeight[MAX_LIGHTS];  // volume/direct_light.glsl's weights
-uniform float cacheLevel;  // coarser while the cache refines (FluenceCache::readLevel)
-vec3 cacheViewDirection;  // model space, towards the viewer (set in castRay)
-
-const float kDirectBeyondLargest = 2.0;
 
 // direct: the light arriving unscattered at the sample, as volume/direct_light.glsl weighs it.
+// Within a cell, the light scattered once follows the direct light that scatters it: the cell's
+// slope moves the sample's light by its direct light's difference from the cell's mean, up to
+// the cap; however noisy the slope, it keeps the light within 0 and 3 times the cell's mean.
 vec3 cachedInScattering(vec3 tc, float direct) {
-    vec4 weighted = textureLod(cacheFluence, tc, cacheLevel);
-    if (!(weighted.a > 0.0)) return vec3(0.0);
-    vec3 phi = weighted.rgb / weighted.a;
-    // Within a cell, the light scattered once follows the direct light that scatters it: the
-    // cell's slope (FluenceCache::directSlope) moves the sample's fluence by its direct light's
-    // difference from the cell's mean. Within a mean free path of a lit surface that fluence
-    // levels off while the direct light keeps rising, so the direct light is taken at most
-    // kDirectBeyondLargest times the largest a voxel centre of the cell has
-    // (docs/multiple-scattering.md). Each level holds its own cells' slope, as noisy at the level
-    // read as the finest once refined; however noisy, it keeps the fluence within 0 and 3 times
-    // the cell's mean.
-    vec4 slope = textureLod(cacheDirectSlope, tc, cacheLevel) / weighted.a;
-    vec4 lengthsAndLargest = textureLod(cacheFluxLengths, tc, cacheLevel);
-    float regressed = min(direct, kDirectBeyondLargest * lengthsAndLargest.a / weighted.a);
-    vec3 phiHere = clamp(phi + slope.rgb * (regressed - slope.a), vec3(0.0), 3.0 * phi);
-    vec4 fluxAndYz = textureLod(cacheFlux, tc, cacheLevel);
-    vec3 flux = fluxAndYz.xyz;
-    float fluxLength = length(flux);
-    // Each channel's flux along the mean channel's: its share of the channels' flux lengths
-    // times the mean vector's length. Noise (few photons, coarse levels' averages) shortens the
-    // mean vector but lengthens each cell's own, which alone gave near-delta lobes.
-    vec3 lengths = lengthsAndLargest.rgb;
-    float meanLength = (lengths.r + lengths.g + lengths.b) / 3.0;
-    vec3 k = meanLength > 0.0 ? min(lengths * (fluxLength / meanLength) / max(weighted.rgb, vec3(1e-30)), vec3(0.99))
-                              : vec3(0.0);
-    float cosTheta = fluxLength > 0.0 ? dot(flux, cacheViewDirection) / fluxLength : 0.0;
-    // Per channel, the radiance as a Henyey-Greenstein lobe about the flux with mean cosine k =
-    // |F| / phi: the phase function's lobe and it convolve to the HG lobe of mean cosine g k.
-    vec3 gk = phaseG * k;
-    vec3 d = 1.0 + gk * gk - 2.0 * gk * cosTheta;
-    vec3 lobe = (1.0 - gk * gk) / (12.5663706 * d * sqrt(d));
-    // Band 2: (5 / 4 pi) g^2 times the measured 3/2 v.M.v / phi (M: the mean channel's traceless
-    // second moment) in place of the lobe's k^2 P2(cos).
-    vec4 m = textureLod(cacheSecondMoment, tc, cacheLevel);
-    vec3 v = cacheViewDirection;
-    float vMv = m.x * v.x * v.x + m.y * v.y * v.y - (m.x + m.y) * v.z * v.z +
-                2.0 * (m.z * v.x * v.y + m.w * v.x * v.z + fluxAndYz.w * v.y * v.z);
-    float meanPhi = (weighted.r + weighted.g + weighted.b) / 3.0;
-    float measured = meanPhi > 0.0 ? 1.5 * vMv / meanPhi : 0.0;
-    float p2 = 1.5 * cosTheta * cosTheta - 0.5;
-    lobe += (5.0 / 12.5663706) * phaseG * phaseG * (measured - k * k * p2);
-    return phiHere * max(lobe, vec3(0.0));
+    vec4 atMean = textureLod(cacheTowardsViewer, tc, 0.0);
+    if (!(atMean.a > 0.0)) return vec3(0.0);
+    vec4 slope = textureLod(cacheTowardsViewerSlope, tc, 0.0);
+    float inverseWeight = 1.0 / atMean.a;
+    float cap = textureLod(cacheTowardsViewerCap, tc, 0.0).r * inverseWeight;
+    vec3 mean = atMean.rgb * inverseWeight;
+    return clamp(mean + slope.rgb * inverseWeight * (min(direct, cap) - slope.a * inverseWeight), vec3(0.0), 3.0 * mean);
 }
 #endif
 
@@ -653,9 +611,6 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #endif
 #if SHADING_SCATTERING && DIRECTIONAL_LIGHTS_ONLY
     for (int i = 0; i < LIGHT_COUNT; ++i) rayLightReaches[i] = lightReachTowards(i, lightVector[i].xyz);
-#endif
-#if SCATTERING_CACHE
-    cacheViewDirection = normalize(worldToModelDirection * viewerDirection);
 #endif
     vec2 span = intersectBox(ray, boxMin, boxMax);
     // The ray in texture coordinates: a sample's is a multiply-add, not three divisions.

@@ -34,12 +34,11 @@ inline constexpr int kPreintegration = 15;
 // Post-classified rays read this instead of the pre-integrated table; 16 is free in the ray
 // caster, which reads no volume shadows (those units belong to the mesh passes).
 inline constexpr int kStepTransferFunction = 16;
-// The multiple-scattering cache (volume/fluence_cache.h), in the ray caster only.
-inline constexpr int kCacheFluence = 17;
-inline constexpr int kCacheFlux = 18;
-inline constexpr int kCacheFluxLengths = 19;
-inline constexpr int kCacheSecondMoment = 20;
-inline constexpr int kCacheDirectSlope = 21;
+// The multiple-scattering cache's light towards the viewer (volume/fluence_cache.h), in the ray
+// caster only.
+inline constexpr int kCacheTowardsViewer = 17;
+inline constexpr int kCacheTowardsViewerSlope = 18;
+inline constexpr int kCacheTowardsViewerCap = 19;
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

@@ -99,7 +99,8 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution)
 FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     : m_reconstruction(reconstruction),
       m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})),
-      m_slopeProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_slope.comp"}})) {
+      m_slopeProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_slope.comp"}})),
+      m_viewProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_view.comp"}})) {
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");
     m_resumable = gl::currentDeviceIsSoftware();
@@ -146,7 +147,9 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
     for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
         for (int level = 0; level < m_levels; ++level) glClearTexImage(t->id(), level, GL_RGBA, GL_FLOAT, black);
     m_photons = 0;
+    ++m_revision;
     m_cellVolume = glm::compMul(in.volume.box.size()) / static_cast<float>(count);
+    m_box = in.volume.box;
     if (!sameDensityInputs) computeWeights(in);
 }
 
@@ -319,6 +322,7 @@ void FluenceCache::resolve() {
     for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_onceMoments, &m_onceTimesDirect})
         glGenerateTextureMipmap(t->id());
     resolveSlopes();
+    ++m_revision;
 }
 
 void FluenceCache::resolveSlopes() {
@@ -340,6 +344,49 @@ void FluenceCache::resolveSlopes() {
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);  // the next level reads it
     }
     for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+}
+
+glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model) {
+    const glm::mat4 worldToModel = glm::inverse(model);
+    if (camera.projectionType() == Projection::Orthographic)
+        return glm::vec4(glm::normalize(glm::mat3(worldToModel) * -camera.forward()), 0.0f);
+    return glm::vec4(glm::vec3(worldToModel * glm::vec4(camera.position(), 1.0f)), 1.0f);
+}
+
+bool FluenceCache::viewOutdated(const FluenceViewInputs& in) const {
+    return m_viewKey != std::make_pair(in, m_revision);
+}
+
+void FluenceCache::evaluateView(const FluenceViewInputs& in) {
+    if (m_cells.x == 0) return;
+    const int level = std::clamp(static_cast<int>(in.level), 0, m_levels - 1);
+    const glm::ivec3 cells = glm::max(m_cells >> level, glm::ivec3(1));
+    if (m_towardsViewer.size() != cells) {
+        m_towardsViewer = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache towards the viewer");
+        m_towardsViewerSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache towards the viewer: slope");
+        m_towardsViewerCap = gl::Texture::create3D(GL_R32F, cells, "fluence cache towards the viewer: cap");
+    }
+    const gl::Program& p = m_viewProgram;
+    const char* sources[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "cacheDirectSlope"};
+    const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope};
+    for (int unit = 0; unit < 5; ++unit) {
+        p.set(sources[unit], unit);
+        textures[unit]->bind(static_cast<GLuint>(unit));
+    }
+    p.set("cacheLevel", in.level);
+    p.set("viewer", in.viewer);
+    p.set("boxMin", m_box.min);
+    p.set("boxMax", m_box.max);
+    p.set("phaseG", in.anisotropy);
+    m_towardsViewer.bindImage(0, GL_WRITE_ONLY);
+    m_towardsViewerSlope.bindImage(1, GL_WRITE_ONLY);
+    m_towardsViewerCap.bindImage(2, GL_WRITE_ONLY);
+    p.use();
+    dispatchOverCells(cells);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glUseProgram(0);
+    for (GLuint unit = 0; unit < 3; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    m_viewKey = std::make_pair(in, m_revision);
 }
 
 }  // namespace sss::detail

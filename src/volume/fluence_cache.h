@@ -17,6 +17,7 @@
 #include "gl/buffer.h"
 #include "gl/program.h"
 #include "gl/texture.h"
+#include "sss/camera.h"
 #include "sss/light.h"
 #include "sss/volume_clip.h"
 #include "volume/empty_space.h"
@@ -44,6 +45,17 @@ struct FluenceCacheInputs {
     /// One per light, as the eye reads them: the direct light the cells' fluence is regressed on.
     const std::vector<gl::Texture>* lightVolumes = nullptr;
 };
+
+/// What the cache's light towards the eye depends on besides the cache (FluenceCache::evaluateView).
+struct FluenceViewInputs {
+    glm::vec4 viewer{0.0f};  ///< model space: the eye (w 1, perspective) or the unit direction towards it (w 0)
+    float level = 0.0f;      ///< the mip level read (readLevel)
+    float anisotropy = 0.5f; ///< Henyey-Greenstein g
+    bool operator==(const FluenceViewInputs&) const = default;
+};
+
+/// The viewer of `camera` in the model space of `model`, as FluenceViewInputs::viewer holds it.
+glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model);
 
 /// Each light's weight in the direct light the cache regresses its once-scattered fluence on
 /// (shaders/volume/direct_light.glsl): its mean radiance channel, and for point and spot lights
@@ -83,6 +95,19 @@ public:
     /// cell's mean direct light times the weight (RGBA32F; fluence_slope.comp). Each level holds
     /// the regression within its own cells.
     const gl::Texture& directSlope() const { return m_directSlope; }
+    /// Whether evaluateView(in) would change the textures it fills: the cache or `in` changed.
+    bool viewOutdated(const FluenceViewInputs& in) const;
+    /// Per cell of level floor(in.level), what the cache scatters towards the viewer
+    /// (shaders/volume/fluence_view.comp): the ray caster reads three textures per sample instead
+    /// of five, and none of the lobe's arithmetic. View-dependent: run once per camera move.
+    void evaluateView(const FluenceViewInputs& in);
+    /// w times the light scattered towards the viewer at the cell's mean direct light (rgb), and
+    /// w (RGBA32F).
+    const gl::Texture& towardsViewer() const { return m_towardsViewer; }
+    /// w times its slope against the direct light (rgb), and w times that mean (RGBA32F).
+    const gl::Texture& towardsViewerSlope() const { return m_towardsViewerSlope; }
+    /// w times the largest direct light the slope applies to (R32F).
+    const gl::Texture& towardsViewerCap() const { return m_towardsViewerCap; }
     /// The mip level to read while the cache refines towards `budget` photons: each level up has
     /// 8 times the photons per cell, so log8(budget / photons) reads about the noise the finest
     /// level will have once refined (0 once it is; at most the coarsest level).
@@ -115,6 +140,7 @@ private:
     int m_directLights = 0;       // light volumes of the current inputs
     gl::Program m_resolveProgram;
     gl::Program m_slopeProgram;
+    gl::Program m_viewProgram;
     glm::ivec3 m_cells{0};
     gl::Buffer m_sums;            // 23 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
@@ -125,10 +151,14 @@ private:
     gl::Texture m_onceMoments, m_onceTimesDirect;  // the slope's moments (fluence_resolve.comp)
     std::uint64_t m_photons = 0;
     float m_cellVolume = 1.0f;    // model units^3
+    Bounds m_box;                 // the volume's, model space
     float m_powerUnit = 0.0f;     // power a photon of weight 1 carries (see setUniforms)
     bool m_resumable = true;
     int m_lastDispatches = 0;
     int m_levels = 1;             // mip levels of the cache's textures
+    std::uint64_t m_revision = 0; // counts the changes of the cache's textures
+    gl::Texture m_towardsViewer, m_towardsViewerSlope, m_towardsViewerCap;  // evaluateView's, at its level
+    std::optional<std::pair<FluenceViewInputs, std::uint64_t>> m_viewKey;  // and the revision it read
 };
 
 }  // namespace sss::detail

@@ -248,17 +248,12 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         }
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
         if (m_variant.scatteringCache && in.cache) {
-            p.set("cacheFluence", units::kCacheFluence);
-            p.set("cacheFlux", units::kCacheFlux);
-            p.set("cacheFluxLengths", units::kCacheFluxLengths);
-            p.set("cacheSecondMoment", units::kCacheSecondMoment);
-            p.set("cacheDirectSlope", units::kCacheDirectSlope);
-            p.set("cacheLevel", in.cacheLevel);
-            in.cache->fluence().bind(units::kCacheFluence);
-            in.cache->flux().bind(units::kCacheFlux);
-            in.cache->fluxLengths().bind(units::kCacheFluxLengths);
-            in.cache->secondMoment().bind(units::kCacheSecondMoment);
-            in.cache->directSlope().bind(units::kCacheDirectSlope);
+            p.set("cacheTowardsViewer", units::kCacheTowardsViewer);
+            p.set("cacheTowardsViewerSlope", units::kCacheTowardsViewerSlope);
+            p.set("cacheTowardsViewerCap", units::kCacheTowardsViewerCap);
+            in.cache->towardsViewer().bind(units::kCacheTowardsViewer);
+            in.cache->towardsViewerSlope().bind(units::kCacheTowardsViewerSlope);
+            in.cache->towardsViewerCap().bind(units::kCacheTowardsViewerCap);
             const std::vector<float> weights = directLightWeights(in.lights, model, in.volume.box);
             for (size_t i = 0; i < weights.size(); ++i) p.set("cacheDirectWeight[" + std::to_string(i) + "]", weights[i]);
         }

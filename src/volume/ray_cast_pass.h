@@ -59,10 +59,9 @@ struct RayCastInputs {
     float lightVolumeReach = 0.0f;
     const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights
     const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
-    /// The multiple-scattering cache, if it is on, and the mip level to read it at
-    /// (FluenceCache::readLevel).
+    /// The multiple-scattering cache, if it is on, its light towards this camera evaluated
+    /// (FluenceCache::evaluateView).
     const FluenceCache* cache = nullptr;
-    float cacheLevel = 0.0f;
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)

@@ -264,6 +264,16 @@ struct VolumeScatteringRenderer::Impl {
         passTimer.end("scattering-cache", mark, passTiming());
     }
 
+    // The cache's light towards the camera: evaluated again when the camera or the cache changed.
+    void updateFluenceView(const Camera& camera) {
+        const detail::FluenceViewInputs in{
+            .viewer = detail::modelSpaceViewer(camera, model),
+            .level = fluenceCache->readLevel(static_cast<std::uint64_t>(options.cachePhotons)),
+            .anisotropy = options.anisotropy};
+        if (fluenceCache->viewOutdated(in))
+            passTimer.time("scattering-cache-view", passTiming(), [&] { fluenceCache->evaluateView(in); });
+    }
+
     void renderPathTraced(const Camera& camera, RenderTarget& target) {
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         updateMajorants();
@@ -519,6 +529,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     const bool scatteringCache = detail::usesScatteringCache(m_impl->options);
     if (scatteringCache) {
         m_impl->updateFluenceCache();
+        m_impl->updateFluenceView(camera);
     } else {
         m_impl->fluenceKey.reset();  // leaving the mode drops the cache
         m_impl->fluenceCache.reset();
@@ -528,7 +539,6 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
     if (!variant.compute) m_impl->copyDepth(target);
     target.bindForDrawing();
     const Impl& r = *m_impl;
-    const auto photonBudget = static_cast<std::uint64_t>(r.options.cachePhotons);
     r.rayCast->run({.target = target,
                     .volume = *r.volume,
                     .transferFunction = r.transferFunctionTable,
@@ -539,7 +549,6 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .meshShadows = r.meshShadows,
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
                     .cache = scatteringCache ? &*r.fluenceCache : nullptr,
-                    .cacheLevel = scatteringCache ? r.fluenceCache->readLevel(photonBudget) : 0.0f,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,

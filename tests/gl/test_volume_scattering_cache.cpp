@@ -365,19 +365,57 @@ TEST_CASE("the multiple-scattering cache is kept for camera moves and restarted 
     REQUIRE(scene.renderer.cachedPhotons() == (1u << 17));
     const std::uint64_t runs = scene.renderer.stats().runs("scattering-cache");
     const std::uint64_t lightVolumeRuns = scene.renderer.stats().runs("light-volume");
+    const std::uint64_t viewRuns = scene.renderer.stats().runs("scattering-cache-view");
     for (float yaw : {60.0f, 120.0f, -90.0f}) scene.frame(blobsCamera(yaw));
     CHECK(scene.renderer.stats().runs("scattering-cache") == runs);
     CHECK(scene.renderer.stats().runs("light-volume") == lightVolumeRuns);
     CHECK(scene.renderer.cachedPhotons() == (1u << 17));
+    // Each camera move evaluates the cache towards the new viewer once; a frame that moves
+    // nothing evaluates nothing.
+    CHECK(scene.renderer.stats().runs("scattering-cache-view") == viewRuns + 3);
+    scene.frame(blobsCamera(-90.0f));
+    CHECK(scene.renderer.stats().runs("scattering-cache-view") == viewRuns + 3);
     scene.renderer.setLights({DirectionalLight{.direction = {1.0f, -0.7f, -0.4f}, .intensity = 10.0f}});
     scene.frame(blobsCamera());
     CHECK(scene.renderer.cachedPhotons() == (1u << 16));  // restarted with the first frame's photons
     CHECK(scene.renderer.stats().runs("scattering-cache") == runs + 1);
+    CHECK(scene.renderer.stats().runs("scattering-cache-view") == viewRuns + 4);  // the cache changed
     // Leaving the mode drops the cache.
     o.multipleScatteringCache = false;
     scene.renderer.setOptions(o);
     scene.frame(blobsCamera());
     CHECK(scene.renderer.cachedPhotons() == 0);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("the cache's light towards an orthographic camera is that towards a distant perspective one",
+          "[gl][volume][scattering-cache]") {
+    // The cache's lobes are evaluated per cell towards the viewer (FluenceCache::evaluateView):
+    // the eye for a perspective camera, one direction for an orthographic one. A perspective
+    // camera 100 times as far with a narrow field shows the same view (0.3 % apart); with the
+    // orthographic viewer's direction turned the wrong way they were 84 % apart.
+    test::GlTestScope gl;
+    Camera orthographic = blobsCamera(40.0f);
+    const float height = 2.0f * orthographic.distance() * std::tan(glm::radians(orthographic.fovY()) / 2.0f);
+    Camera distant = orthographic;
+    distant.setDistance(100.0f * orthographic.distance());
+    distant.setFovY(glm::degrees(2.0f * std::atan(height / (2.0f * distant.distance()))));
+    distant.setClipPlanes(0.5f * distant.distance(), 2.0f * distant.distance());
+    orthographic.setProjectionType(Projection::Orthographic);
+    orthographic.setOrthoHeight(height);
+    Scene scene(cached(1 << 17, 24), blobs(), blobsTf());
+    const Image fromOrthographic = scene.refined(orthographic);
+    const Image fromDistant = scene.frame(distant);
+    VolumeRenderOptions withoutCache = cached(1);
+    withoutCache.multipleScatteringCache = false;
+    Scene singleScene(withoutCache, blobs(), blobsTf());
+    const Image singleOrthographic = singleScene.frame(orthographic);
+    const double multipleShare = 1.0 - 1.0 / meanRatio(fromOrthographic, singleOrthographic);
+    const double error = computeErrorMetrics(fromOrthographic, fromDistant).relRmse;
+    INFO("multiple-scattering share " << multipleShare << ", orthographic against distant perspective relRMSE "
+                                      << error);
+    REQUIRE(multipleShare > 0.5);
+    CHECK(error < 0.02);
     gl.requireNoErrors();
 }
 
