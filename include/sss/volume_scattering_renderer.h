@@ -237,8 +237,8 @@ struct VolumeRenderOptions {
     /// Cells of the cache along the box's longest side, the other sides in proportion, at most
     /// one per voxel and at most 32 voxels wide, 1..1024. Measured once refined against the path
     /// tracer (relRMSE): bonsai 10.9 % at 64 and 11.6 % at 128, engine 21.3 % and 20.4 %; first
-    /// frames, read at coarser levels, 30-35 %. Memory: about 300 bytes per cell, 74 MiB at 64^3,
-    /// 590 MiB at 128^3 (default: 64).
+    /// frames, read at coarser levels, 30-35 %. Memory: about 370 bytes per cell, 92 MiB at 64^3,
+    /// 740 MiB at 128^3 (default: 64).
     int cacheResolution = 64;
     /// Photons each render() adds while the cache refines, 1..2^24 (default: 65536).
     int cachePhotonsPerFrame = 1 << 16;
