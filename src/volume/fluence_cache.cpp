@@ -99,8 +99,7 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution)
 FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     : m_reconstruction(reconstruction),
       m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})),
-      m_slopeProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_slope.comp"}})),
-      m_viewProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_view.comp"}})) {
+      m_slopeProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_slope.comp"}})) {
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");
     m_resumable = gl::currentDeviceIsSoftware();
@@ -366,7 +365,10 @@ void FluenceCache::evaluateView(const FluenceViewInputs& in) {
         m_towardsViewerSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache towards the viewer: slope");
         m_towardsViewerCap = gl::Texture::create3D(GL_R32F, cells, "fluence cache towards the viewer: cap");
     }
-    const gl::Program& p = m_viewProgram;
+    const bool wholeLevel = in.level == static_cast<float>(level);
+    const gl::Program& p = gl::linkedOnce(m_viewPrograms, wholeLevel, "volume/fluence_view.comp", [&] {
+        return ShaderDefines{{"WHOLE_LEVEL", wholeLevel ? "1" : "0"}};
+    });
     const char* sources[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "cacheDirectSlope"};
     const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope};
     for (int unit = 0; unit < 5; ++unit) {

@@ -140,7 +140,7 @@ private:
     int m_directLights = 0;       // light volumes of the current inputs
     gl::Program m_resolveProgram;
     gl::Program m_slopeProgram;
-    gl::Program m_viewProgram;
+    std::map<bool, gl::Program> m_viewPrograms;  // by whether the level read is a whole one
     glm::ivec3 m_cells{0};
     gl::Buffer m_sums;            // 23 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
