@@ -77,24 +77,6 @@ public:
     /// Traces `photons` more photons into the sums and updates the textures to their mean.
     void add(const FluenceCacheInputs& in, int photons);
 
-    /// Per cell: rgb fluence times the cell's mean weight, and that weight (RGBA32F): divide
-    /// filtered values by the filtered weight (fluence_resolve.comp). Texel centres are the
-    /// cells' centres.
-    const gl::Texture& fluence() const { return m_fluence; }
-    /// Per cell: xyz flux vector of the mean channel times the weight, model space, and the
-    /// second moment's yz (RGBA32F).
-    const gl::Texture& flux() const { return m_flux; }
-    /// Per cell: rgb length of each channel's flux vector times the weight, and the largest
-    /// direct light among its voxel centres times the weight (RGBA32F; at coarser levels the
-    /// largest of its children's, fluence_slope.comp).
-    const gl::Texture& fluxLengths() const { return m_fluxLengths; }
-    /// Per cell: the mean channel's traceless second angular moment xx - 1/3, yy - 1/3, xy, xz
-    /// times the weight, model space (RGBA32F); yz is flux()'s alpha.
-    const gl::Texture& secondMoment() const { return m_secondMoment; }
-    /// Per cell: rgb slope of the fluence against the direct light times the weight, and the
-    /// cell's mean direct light times the weight (RGBA32F; fluence_slope.comp). Each level holds
-    /// the regression within its own cells.
-    const gl::Texture& directSlope() const { return m_directSlope; }
     /// Whether evaluateView(in) would change the textures it fills: the cache or `in` changed.
     bool viewOutdated(const FluenceViewInputs& in) const;
     /// Per cell of level floor(in.level), what the cache scatters towards the viewer
@@ -147,7 +129,14 @@ private:
     gl::Buffer m_directMoments;   // per cell, the integrals of s E and s E^2, the largest E (fluence_density.comp)
     gl::Buffer m_photonStates;
     gl::Buffer m_status;
-    gl::Texture m_fluence, m_flux, m_fluxLengths, m_secondMoment, m_directSlope;
+    // Mipmapped, per cell and premultiplied by its mean weight w (readers divide filtered values by
+    // the filtered w; texel centres are the cells' centres), model space, all RGBA32F:
+    gl::Texture m_fluence;       // rgb fluence, and w (fluence_resolve.comp)
+    gl::Texture m_flux;          // the mean channel's flux vector, and the second moment's yz
+    gl::Texture m_fluxLengths;   // each channel's flux length, and the largest direct light of the
+                                 // cell's voxel centres (coarser levels: of its children, fluence_slope.comp)
+    gl::Texture m_secondMoment;  // the mean channel's traceless xx - 1/3, yy - 1/3, xy, xz
+    gl::Texture m_directSlope;   // rgb slope against the direct light, and its mean (each level its own)
     gl::Texture m_onceMoments, m_onceTimesDirect;  // the slope's moments (fluence_resolve.comp)
     std::uint64_t m_photons = 0;
     float m_cellVolume = 1.0f;    // model units^3
