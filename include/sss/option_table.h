@@ -141,7 +141,8 @@ struct OptionTable<VolumeRenderOptions> {
         OptionField<O, float>{&O::gradientThreshold, "gradientThreshold",
                               "gradient magnitude at which shading is fully on", above(0)},
         OptionField<O, bool>{&O::gradientVolume, "gradientVolume",
-            "gradient modes read a gradient volume computed once (8 bytes per voxel); off: gradients per sample",
+            "gradient modes read a gradient volume computed once (4 bytes per voxel for 8-bit data, "
+            "else 8); off: gradients per sample",
             {}, "--no-gradient-volume"},
         OptionField<O, float>{&O::lightVolumeScale, "lightVolumeScale", "light-volume resolution relative to the data",
                               between(0, 1, true), "--light-volume-scale", "S"},

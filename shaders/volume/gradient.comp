@@ -8,7 +8,9 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 uniform sampler3D volumeTexture;
 uniform ivec3 volumeDims;
 uniform int storeValues;
-layout(rgba16, binding = 0) uniform writeonly image3D gradients;
+uniform float encodeScale;   // d in [-1, 1] is stored as d * encodeScale + encodeOffset
+uniform float encodeOffset;  // (GradientEncoding: RGBA8 or RGBA16, the format bound)
+layout(binding = 0) uniform writeonly image3D gradients;
 
 float at(ivec3 i) { return texelFetch(volumeTexture, clamp(i, ivec3(0), volumeDims - 1), 0).r; }
 
@@ -17,5 +19,5 @@ void main() {
     if (any(greaterThanEqual(i, volumeDims))) return;
     vec3 d = vec3(at(i + ivec3(1, 0, 0)) - at(i - ivec3(1, 0, 0)), at(i + ivec3(0, 1, 0)) - at(i - ivec3(0, 1, 0)),
                   at(i + ivec3(0, 0, 1)) - at(i - ivec3(0, 0, 1)));
-    imageStore(gradients, i, vec4(d * 0.5 + 0.5, storeValues != 0 ? at(i) : 0.0));
+    imageStore(gradients, i, vec4(d * encodeScale + encodeOffset, storeValues != 0 ? at(i) : 0.0));
 }

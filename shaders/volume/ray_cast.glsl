@@ -131,7 +131,8 @@ float normalDot(SurfaceNormal surface, vec3 gradientSpaceDirection) {
 }
 
 #if GRADIENT_VOLUME
-uniform sampler3D gradientVolume;  // per-voxel central differences d / 2 + 1/2 (volume/gradient.comp)
+uniform sampler3D gradientVolume;  // per-voxel central differences d, encoded (volume/gradient.comp)
+uniform vec2 gradientDecode;       // d = texel * x + y (GradientEncoding)
 #endif
 #if COMBINED_FETCH
 // The gradient (central differences) at the point being shaded: the caller reads it with the
@@ -147,7 +148,7 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 viewer) {
 #elif GRADIENT_VOLUME
     // Precomputed: the per-voxel differences reconstructed as the field is (trilinear or cubic)
     // are the central differences of the field, the gradient the on-the-fly path computes.
-    vec3 g = (reconstruct(gradientVolume, tc).xyz * 2.0 - 1.0) * (0.5 * valueScaleOffset.x);
+    vec3 g = (reconstruct(gradientVolume, tc).xyz * gradientDecode.x + gradientDecode.y) * (0.5 * valueScaleOffset.x);
 #else
     vec3 h = 1.0 / vec3(volumeDims);
     vec3 g = vec3(volumeValue(tc + vec3(h.x, 0, 0)) - volumeValue(tc - vec3(h.x, 0, 0)),
@@ -172,7 +173,7 @@ SurfaceNormal gradientNormal(vec3 tc, vec3 viewer) {
 #if COMBINED_FETCH
 vec4 sampleVolume(vec3 tc) {
     vec4 s = reconstruct(gradientVolume, tc);
-    return vec4(s.xyz * 2.0 - 1.0, s.w);
+    return vec4(s.xyz * gradientDecode.x + gradientDecode.y, s.w);
 }
 #else
 vec4 sampleVolume(vec3 tc) { return vec4(0.0, 0.0, 0.0, volumeValue(tc)); }

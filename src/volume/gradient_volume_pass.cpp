@@ -6,12 +6,15 @@ GradientVolumePass::GradientVolumePass()
     : m_program(gl::Program::link({{GL_COMPUTE_SHADER, "volume/gradient.comp"}})) {}
 
 gl::Texture GradientVolumePass::run(const GpuVolume& volume) const {
-    gl::Texture gradients = gl::Texture::create3D(GL_RGBA16, volume.dims, "gradient volume");
+    const GradientEncoding encoding = gradientEncodingFor(volume.texture.internalFormat());
+    gl::Texture gradients = gl::Texture::create3D(encoding.format, volume.dims, "gradient volume");
     gradients.setFilter(GL_LINEAR, GL_LINEAR);
     gradients.setWrap(GL_CLAMP_TO_EDGE);
     const gl::Program& p = m_program;
     p.set("volumeTexture", 0);
     p.set("volumeDims", volume.dims);
+    p.set("encodeScale", encoding.encodeScale);
+    p.set("encodeOffset", encoding.encodeOffset);
     p.set("storeValues", gradientVolumeHoldsValues(volume) ? 1 : 0);
     volume.texture.bind(0);
     gradients.bindImage(0, GL_WRITE_ONLY);
@@ -20,7 +23,7 @@ gl::Texture GradientVolumePass::run(const GpuVolume& volume) const {
                       static_cast<GLuint>((volume.dims.z + 3) / 4));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(0);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, encoding.format);
     return gradients;
 }
 

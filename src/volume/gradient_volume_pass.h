@@ -1,9 +1,10 @@
 #pragma once
 // The gradient volume: central differences of the data per voxel, computed once per data set on
-// the GPU (shaders/volume/gradient.comp) into an RGBA16 3D texture (8 bytes per voxel), so the
-// gradient shading modes read one texel per sample instead of six. The differences are stored
-// as d / 2 + 1/2; with unorm data (8 and 16 bit, whose values are exact in 16 bits) the fourth
-// channel holds the data value, and the ray caster takes both from one fetch.
+// the GPU (shaders/volume/gradient.comp), so the gradient shading modes read one texel per sample
+// instead of six. With unorm data the fourth channel holds the data value, and the ray caster
+// takes both from one fetch. 8-bit data get an RGBA8 texel (4 bytes per voxel), the rest RGBA16
+// (8 bytes): software rasterisers filter 8-bit texels on a fast fixed-point path, and an RGBA8
+// gradient frame is about a tenth faster on llvmpipe (benchmarks/README.md, Table 5.4).
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "volume/gpu_volume.h"
@@ -20,6 +21,30 @@ public:
 private:
     gl::Program m_program;
 };
+
+/// How a gradient texel holds the differences d (in [-1, 1], normalised value units): as
+/// d * encodeScale + encodeOffset, read back as texel * decodeScale + decodeOffset. RGBA8 keeps
+/// zero exact (128 / 255) and steps of 1 / 127 (about one 8-bit data value per voxel of the
+/// central difference, whose 511 possible values 8 bits cannot all hold): shading fades out below
+/// gradientThreshold (default 0.02, five such steps), so the lost bit changes only a normal's
+/// last half degree or so. RGBA16 holds every difference of 8- and 16-bit data.
+struct GradientEncoding {
+    GLenum format;
+    float encodeScale;
+    float encodeOffset;
+    float decodeScale;
+    float decodeOffset;
+};
+
+inline GradientEncoding gradientEncodingFor(GLenum volumeFormat) {
+    if (volumeFormat == GL_R8) return {GL_RGBA8, 127.0f / 255.0f, 128.0f / 255.0f, 255.0f / 127.0f, -128.0f / 127.0f};
+    return {GL_RGBA16, 0.5f, 0.5f, 2.0f, -1.0f};
+}
+
+/// The encoding of a gradient volume of this format (run()'s output).
+inline GradientEncoding gradientEncodingOf(const gl::Texture& gradients) {
+    return gradientEncodingFor(gradients.internalFormat() == GL_RGBA8 ? GL_R8 : GL_R16);
+}
 
 /// Whether run() stores the data value in the fourth channel (unorm data), or 0 (float data,
 /// whose values need not lie in [0, 1]).

@@ -3,6 +3,7 @@
 #include "volume/clip_uniforms.h"
 #include "volume/composite_over.h"
 #include "volume/fluence_cache.h"
+#include "volume/gradient_volume_pass.h"
 #include "lighting/texture_units.h"
 #include "sss/error.h"
 
@@ -229,6 +230,8 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         p.set("gradientThreshold", options.gradientThreshold);
         if (m_variant.gradients != GradientSource::OnTheFly && in.gradientVolume) {
             p.set("gradientVolume", units::kGradientVolume);
+            const GradientEncoding encoding = gradientEncodingOf(*in.gradientVolume);
+            p.set("gradientDecode", glm::vec2(encoding.decodeScale, encoding.decodeOffset));
             in.gradientVolume->bind(units::kGradientVolume);
         }
     }
