@@ -355,6 +355,11 @@ void bindOptions(py::module_& m) {
                              {{"AUTO", sss::RayCaster::Auto}, {"FRAGMENT", sss::RayCaster::Fragment},
                               {"COMPUTE", sss::RayCaster::Compute}},
                              "Which ray caster draws a volume (the same image either way).");
+    bindEnum<sss::CacheViewEvaluation>(m, "CacheViewEvaluation",
+                                       {{"AUTO", sss::CacheViewEvaluation::Auto},
+                                        {"PER_CELL", sss::CacheViewEvaluation::PerCell},
+                                        {"PER_SAMPLE", sss::CacheViewEvaluation::PerSample}},
+                                       "Where the multiple-scattering cache's light towards the viewer is evaluated.");
     bindEnum<sss::LightPropagation>(m, "LightPropagation",
                                     {{"AUTO", sss::LightPropagation::Auto}, {"SWEEP", sss::LightPropagation::Sweep},
                                      {"DOUBLING", sss::LightPropagation::Doubling}},

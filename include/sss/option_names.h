@@ -31,7 +31,7 @@ struct EnumName {
 
 /// Every value of `Enum` with its name, in declaration order. Specialized for MeshShading,
 /// MeshCombine, ScatteringProfile, VolumeShading, VolumeModel, LightVolumeFallback, RayCaster,
-/// LightPropagation, CropSpace, ToneMap, Projection, VoxelType and VolumeReconstruction.
+/// CacheViewEvaluation, LightPropagation, CropSpace, ToneMap, Projection, VoxelType and VolumeReconstruction.
 template <class Enum>
 std::span<const EnumName<Enum>> enumNames();
 
@@ -70,6 +70,7 @@ template <> std::span<const EnumName<VolumeShading>> enumNames<VolumeShading>();
 template <> std::span<const EnumName<VolumeModel>> enumNames<VolumeModel>();
 template <> std::span<const EnumName<LightVolumeFallback>> enumNames<LightVolumeFallback>();
 template <> std::span<const EnumName<RayCaster>> enumNames<RayCaster>();
+template <> std::span<const EnumName<CacheViewEvaluation>> enumNames<CacheViewEvaluation>();
 template <> std::span<const EnumName<LightPropagation>> enumNames<LightPropagation>();
 template <> std::span<const EnumName<ToneMap>> enumNames<ToneMap>();
 template <> std::span<const EnumName<Projection>> enumNames<Projection>();

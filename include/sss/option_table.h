@@ -190,6 +190,9 @@ struct OptionTable<VolumeRenderOptions> {
         OptionField<O, int>{&O::cachePhotons, "cachePhotons",
                             "photons after which the multiple-scattering cache stops refining", between(1, 1 << 30),
                             "--cache-photons", "N"},
+        OptionField<O, CacheViewEvaluation>{&O::cacheViewEvaluation, "cacheViewEvaluation",
+            "where the multiple-scattering cache's light towards the viewer is evaluated: per-cell (once per camera "
+            "move), per-sample, or auto (per device and target size)", {}, "--cache-view-evaluation"},
         OptionField<O, RayCaster>{&O::rayCaster, "rayCaster",
             "ray caster: fragment (fullscreen triangle), compute (dispatch over the volume's screen rectangle) or auto "
             "(per device: compute on hardware GPUs)", {}, "--ray-caster"},

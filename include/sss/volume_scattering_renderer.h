@@ -79,6 +79,27 @@ enum class RayCaster {
     Compute,
 };
 
+/// Where the multiple-scattering cache's light towards the viewer is evaluated
+/// (docs/multiple-scattering.md, "Towards the viewer"). Both evaluate the same lobe; per cell, the
+/// products of the cells' values interpolate, per sample the values do (images within about 1 %).
+enum class CacheViewEvaluation {
+    /// Per device and target size: per cell on hardware GPUs, whose compute runs the pass over
+    /// the cells on the whole chip; on software rasterisers per cell where the cache's cells (at
+    /// cacheResolution) are at most kCacheCellsPerPixel times the target's pixels, per sample
+    /// where they are more.
+    Auto,
+    /// Once per cell of the level read and camera move (a compute pass); samples read three
+    /// textures and do a multiply-add.
+    PerCell,
+    /// At every shaded sample, from the cache's five textures.
+    PerSample,
+};
+
+/// CacheViewEvaluation::Auto's threshold on software rasterisers: on llvmpipe, with the bonsai
+/// at the default step, per sample was faster above 6-10 cells per pixel
+/// (docs/multiple-scattering.md, "Towards the viewer").
+inline constexpr double kCacheCellsPerPixel = 8.0;
+
 /// How the light volume is carried from the light through the medium
 /// (docs/light-volume-sweep.md). Both give the light arriving at each voxel along the ray to the
 /// light, through the same medium samples and the same colour cone.
@@ -246,6 +267,9 @@ struct VolumeRenderOptions {
     /// Photons after which the cache stops refining and frames trace none, 1..2^30
     /// (default: 2^21).
     int cachePhotons = 1 << 21;
+    /// Where the cache's light towards the viewer is evaluated: once per cell and camera move, or
+    /// per shaded sample (default: Auto; see CacheViewEvaluation).
+    CacheViewEvaluation cacheViewEvaluation = CacheViewEvaluation::Auto;
     /// The ray caster: fragment or compute, or picked per device (default: Auto; see RayCaster).
     RayCaster rayCaster = RayCaster::Auto;
     /// Wait for the GPU after each pass so RenderStats times are GPU times (default: off).

@@ -22,6 +22,9 @@
 //                            light, l alone; 0: the paper's model, chromaticity c as well
 //   MESH_SHADOWS 0|1       : meshes of a hybrid scene cast shadows into the volume
 //   CLIP 0|1               : clip planes or a crop box cut the volume (volume/clip.glsl)
+//   SCATTERING_CACHE 0|1   : add the multiple-scattering cache's light (physical model)
+//   CACHE_PER_SAMPLE 0|1   : evaluate its lobe per sample from its five textures; 0: read the
+//                            view pass's three (FluenceCache::evaluateView)
 //   DIAGONAL_GRADIENT_METRIC 0|1: gradientMetric is diagonal (the model transform neither shears
 //                            nor scales unequally along turned axes): |M g|^2 is three products
 // Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
@@ -250,27 +253,57 @@ LightReach rayLightReaches[MAX_LIGHTS];
 #endif
 
 #if SCATTERING_CACHE
-// The multiple-scattering cache's light towards this viewer (FluenceCache::evaluateView,
-// volume/fluence_view.comp), per cell and premultiplied by the cell's weight w (normalised
-// interpolation): at the cell's mean direct light, and w; its slope against the direct light,
-// and that mean; the largest direct light it follows.
+#include "volume/fluence_lobe.glsl"
+uniform float cacheDirectWeight[MAX_LIGHTS];  // volume/direct_light.glsl's weights
+#if CACHE_PER_SAMPLE
+// The cache's five textures (FluenceCache::bindSources), read at cacheLevel, and the lobe towards
+// the viewer evaluated at every shaded sample: cheaper than the view pass over every cell where
+// the cells outnumber the pixels (VolumeRenderOptions::cacheViewEvaluation).
+uniform sampler3D cacheFluence;
+uniform sampler3D cacheFlux;
+uniform sampler3D cacheFluxLengths;
+uniform sampler3D cacheSecondMoment;
+uniform sampler3D cacheDirectSlope;
+uniform float cacheLevel;  // FluenceCache::readLevel
+uniform vec4 cacheViewer;  // model space: the eye (w 1) or the direction towards it (w 0)
+
+CacheTowardsViewer cacheTowardsViewerAt(vec3 p, vec3 tc) {
+    vec4 weighted = textureLod(cacheFluence, tc, cacheLevel);
+    if (!(weighted.a > 0.0)) return CacheTowardsViewer(vec4(0.0), vec4(0.0), 0.0);
+    vec3 towards = cacheViewer.w != 0.0 ? cacheViewer.xyz - p : cacheViewer.xyz;
+    vec3 v = length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0);
+    return cacheTowards(v, phaseG, weighted, textureLod(cacheFlux, tc, cacheLevel),
+                        textureLod(cacheFluxLengths, tc, cacheLevel), textureLod(cacheSecondMoment, tc, cacheLevel),
+                        textureLod(cacheDirectSlope, tc, cacheLevel));
+}
+#else
+// The cache's light towards this viewer (FluenceCache::evaluateView, volume/fluence_view.comp),
+// per cell and premultiplied by the cell's weight w (normalised interpolation): at the cell's
+// mean direct light, and w; its slope against the direct light, and that mean; the largest
+// direct light it follows.
 uniform sampler3D cacheTowardsViewer;
 uniform sampler3D cacheTowardsViewerSlope;
 uniform sampler3D cacheTowardsViewerCap;
-uniform float cacheDirectWeight[MAX_LIGHTS];  // volume/direct_light.glsl's weights
 
-// direct: the light arriving unscattered at the sample, as volume/direct_light.glsl weighs it.
-// Within a cell, the light scattered once follows the direct light that scatters it: the cell's
-// slope moves the sample's light by its direct light's difference from the cell's mean, up to
-// the cap; however noisy the slope, it keeps the light within 0 and 3 times the cell's mean.
-vec3 cachedInScattering(vec3 tc, float direct) {
-    vec4 atMean = textureLod(cacheTowardsViewer, tc, 0.0);
-    if (!(atMean.a > 0.0)) return vec3(0.0);
-    vec4 slope = textureLod(cacheTowardsViewerSlope, tc, 0.0);
-    float inverseWeight = 1.0 / atMean.a;
-    float cap = textureLod(cacheTowardsViewerCap, tc, 0.0).r * inverseWeight;
-    vec3 mean = atMean.rgb * inverseWeight;
-    return clamp(mean + slope.rgb * inverseWeight * (min(direct, cap) - slope.a * inverseWeight), vec3(0.0), 3.0 * mean);
+CacheTowardsViewer cacheTowardsViewerAt(vec3 p, vec3 tc) {
+    return CacheTowardsViewer(textureLod(cacheTowardsViewer, tc, 0.0), textureLod(cacheTowardsViewerSlope, tc, 0.0),
+                              textureLod(cacheTowardsViewerCap, tc, 0.0).r);
+}
+#endif
+
+// At model-space point p (texture coordinate tc); direct: the light arriving unscattered at the
+// sample, as volume/direct_light.glsl weighs it. Within a cell, the light scattered once follows
+// the direct light that scatters it: the cell's slope moves the sample's light by its direct
+// light's difference from the cell's mean, up to the cap; however noisy the slope, it keeps the
+// light within 0 and 3 times the cell's mean.
+vec3 cachedInScattering(vec3 p, vec3 tc, float direct) {
+    CacheTowardsViewer light = cacheTowardsViewerAt(p, tc);
+    if (!(light.atMean.a > 0.0)) return vec3(0.0);
+    float inverseWeight = 1.0 / light.atMean.a;
+    vec3 mean = light.atMean.rgb * inverseWeight;
+    float cap = light.cap * inverseWeight;
+    return clamp(mean + light.slope.rgb * inverseWeight * (min(direct, cap) - light.slope.a * inverseWeight), vec3(0.0),
+                 3.0 * mean);
 }
 #endif
 
@@ -478,7 +511,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     }
 #if SHADING_SCATTERING
 #if SCATTERING_CACHE
-    lit += color * cachedInScattering(tc, direct);
+    lit += color * cachedInScattering(p, tc, direct);
 #endif
 #if EYE_PASS
     lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;  // the paper's model only

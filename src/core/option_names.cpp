@@ -63,6 +63,14 @@ std::span<const EnumName<RayCaster>> enumNames<RayCaster>() {
 }
 
 template <>
+std::span<const EnumName<CacheViewEvaluation>> enumNames<CacheViewEvaluation>() {
+    static constexpr EnumName<CacheViewEvaluation> names[] = {{CacheViewEvaluation::Auto, "auto"},
+                                                              {CacheViewEvaluation::PerCell, "per-cell"},
+                                                              {CacheViewEvaluation::PerSample, "per-sample"}};
+    return names;
+}
+
+template <>
 std::span<const EnumName<LightPropagation>> enumNames<LightPropagation>() {
     static constexpr EnumName<LightPropagation> names[] = {
         {LightPropagation::Auto, "auto"}, {LightPropagation::Sweep, "sweep"}, {LightPropagation::Doubling, "doubling"}};

@@ -352,6 +352,16 @@ glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model) {
     return glm::vec4(glm::vec3(worldToModel * glm::vec4(camera.position(), 1.0f)), 1.0f);
 }
 
+void FluenceCache::bindSources(const gl::Program& p, int firstUnit, float level) const {
+    const char* names[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "cacheDirectSlope"};
+    const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope};
+    for (int i = 0; i < 5; ++i) {
+        p.set(names[i], firstUnit + i);
+        textures[i]->bind(static_cast<GLuint>(firstUnit + i));
+    }
+    p.set("cacheLevel", level);
+}
+
 bool FluenceCache::viewOutdated(const FluenceViewInputs& in) const {
     return m_viewKey != std::make_pair(in, m_revision);
 }
@@ -369,13 +379,7 @@ void FluenceCache::evaluateView(const FluenceViewInputs& in) {
     const gl::Program& p = gl::linkedOnce(m_viewPrograms, wholeLevel, "volume/fluence_view.comp", [&] {
         return ShaderDefines{{"WHOLE_LEVEL", wholeLevel ? "1" : "0"}};
     });
-    const char* sources[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "cacheDirectSlope"};
-    const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope};
-    for (int unit = 0; unit < 5; ++unit) {
-        p.set(sources[unit], unit);
-        textures[unit]->bind(static_cast<GLuint>(unit));
-    }
-    p.set("cacheLevel", in.level);
+    bindSources(p, 0, in.level);
     p.set("viewer", in.viewer);
     p.set("boxMin", m_box.min);
     p.set("boxMax", m_box.max);

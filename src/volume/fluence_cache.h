@@ -90,6 +90,10 @@ public:
     const gl::Texture& towardsViewerSlope() const { return m_towardsViewerSlope; }
     /// w times the largest direct light the slope applies to (R32F).
     const gl::Texture& towardsViewerCap() const { return m_towardsViewerCap; }
+    /// Binds the cache's five textures to units firstUnit..firstUnit + 4 as p's samplers
+    /// cacheFluence, cacheFlux, cacheFluxLengths, cacheSecondMoment and cacheDirectSlope, and sets
+    /// its cacheLevel to `level` (shaders/volume/fluence_lobe.glsl evaluates them towards a viewer).
+    void bindSources(const gl::Program& p, int firstUnit, float level) const;
     /// The mip level to read while the cache refines towards `budget` photons: each level up has
     /// 8 times the photons per cell, so log8(budget / photons) reads about the noise the finest
     /// level will have once refined (0 once it is; at most the coarsest level).

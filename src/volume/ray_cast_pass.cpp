@@ -59,6 +59,11 @@ bool usesScatteringCache(const VolumeRenderOptions& o) {
     return o.multipleScatteringCache && usesLightVolume(o.shading) && o.model == VolumeModel::Physical;
 }
 
+bool cacheEvaluatedPerSample(CacheViewEvaluation evaluation, bool softwareDevice, double cells, double pixels) {
+    if (evaluation != CacheViewEvaluation::Auto) return evaluation == CacheViewEvaluation::PerSample;
+    return softwareDevice && cells > kCacheCellsPerPixel * pixels;
+}
+
 namespace {
 
 glm::mat3 normalMatrix(const glm::mat4& model) { return glm::transpose(glm::inverse(glm::mat3(model))); }
@@ -104,6 +109,7 @@ RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const RayC
     v.physicalModel = usesLightVolume(options.shading) && options.model == VolumeModel::Physical;
     v.compute = usesComputeRayCaster(options.rayCaster, scene.softwareDevice);
     v.scatteringCache = usesScatteringCache(options);
+    v.cachePerSample = v.scatteringCache && scene.cachePerSample;
     v.reconstruction = options.reconstruction;
     return v;
 }
@@ -130,6 +136,7 @@ RayCastPass::RayCastPass(const RayCastVariant& variant)
                                    {"MESH_SHADOWS", variant.meshShadows ? "1" : "0"},
                                    {"PHYSICAL_MODEL", variant.physicalModel ? "1" : "0"},
                                    {"SCATTERING_CACHE", variant.scatteringCache ? "1" : "0"},
+                                   {"CACHE_PER_SAMPLE", variant.cachePerSample ? "1" : "0"},
                                    {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(variant.reconstruction)}})),
       m_emptyVertexArray(gl::VertexArray::create()) {}
 
@@ -251,12 +258,17 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         }
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
         if (m_variant.scatteringCache && in.cache) {
-            p.set("cacheTowardsViewer", units::kCacheTowardsViewer);
-            p.set("cacheTowardsViewerSlope", units::kCacheTowardsViewerSlope);
-            p.set("cacheTowardsViewerCap", units::kCacheTowardsViewerCap);
-            in.cache->towardsViewer().bind(units::kCacheTowardsViewer);
-            in.cache->towardsViewerSlope().bind(units::kCacheTowardsViewerSlope);
-            in.cache->towardsViewerCap().bind(units::kCacheTowardsViewerCap);
+            if (m_variant.cachePerSample) {
+                in.cache->bindSources(p, units::kCacheSources, in.cacheLevel);
+                p.set("cacheViewer", modelSpaceViewer(in.camera, model));
+            } else {
+                p.set("cacheTowardsViewer", units::kCacheTowardsViewer);
+                p.set("cacheTowardsViewerSlope", units::kCacheTowardsViewerSlope);
+                p.set("cacheTowardsViewerCap", units::kCacheTowardsViewerCap);
+                in.cache->towardsViewer().bind(units::kCacheTowardsViewer);
+                in.cache->towardsViewerSlope().bind(units::kCacheTowardsViewerSlope);
+                in.cache->towardsViewerCap().bind(units::kCacheTowardsViewerCap);
+            }
             const std::vector<float> weights = directLightWeights(in.lights, model, in.volume.box);
             for (size_t i = 0; i < weights.size(); ++i) p.set("cacheDirectWeight[" + std::to_string(i) + "]", weights[i]);
         }

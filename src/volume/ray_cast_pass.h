@@ -28,6 +28,11 @@ bool usesEyePass(const VolumeRenderOptions& options);
 /// Whether the multiple-scattering cache is built and read for these options.
 bool usesScatteringCache(const VolumeRenderOptions& options);
 
+/// Whether the ray caster evaluates the cache's light towards the viewer per sample rather than
+/// read the view pass's cells (CacheViewEvaluation; Auto: per sample on software devices where
+/// the cache's `cells` outnumber kCacheCellsPerPixel times the target's `pixels`).
+bool cacheEvaluatedPerSample(CacheViewEvaluation evaluation, bool softwareDevice, double cells, double pixels);
+
 /// Whether `caster` resolves to the compute ray caster on a software rasteriser or a hardware
 /// GPU (gl::currentDeviceIsSoftware()).
 bool usesComputeRayCaster(RayCaster caster, bool softwareDevice);
@@ -60,8 +65,9 @@ struct RayCastInputs {
     const MeshShadowMaps* meshShadows = nullptr;   ///< hybrid scenes: meshes seen from the lights
     const gl::Texture* eyeVolume = nullptr;        ///< the eye pass's result, if it ran
     /// The multiple-scattering cache, if it is on, its light towards this camera evaluated
-    /// (FluenceCache::evaluateView).
+    /// (FluenceCache::evaluateView) unless the variant evaluates it per sample.
     const FluenceCache* cache = nullptr;
+    float cacheLevel = 0.0f;  ///< per sample: the cache's mip level to read (FluenceCache::readLevel)
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)
@@ -87,6 +93,9 @@ struct RayCastScene {
     GradientSource gradients = GradientSource::OnTheFly;
     bool preintegration = false;
     bool softwareDevice = false;
+    /// The multiple-scattering cache's light towards the viewer is evaluated per sample
+    /// (cacheEvaluatedPerSample), not read from the view pass's textures.
+    bool cachePerSample = false;
 };
 
 /// What a ray-cast program is compiled for: every switch the shader takes as a constant. The
@@ -120,6 +129,8 @@ struct RayCastVariant {
     bool compute = false;
     /// Samples add what they scatter of the multiple-scattering cache.
     bool scatteringCache = false;
+    /// ... evaluated per sample from its five textures (else read from the view pass's three).
+    bool cachePerSample = false;
     /// The field between voxel centres (VolumeRenderOptions::reconstruction).
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
 

@@ -264,11 +264,23 @@ struct VolumeScatteringRenderer::Impl {
         passTimer.end("scattering-cache", mark, passTiming());
     }
 
+    // Whether the ray caster evaluates the cache's light towards the viewer per sample: decided
+    // on the cache's finest cells (not the level read, which would switch the program while the
+    // cache refines) and the target's pixels.
+    bool cachePerSample(const RenderTarget& target) {
+        if (!detail::usesScatteringCache(options)) return false;
+        const glm::dvec3 cells(detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution));
+        return detail::cacheEvaluatedPerSample(options.cacheViewEvaluation, softwareDevice(), cells.x * cells.y * cells.z,
+                                               static_cast<double>(target.width()) * target.height());
+    }
+
+    float cacheReadLevel() const { return fluenceCache->readLevel(static_cast<std::uint64_t>(options.cachePhotons)); }
+
     // The cache's light towards the camera: evaluated again when the camera or the cache changed.
     void updateFluenceView(const Camera& camera) {
         const detail::FluenceViewInputs in{
             .viewer = detail::modelSpaceViewer(camera, model),
-            .level = fluenceCache->readLevel(static_cast<std::uint64_t>(options.cachePhotons)),
+            .level = cacheReadLevel(),
             .anisotropy = options.anisotropy};
         if (fluenceCache->viewOutdated(in))
             passTimer.time("scattering-cache-view", passTiming(), [&] { fluenceCache->evaluateView(in); });
@@ -522,14 +534,15 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                                                      .meshShadows = m_impl->meshShadows,
                                                      .gradients = gradientSource,
                                                      .preintegration = preintegrated,
-                                                     .softwareDevice = m_impl->softwareDevice()});
+                                                     .softwareDevice = m_impl->softwareDevice(),
+                                                     .cachePerSample = m_impl->cachePerSample(target)});
     if (!m_impl->rayCast || m_impl->rayCast->variant() != variant) m_impl->rayCast.emplace(variant);
     if (detail::usesLightVolume(m_impl->options.shading)) m_impl->updateLightVolumes();
     if (eyePass) m_impl->updateEyePass(camera);
     const bool scatteringCache = detail::usesScatteringCache(m_impl->options);
     if (scatteringCache) {
         m_impl->updateFluenceCache();
-        m_impl->updateFluenceView(camera);
+        if (!variant.cachePerSample) m_impl->updateFluenceView(camera);
     } else {
         m_impl->fluenceKey.reset();  // leaving the mode drops the cache
         m_impl->fluenceCache.reset();
@@ -549,6 +562,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .meshShadows = r.meshShadows,
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
                     .cache = scatteringCache ? &*r.fluenceCache : nullptr,
+                    .cacheLevel = scatteringCache ? r.cacheReadLevel() : 0.0f,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,
