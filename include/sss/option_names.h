@@ -31,7 +31,8 @@ struct EnumName {
 
 /// Every value of `Enum` with its name, in declaration order. Specialized for MeshShading,
 /// MeshCombine, ScatteringProfile, VolumeShading, VolumeModel, LightVolumeFallback, RayCaster,
-/// CacheViewEvaluation, LightPropagation, CropSpace, ToneMap, Projection, VoxelType and VolumeReconstruction.
+/// CacheViewEvaluation, LightPropagation, CropSpace, ToneMap, Projection, VoxelType and
+/// VolumeReconstruction.
 template <class Enum>
 std::span<const EnumName<Enum>> enumNames();
 

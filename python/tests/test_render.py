@@ -155,6 +155,23 @@ def test_multiple_scattering_cache_refines_and_brightens(gl):
     assert image[..., :3].sum() > 1.05 * base[..., :3].sum()  # measured 1.10
 
 
+def test_multiple_scattering_cache_view_evaluation(gl):
+    """cache_view_evaluation: the cache's light towards the viewer once per cell and camera move
+    (the "scattering-cache-view" pass) or per sample (no such pass), the same picture within 2 %."""
+    images, view_runs = {}, {}
+    for evaluation in (sss.CacheViewEvaluation.PER_CELL, sss.CacheViewEvaluation.PER_SAMPLE):
+        renderer = sss.VolumeRenderer(shading="scattering", model="physical", multiple_scattering_cache=True,
+                                      cache_resolution=16, cache_photons_per_frame=8192, cache_photons=8192,
+                                      cache_view_evaluation=evaluation)
+        renderer.set_volume(sss.make_blobs_volume(16))
+        renderer.lights = [sss.DirectionalLight(direction=(-1, -1, -1), intensity=8.0)]
+        images[evaluation] = renderer.render(width=32, height=24, antialias=1)
+        view_runs[evaluation] = renderer.stats.get("scattering-cache-view", {}).get("runs", 0)
+    assert view_runs[sss.CacheViewEvaluation.PER_CELL] == 1 and view_runs[sss.CacheViewEvaluation.PER_SAMPLE] == 0
+    a, b = images[sss.CacheViewEvaluation.PER_SAMPLE][..., :3], images[sss.CacheViewEvaluation.PER_CELL][..., :3]
+    assert np.sqrt(np.mean((a - b) ** 2)) < 0.02 * np.sqrt(np.mean(b ** 2))
+
+
 def test_light_volume_preview(gl):
     """light_volume_preview_scale: one frame after a light change draws a coarser light volume,
     the next the full one, the same picture as without the preview."""

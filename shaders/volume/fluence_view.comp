@@ -50,8 +50,9 @@ void main() {
     }
     vec3 towards = viewer.w != 0.0 ? viewer.xyz - mix(boxMin, boxMax, tc) : viewer.xyz;
     vec3 v = length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0);
-    CacheTowardsViewer light = cacheTowards(v, phaseG, weighted, cacheAt(cacheFlux, c, tc), cacheAt(cacheFluxLengths, c, tc),
-                                            cacheAt(cacheSecondMoment, c, tc), cacheAt(cacheDirectSlope, c, tc));
+    CacheTowardsViewer light =
+        cacheTowards(v, phaseG, weighted, cacheAt(cacheFlux, c, tc), cacheAt(cacheFluxLengths, c, tc),
+                     cacheAt(cacheSecondMoment, c, tc), cacheAt(cacheDirectSlope, c, tc));
     imageStore(towardsViewer, c, light.atMean);
     imageStore(towardsViewerSlope, c, light.slope);
     imageStore(towardsViewerCap, c, vec4(light.cap));
