@@ -174,7 +174,7 @@ struct VolumeRenderOptions {
     /// Gradient modes read the gradient from a volume computed once per data set (central
     /// differences per voxel and, for 8- and 16-bit data, the value itself: RGBA8, 4 bytes per
     /// voxel, 64 MiB for 256^3 of 8-bit data, RGBA16 and 8 bytes for the rest; the gradient the
-    /// on-the-fly path computes, to about one 8-bit data value, from one texel instead of six,
+    /// on-the-fly path computes, to half an 8-bit data value, from one texel instead of six,
     /// and the same texel gives the sample's value). If it does not fit
     /// the GPU (limits or memory budget), a warning says so and the gradients are computed on the
     /// fly (default: on).

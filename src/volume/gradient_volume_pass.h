@@ -24,10 +24,11 @@ private:
 
 /// How a gradient texel holds the differences d (in [-1, 1], normalised value units): as
 /// d * encodeScale + encodeOffset, read back as texel * decodeScale + decodeOffset. RGBA8 keeps
-/// zero exact (128 / 255) and steps of 1 / 127 (about one 8-bit data value per voxel of the
-/// central difference, whose 511 possible values 8 bits cannot all hold): shading fades out below
-/// gradientThreshold (default 0.02, five such steps), so the lost bit changes only a normal's
-/// last half degree or so. RGBA16 holds every difference of 8- and 16-bit data.
+/// zero exact (128 / 255) and steps of 1 / 127, one bit short of the 511 central differences of
+/// 8-bit data: a gradient component is off by at most 1 / 508 of the value range per voxel, so
+/// a normal turns by up to about 8 degrees at the default gradientThreshold's gradient (0.02)
+/// and by under 1 degree from 0.2 up (the errors this costs, measured: benchmarks/README.md,
+/// "The gradient volume in RGBA8"). RGBA16 holds every difference of 8- and 16-bit data.
 struct GradientEncoding {
     GLenum format;
     float encodeScale;
