@@ -286,7 +286,9 @@ uniform sampler3D cacheTowardsViewerSlope;
 uniform sampler3D cacheTowardsViewerCap;
 
 CacheTowardsViewer cacheTowardsViewerAt(vec3 p, vec3 tc) {
-    return CacheTowardsViewer(textureLod(cacheTowardsViewer, tc, 0.0), textureLod(cacheTowardsViewerSlope, tc, 0.0),
+    vec4 atMean = textureLod(cacheTowardsViewer, tc, 0.0);
+    if (!(atMean.a > 0.0)) return CacheTowardsViewer(vec4(0.0), vec4(0.0), 0.0);  // no medium: no more reads
+    return CacheTowardsViewer(atMean, textureLod(cacheTowardsViewerSlope, tc, 0.0),
                               textureLod(cacheTowardsViewerCap, tc, 0.0).r);
 }
 #endif

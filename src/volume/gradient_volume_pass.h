@@ -23,28 +23,29 @@ private:
 };
 
 /// How a gradient texel holds the differences d (in [-1, 1], normalised value units): as
-/// d * encodeScale + encodeOffset, read back as texel * decodeScale + decodeOffset. RGBA8 keeps
-/// zero exact (128 / 255) and steps of 1 / 127, one bit short of the 511 central differences of
-/// 8-bit data: a gradient component is off by at most 1 / 508 of the value range per voxel, so
-/// a normal turns by up to about 8 degrees at the default gradientThreshold's gradient (0.02)
-/// and by under 1 degree from 0.2 up (the errors this costs, measured: benchmarks/README.md,
-/// "The gradient volume in RGBA8"). RGBA16 holds every difference of 8- and 16-bit data.
+/// d * scale + offset. RGBA8 keeps zero exact (128 / 255) and steps of 1 / 127, one bit short of
+/// the 511 central differences of 8-bit data: a gradient component is off by at most 1 / 508 of
+/// the value range per voxel, so a normal turns by up to about 8 degrees at the default
+/// gradientThreshold's gradient (0.02) and by under 1 degree from 0.2 up (the errors this costs,
+/// measured: benchmarks/README.md, "The gradient volume in RGBA8"). RGBA16 holds every
+/// difference of 8- and 16-bit data.
 struct GradientEncoding {
-    GLenum format;
-    float encodeScale;
-    float encodeOffset;
-    float decodeScale;
-    float decodeOffset;
+    float scale;
+    float offset;
+    /// d = texel * decodeScale() + decodeOffset().
+    float decodeScale() const { return 1.0f / scale; }
+    float decodeOffset() const { return -offset / scale; }
 };
 
-inline GradientEncoding gradientEncodingFor(GLenum volumeFormat) {
-    if (volumeFormat == GL_R8) return {GL_RGBA8, 127.0f / 255.0f, 128.0f / 255.0f, 255.0f / 127.0f, -128.0f / 127.0f};
-    return {GL_RGBA16, 0.5f, 0.5f, 2.0f, -1.0f};
+/// The gradient volume's texel format for this volume: RGBA8 for 8-bit data, else RGBA16.
+inline GLenum gradientFormatFor(const GpuVolume& volume) {
+    return volume.texture.internalFormat() == GL_R8 ? GL_RGBA8 : GL_RGBA16;
 }
 
-/// The encoding of a gradient volume of this format (run()'s output).
-inline GradientEncoding gradientEncodingOf(const gl::Texture& gradients) {
-    return gradientEncodingFor(gradients.internalFormat() == GL_RGBA8 ? GL_R8 : GL_R16);
+/// The encoding of a gradient texel format (gradientFormatFor's).
+inline GradientEncoding gradientEncoding(GLenum gradientFormat) {
+    if (gradientFormat == GL_RGBA8) return {127.0f / 255.0f, 128.0f / 255.0f};
+    return {0.5f, 0.5f};
 }
 
 /// Whether run() stores the data value in the fourth channel (unorm data), or 0 (float data,

@@ -237,8 +237,8 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         p.set("gradientThreshold", options.gradientThreshold);
         if (m_variant.gradients != GradientSource::OnTheFly && in.gradientVolume) {
             p.set("gradientVolume", units::kGradientVolume);
-            const GradientEncoding encoding = gradientEncodingOf(*in.gradientVolume);
-            p.set("gradientDecode", glm::vec2(encoding.decodeScale, encoding.decodeOffset));
+            const GradientEncoding encoding = gradientEncoding(in.gradientVolume->internalFormat());
+            p.set("gradientDecode", glm::vec2(encoding.decodeScale(), encoding.decodeOffset()));
             in.gradientVolume->bind(units::kGradientVolume);
         }
     }
