@@ -98,6 +98,7 @@ uniform int pyramidMask[MAX_SWEEPS];   // 1: writes only voxels whose dominant l
 uniform int slabSlices[MAX_SWEEPS];    // SLAB 1: slices each dispatch advances the sweep
 uniform int slabHalo[MAX_SWEEPS];      // SLAB 1: texels beyond a voxel its lookups reach at most
 uniform int pass;                      // dispatches before this one
+uniform int firstSweep;                // the sweep of the dispatch's first workgroups along z
 uniform ivec3 lightVolumeDims;  // per data axis
 uniform vec3 voxelSize;         // light-volume voxel edge per data axis, model units
 uniform vec3 boxMin;            // model-space corner of the volume box
@@ -350,7 +351,7 @@ vec4 propagateVoxel(ivec2 uv, int w, bool store) {
 
 #if SLAB
 void main() {
-    sweep = int(gl_WorkGroupID.z);
+    sweep = firstSweep + int(gl_WorkGroupID.z);
     dims = sliceDims[sweep];
     int slices = slabSlices[sweep];
     int halo = slabHalo[sweep];
@@ -397,7 +398,7 @@ void main() {
 }
 #elif COLUMN_VOXELS > 1
 void main() {
-    sweep = int(gl_WorkGroupID.z);
+    sweep = firstSweep + int(gl_WorkGroupID.z);
     dims = sliceDims[sweep];
     ivec2 first = ivec2(gl_GlobalInvocationID.x, gl_GlobalInvocationID.y * uint(COLUMN_VOXELS));
     int w = firstSlice[sweep] + pass;
@@ -412,7 +413,7 @@ void main() {
 }
 #else
 void main() {
-    sweep = int(gl_WorkGroupID.z);
+    sweep = firstSweep + int(gl_WorkGroupID.z);
     dims = sliceDims[sweep];
     ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
     int w = firstSlice[sweep] + pass;

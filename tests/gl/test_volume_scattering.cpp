@@ -224,6 +224,46 @@ TEST_CASE("any number of slices per dispatch gives the same light volume", "[gl]
     gl.requireNoErrors();
 }
 
+TEST_CASE("each sweep's dispatches in turn give the light volume of all sweeps in each dispatch",
+          "[gl][volume][scattering]") {
+    // Software rasterisers run a light's sweeps one after the other where one of them runs along
+    // x (LightVolumeSettings::sweepsInTurn): the same arithmetic per voxel, so the same light
+    // volume texel for texel. The cases: two blended sweeps along x and y, six sweeps of a point
+    // light inside the volume, the grey sweep.
+    test::GlTestScope gl;
+    const bool softwareDevice = gl::currentDeviceIsSoftware();
+    const Volume volume = twoBlobsVolume();
+    const TransferFunction tf = twoBlobsTf();
+    for (const bool chromaticity : {true, false}) {
+        for (const SweepCase& c : {kSweepCases[0], kSweepCases[2]}) {
+            detail::LightVolumeSettings together{.chromaticity = chromaticity}, inTurn = together;
+            together.sweepsInTurn = false;
+            inTurn.sweepsInTurn = true;
+            detail::LightVolumePass::SweepLayout togetherLayout, inTurnLayout, chosenLayout;
+            const LightVolumeReadback a = propagate(volume, tf, c.light, together, {}, &togetherLayout);
+            const LightVolumeReadback b = propagate(volume, tf, c.light, inTurn, {}, &inTurnLayout);
+            propagate(volume, tf, c.light, {.chromaticity = chromaticity}, {}, &chosenLayout);
+            size_t shadowed = 0;
+            for (const glm::vec4& t : a.texels) shadowed += t.a < 0.9f ? 1 : 0;
+            INFO("chromaticity " << chromaticity << ", " << togetherLayout.sweeps << " sweeps, " << shadowed
+                                 << " shadowed texels");
+            CHECK(shadowed > 0);
+            CHECK(togetherLayout.sweeps > 1);
+            CHECK(!togetherLayout.sweepsInTurn);
+            CHECK(inTurnLayout.sweepsInTurn);
+            CHECK(inTurnLayout.dispatches() > togetherLayout.dispatches());
+            CHECK(chosenLayout.sweepsInTurn == softwareDevice);  // both cases sweep along x
+            CHECK(a.texels == b.texels);
+        }
+    }
+    // Sweeps along y and z alone stay together.
+    detail::LightVolumePass::SweepLayout layout;
+    propagate(volume, tf, DirectionalLight{.direction = {0.1f, -0.7f, 0.5f}}, {}, {}, &layout);
+    CHECK(layout.sweeps == 2);
+    CHECK(!layout.sweepsInTurn);
+    gl.requireNoErrors();
+}
+
 TEST_CASE("a light volume with cut matter is the light volume without that matter, texel for texel",
           "[gl][volume][scattering][clip]") {
     // A block (x in [4, 12)) behind a wall (x in [24, 28)) for light travelling towards -x, a
