@@ -80,6 +80,9 @@ uniform vec2 slicesTextureSize;  // SLAB 0
 layout(rgba16f) uniform writeonly image2DArray currentSlices;
 layout(rgba16f) uniform writeonly image3D lightVolume;    // (c, l) arriving at each voxel
 layout(rgba16f) uniform writeonly image3D blendedVolume;  // the same from the blended sweep
+// The same from a sweep along x, at (y, z, x): its slices' stores run along this volume's rows
+// (light_volume_blend.comp puts them in place).
+layout(rgba16f) uniform writeonly image3D rowOrderedVolume;
 uniform vec4 outsideLight;  // the light entering from outside the volume
 
 // Each sweep's frame against the data axes (set on the CPU, so no voxel permutes axes):
@@ -94,6 +97,7 @@ uniform ivec3 voxelStepW[MAX_SWEEPS];
 uniform mat3 dataToSweep[MAX_SWEEPS];
 uniform vec3 sweepVoxelSize[MAX_SWEEPS];
 uniform int blended[MAX_SWEEPS];       // 1: writes blendedVolume, mixed into lightVolume afterwards
+uniform int rowOrdered[MAX_SWEEPS];    // 1 (a sweep along x): writes rowOrderedVolume instead
 uniform int pyramidMask[MAX_SWEEPS];   // 1: writes only voxels whose dominant light axis is +w
 uniform int slabSlices[MAX_SWEEPS];    // SLAB 1: slices each dispatch advances the sweep
 uniform int slabHalo[MAX_SWEEPS];      // SLAB 1: texels beyond a voxel its lookups reach at most
@@ -331,7 +335,9 @@ vec4 propagateVoxel(ivec2 uv, VoxelLight ray, vec4 centre, bool store) {
             if (b != axis) owns = owns && (inVoxels[axis] > inVoxels[b] || (inVoxels[axis] == inVoxels[b] && axis < b));
         if (!owns) return light;
     }
-    if (blended[sweep] != 0)
+    if (rowOrdered[sweep] != 0)
+        imageStore(rowOrderedVolume, voxel.yzx, arriving);
+    else if (blended[sweep] != 0)
         imageStore(blendedVolume, voxel, arriving);
     else
         imageStore(lightVolume, voxel, arriving);

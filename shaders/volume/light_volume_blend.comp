@@ -1,15 +1,24 @@
-// The blended sweep's share of the light volume (light_propagation.comp runs it beside the main
-// sweep into its own volume): light = mix(main, blended, weight), rounded to half precision once
-// more. Unlit stays exactly 1.
+// Puts the sweeps' light in the light volume where light_propagation.comp left it elsewhere: the
+// blended sweep's share, light = mix(main, blended, weight), rounded to half precision once more
+// (unlit stays exactly 1); and a sweep along x, which stored its light at (y, z, x) in
+// rowOrderedVolume, read from there (the same half floats).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(rgba16f) uniform image3D lightVolume;
 layout(rgba16f) uniform readonly image3D blendedVolume;
+layout(rgba16f) uniform readonly image3D rowOrderedVolume;
 uniform ivec3 dims;
-uniform float weight;
+uniform int mainRowOrdered;     // 1: the main sweep's light is in rowOrderedVolume
+uniform int blendedRowOrdered;  // 1: the blended sweep's light is
+uniform float weight;           // the blended sweep's share; 0: no blended sweep
 
 void main() {
     ivec3 voxel = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(voxel, dims))) return;
-    imageStore(lightVolume, voxel, mix(imageLoad(lightVolume, voxel), imageLoad(blendedVolume, voxel), weight));
+    vec4 light = mainRowOrdered != 0 ? imageLoad(rowOrderedVolume, voxel.yzx) : imageLoad(lightVolume, voxel);
+    if (weight > 0.0) {
+        vec4 other = blendedRowOrdered != 0 ? imageLoad(rowOrderedVolume, voxel.yzx) : imageLoad(blendedVolume, voxel);
+        light = mix(light, other, weight);
+    }
+    imageStore(lightVolume, voxel, light);
 }

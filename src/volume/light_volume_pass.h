@@ -72,6 +72,11 @@ struct LightVolumeSettings {
     /// turn on software rasterisers where a sweep runs along x, where that measured faster. The
     /// same light volume texel for texel either way.
     std::optional<bool> sweepsInTurn;
+    /// A sweep along x stores its light at (y, z, x) in a scratch volume, put in place by a last
+    /// pass (true), or in the light volume itself (false); unset: row-ordered on software
+    /// rasterisers, where an x slice's stores would each touch another cache line. The same
+    /// light volume texel for texel either way.
+    std::optional<bool> rowOrderedXSweeps;
     bool operator==(const LightVolumeSettings&) const = default;
 };
 
@@ -100,8 +105,12 @@ public:
         float blendedWeight = 0.0f;
         /// Each sweep's passes in turn instead of all sweeps in each dispatch (software devices).
         bool sweepsInTurn = false;
-        /// Compute dispatches in all: the passes and the blend.
-        int dispatches() const { return passes * (sweepsInTurn ? sweeps : 1) + (blendedSweep >= 0 ? 1 : 0); }
+        /// The sweep along x that stores its light along rows of a scratch volume, if any.
+        int rowOrderedSweep = -1;
+        /// Whether a last pass puts the blended or row-ordered sweep's light in place.
+        bool assembles() const { return blendedSweep >= 0 || rowOrderedSweep >= 0; }
+        /// Compute dispatches in all: the passes and the last.
+        int dispatches() const { return passes * (sweepsInTurn ? sweeps : 1) + (assembles() ? 1 : 0); }
     };
 
     /// How the last run or runEyePass laid out its dispatches.
@@ -147,8 +156,10 @@ private:
     int runDoublingGrid(const DoublingScene& scene, const DoublingGrid& grid, DoublingVariant variant,
                         std::array<gl::Texture, 2>& levels, gl::Texture* lastTarget,
                         const std::function<void(const gl::Program&, int)>& setLevel);
-    /// Mixes the blended sweep's volume `blended` into `output` with `weight`.
-    void blend(const gl::Texture& blended, float weight, const gl::Texture& output);
+    /// Puts the blended sweep's share (from `blended`) and the row-ordered sweep's light (from
+    /// `rowOrdered`) in `output`, as `layout` says (light_volume_blend.comp).
+    void assemble(const SweepLayout& layout, const gl::Texture& blended, const gl::Texture& rowOrdered,
+                  const gl::Texture& output);
     /// Which light_propagation.comp program a sweep runs.
     struct PropagationVariant {
         bool chromaticity = true;

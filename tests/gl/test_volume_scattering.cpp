@@ -224,36 +224,57 @@ TEST_CASE("any number of slices per dispatch gives the same light volume", "[gl]
     gl.requireNoErrors();
 }
 
-TEST_CASE("each sweep's dispatches in turn give the light volume of all sweeps in each dispatch",
-          "[gl][volume][scattering]") {
+TEST_CASE("sweeps in turn and row-ordered x sweeps give the same light volume", "[gl][volume][scattering]") {
     // Software rasterisers run a light's sweeps one after the other where one of them runs along
-    // x (LightVolumeSettings::sweepsInTurn): the same arithmetic per voxel, so the same light
-    // volume texel for texel. The cases: two blended sweeps along x and y, six sweeps of a point
-    // light inside the volume, the grey sweep.
+    // x (LightVolumeSettings::sweepsInTurn), and an x sweep stores its light along the rows of a
+    // scratch volume that a last pass puts in place (rowOrderedXSweeps): the same arithmetic per
+    // voxel and the same half floats, so the same light volume texel for texel. The cases: two
+    // blended sweeps with x the main one, two with x the blended one, one along x, six sweeps of
+    // a point light inside the volume (they store in place), each with colour and grey.
     test::GlTestScope gl;
     const bool softwareDevice = gl::currentDeviceIsSoftware();
     const Volume volume = twoBlobsVolume();
     const TransferFunction tf = twoBlobsTf();
+    struct Case {
+        Light light;
+        int sweeps;
+        int rowOrderedSweep;  // when asked for
+    };
+    const Case cases[] = {{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 2, 0},
+                          {DirectionalLight{.direction = {-0.6f, -0.7f, -0.4f}}, 2, 1},
+                          {DirectionalLight{.direction = {-1.0f, 0.3f, 0.3f}}, 1, 0},
+                          {kSweepCases[2].light, 6, -1}};
     for (const bool chromaticity : {true, false}) {
-        for (const SweepCase& c : {kSweepCases[0], kSweepCases[2]}) {
-            detail::LightVolumeSettings together{.chromaticity = chromaticity}, inTurn = together;
-            together.sweepsInTurn = false;
-            inTurn.sweepsInTurn = true;
-            detail::LightVolumePass::SweepLayout togetherLayout, inTurnLayout, chosenLayout;
-            const LightVolumeReadback a = propagate(volume, tf, c.light, together, {}, &togetherLayout);
-            const LightVolumeReadback b = propagate(volume, tf, c.light, inTurn, {}, &inTurnLayout);
-            propagate(volume, tf, c.light, {.chromaticity = chromaticity}, {}, &chosenLayout);
+        for (const Case& c : cases) {
+            detail::LightVolumeSettings plain{.chromaticity = chromaticity};
+            plain.sweepsInTurn = false;
+            plain.rowOrderedXSweeps = false;
+            detail::LightVolumePass::SweepLayout plainLayout, layout;
+            const LightVolumeReadback reference = propagate(volume, tf, c.light, plain, {}, &plainLayout);
             size_t shadowed = 0;
-            for (const glm::vec4& t : a.texels) shadowed += t.a < 0.9f ? 1 : 0;
-            INFO("chromaticity " << chromaticity << ", " << togetherLayout.sweeps << " sweeps, " << shadowed
+            for (const glm::vec4& t : reference.texels) shadowed += t.a < 0.9f ? 1 : 0;
+            INFO("chromaticity " << chromaticity << ", " << plainLayout.sweeps << " sweeps, " << shadowed
                                  << " shadowed texels");
             CHECK(shadowed > 0);
-            CHECK(togetherLayout.sweeps > 1);
-            CHECK(!togetherLayout.sweepsInTurn);
-            CHECK(inTurnLayout.sweepsInTurn);
-            CHECK(inTurnLayout.dispatches() > togetherLayout.dispatches());
-            CHECK(chosenLayout.sweepsInTurn == softwareDevice);  // both cases sweep along x
-            CHECK(a.texels == b.texels);
+            CHECK(plainLayout.sweeps == c.sweeps);
+            CHECK(!plainLayout.sweepsInTurn);
+            CHECK(plainLayout.rowOrderedSweep < 0);
+            for (const bool inTurn : {false, true}) {
+                for (const bool rowOrdered : {false, true}) {
+                    detail::LightVolumeSettings settings = plain;
+                    settings.sweepsInTurn = inTurn;
+                    settings.rowOrderedXSweeps = rowOrdered;
+                    const LightVolumeReadback r = propagate(volume, tf, c.light, settings, {}, &layout);
+                    INFO("in turn " << inTurn << ", row-ordered " << rowOrdered);
+                    CHECK(layout.sweepsInTurn == (inTurn && c.sweeps > 1));
+                    CHECK(layout.rowOrderedSweep == (rowOrdered ? c.rowOrderedSweep : -1));
+                    CHECK(r.texels == reference.texels);
+                }
+            }
+            // The device's choice: both on software rasterisers (every case sweeps along x).
+            propagate(volume, tf, c.light, {.chromaticity = chromaticity}, {}, &layout);
+            CHECK(layout.sweepsInTurn == (softwareDevice && c.sweeps > 1));
+            CHECK(layout.rowOrderedSweep == (softwareDevice ? c.rowOrderedSweep : -1));
         }
     }
     // Sweeps along y and z alone stay together.
@@ -261,6 +282,7 @@ TEST_CASE("each sweep's dispatches in turn give the light volume of all sweeps i
     propagate(volume, tf, DirectionalLight{.direction = {0.1f, -0.7f, 0.5f}}, {}, {}, &layout);
     CHECK(layout.sweeps == 2);
     CHECK(!layout.sweepsInTurn);
+    CHECK(layout.rowOrderedSweep < 0);
     gl.requireNoErrors();
 }
 
