@@ -108,6 +108,7 @@ FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
 ShaderDefines FluenceCache::defines() const {
     return {{"MAX_LIGHTS", std::to_string(kMaxLights)},
             {"DIRECT_LIGHTS", std::to_string(m_directLights)},
+            {"BRICK_VOXELS", std::to_string(kBrickVoxels)},
             {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)}};
 }
 
@@ -159,8 +160,10 @@ void FluenceCache::computeWeights(const FluenceCacheInputs& in) {
     p.set("voxelVolume", voxelSize.x * voxelSize.y * voxelSize.z);
     p.set("cacheCells", m_cells);
     bindDirectLight(p, in);
+    p.set("majorants", 2);
     in.volume.texture.bind(0);
     in.transferFunction.bind(1);
+    in.majorants.bind(2);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_directMoments.id());
     p.use();
