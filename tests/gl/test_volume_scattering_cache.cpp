@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 #include <sss/error.h>
 #include <sss/image_compare.h>
+#include <sss/log.h>
 #include <sss/option_names.h>
 #include <sss/procedural.h>
 #include <sss/volume_path_tracer.h>
@@ -25,6 +26,8 @@
 #include <map>
 #include <numbers>
 #include <sstream>
+#include <string>
+#include <string_view>
 #include <vector>
 
 using namespace sss;
@@ -614,4 +617,34 @@ TEST_CASE("multiple-scattering cache: report on a data set", "[.][scattering-cac
             truth.image.saveExr(std::string(out) + "-truth.exr");
         }
     }
+}
+
+TEST_CASE("the cache warns once where its angular model was measured far from the path tracer",
+          "[gl][volume][scattering-cache]") {
+    // Within 3-7 % for |g| up to 0.5, 10-80 % off at g 0.65-0.9 (docs/multiple-scattering.md).
+    test::GlTestScope gl;
+    std::vector<std::string> warnings;
+    setLogHandler([&](LogLevel level, std::string_view m) {
+        if (level == LogLevel::Warning) warnings.emplace_back(m);
+    });
+    VolumeRenderOptions o = cached(1 << 16);
+    VolumeScatteringRenderer measured(o);
+    o.anisotropy = -0.6f;
+    measured.setOptions(o);
+    const size_t quiet = warnings.size();
+    o.anisotropy = 0.8f;
+    measured.setOptions(o);
+    measured.setOptions(o);
+    o.multipleScatteringCache = false;
+    VolumeScatteringRenderer withoutCache(o);  // the path tracer and the light volume: no limit
+    o.anisotropy = -0.9f;
+    o.multipleScatteringCache = true;
+    VolumeScatteringRenderer backward(o);
+    setLogHandler({});
+    CHECK(quiet == 0);
+    REQUIRE(warnings.size() == 2);
+    CHECK(warnings[0].find("anisotropy 0.8") != std::string::npos);
+    CHECK(warnings[0].find("multiple-scattering.md") != std::string::npos);
+    CHECK(warnings[1].find("anisotropy -0.9") != std::string::npos);
+    gl.requireNoErrors();
 }
