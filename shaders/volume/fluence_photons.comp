@@ -89,11 +89,23 @@ void addFixed(uint slot, float quanta) {
     if (high != 0u) atomicAdd(sums[2u * slot + 1u], high);
 }
 
+// The last deposit's voxel, its sigma_t and its direct light (negative: not read yet). Successive
+// tentative collisions often fall in one voxel, where a majorant is far above most of its brick:
+// reading each once took a photon on the bonsai from 11 to 7 microseconds on llvmpipe.
+ivec3 lastVoxel = ivec3(-1);
+float lastVoxelExtinction = 0.0;
+float lastVoxelDirect = -1.0;
+
 void deposit(vec3 p) {
     vec3 tc = (p - boxMin) / (boxMax - boxMin);
     ivec3 dims = textureSize(volumeTexture, 0);
     ivec3 voxel = clamp(ivec3(tc * vec3(dims)), ivec3(0), dims - 1);
-    float weight = voxelExtinction(voxel) / majorant;
+    if (voxel != lastVoxel) {
+        lastVoxel = voxel;
+        lastVoxelExtinction = voxelExtinction(voxel);
+        lastVoxelDirect = -1.0;
+    }
+    float weight = lastVoxelExtinction / majorant;
     if (!(weight > 0.0)) return;
     ivec3 c = clamp(ivec3(tc * vec3(cacheCells)), ivec3(0), cacheCells - 1);
     uint base = uint((c.z * cacheCells.y + c.y) * cacheCells.x + c.x) * uint(kSlotsPerCell);
@@ -113,7 +125,8 @@ void deposit(vec3 p) {
     if (bounce == 1) {
         // Light scattered once, and the same times the direct light at the voxel's centre (the
         // density pass's moments take E there too).
-        float direct = directLightAtVoxel(voxel, dims);
+        if (lastVoxelDirect < 0.0) lastVoxelDirect = directLightAtVoxel(voxel, dims);
+        float direct = lastVoxelDirect;
         for (int channel = 0; channel < 3; ++channel) {
             addFixed(base + uint(17 + channel), q[channel]);
             addFixed(base + uint(20 + channel), q[channel] * direct);
