@@ -18,6 +18,15 @@ layout(std430, binding = 4) writeonly buffer DirectMoments { vec4 cellDirect[]; 
 uniform ivec3 cacheCells;
 uniform float voxelVolume;  // model units^3
 
+// Whether every brick holding voxels first..last has majorant 0: no voxel there has medium.
+bool bricksAreEmpty(ivec3 first, ivec3 last) {
+    for (int z = first.z / BRICK_VOXELS; z <= last.z / BRICK_VOXELS; ++z)
+        for (int y = first.y / BRICK_VOXELS; y <= last.y / BRICK_VOXELS; ++y)
+            for (int x = first.x / BRICK_VOXELS; x <= last.x / BRICK_VOXELS; ++x)
+                if (texelFetch(majorants, ivec3(x, y, z), 0).r > 0.0) return false;
+    return true;
+}
+
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(c, cacheCells))) return;
@@ -29,14 +38,8 @@ void main() {
     float sum = 0.0;
     vec2 direct = vec2(0.0);
     float largest = 0.0;
-    // A brick of majorant 0 has no voxel with medium: cells within such bricks (most of a sparse
-    // volume's) skip their voxels.
-    bool empty = true;
-    for (int z = first.z / BRICK_VOXELS; z <= last.z / BRICK_VOXELS; ++z)
-        for (int y = first.y / BRICK_VOXELS; y <= last.y / BRICK_VOXELS; ++y)
-            for (int x = first.x / BRICK_VOXELS; x <= last.x / BRICK_VOXELS; ++x)
-                empty = empty && !(texelFetch(majorants, ivec3(x, y, z), 0).r > 0.0);
-    if (empty) last = first - 1;
+    // Cells within bricks of majorant 0 (most of a sparse volume's) hold no medium: their loop is empty.
+    if (bricksAreEmpty(first, last)) last = first - 1;
     for (int z = first.z; z <= last.z; ++z)
         for (int y = first.y; y <= last.y; ++y)
             for (int x = first.x; x <= last.x; ++x) {

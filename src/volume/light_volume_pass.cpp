@@ -497,8 +497,9 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
 
 void LightVolumePass::assemble(const SweepLayout& layout, const gl::Texture& blended, const gl::Texture& rowOrdered,
                                const gl::Texture& output) {
-    if (!m_blendProgram) m_blendProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_volume_blend.comp"}});
-    const gl::Program& p = *m_blendProgram;
+    if (!m_assembleProgram)
+        m_assembleProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_volume_blend.comp"}});
+    const gl::Program& p = *m_assembleProgram;
     const glm::ivec3 dims = output.size();
     const bool mainRowOrdered = layout.rowOrderedSweep == 0;
     const bool blendedRowOrdered = layout.blendedSweep >= 0 && layout.rowOrderedSweep == layout.blendedSweep;

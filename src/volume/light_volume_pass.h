@@ -172,7 +172,7 @@ private:
     /// The propagation program for this pass and `variant`, linked on first use.
     const gl::Program& program(const PropagationVariant& variant);
     std::map<PropagationVariant, gl::Program> m_programs;
-    std::optional<gl::Program> m_blendProgram;
+    std::optional<gl::Program> m_assembleProgram;
     std::map<DoublingVariant, gl::Program> m_doublingPrograms;
     bool m_eyePass = false;
     bool m_softwareDevice = false;  // the device's choice of maxSlicesPerDispatch
