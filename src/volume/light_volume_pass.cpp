@@ -166,7 +166,8 @@ LightVolumePass::SweepLayout setSweepFrames(const gl::Program& p, const std::vec
         p.set("pyramidMask" + i, sweep.pyramid ? 1 : 0);
         layout.largestSlice = glm::max(layout.largestSlice, glm::ivec2(dims[u], dims[v]));
         const int steps = dims[sweep.axis] - sweep.firstSlice;
-        layout.passes = std::max(layout.passes, (steps + slab.slices - 1) / slab.slices);
+        layout.sweepPasses.push_back((steps + slab.slices - 1) / slab.slices);
+        layout.passes = std::max(layout.passes, layout.sweepPasses.back());
         layout.slicesPerPass = std::max(layout.slicesPerPass, slab.slices);
     }
     return layout;
@@ -346,17 +347,16 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
     p.set("coneWeights", glm::vec2(cone.centreWeight, cone.ringWeight));
     setMediumUniforms(p, medium, model);
 
-    // On llvmpipe an x sweep's stores took 1.15 of its 2.2 s on the bonsai (a y sweep's 0.17 of
-    // 1.0 s): the volume's rows run along x, so each voxel of an x slice is another cache line.
+    // On llvmpipe the volume's rows run along x, so each voxel of an x slice is another cache line:
+    // an x sweep's stores took 1.15 of its 2.2 s on the bonsai (a y sweep's 0.17 of 1.0 s), and
+    // beside another sweep in the same dispatch the two sweeps' slices evicted each other (lit
+    // from (-0.6, -0.7, -0.4): 5.3 s, in turn 3.6 s). So on software rasterisers an x sweep stores
+    // along rows and, where one runs, the sweeps run in turn; y and z sweeps ran as fast together,
+    // and on hardware GPUs each dispatch's launch costs more (docs/light-volume-sweep.md).
+    const bool alongX = std::any_of(sweeps.begin(), sweeps.end(), [](const LightSweep& s) { return s.axis == 0; });
     const bool rowOrderXSweeps = settings.rowOrderedXSweeps.value_or(m_softwareDevice);
     SweepLayout layout = setSweepFrames(p, sweeps, dims, voxelSize, slabs, rowOrderXSweeps);
     layout.columnVoxels = variant.columnVoxels;
-    // llvmpipe ran two sweeps in one dispatch 1.5 times as long as the same sweeps in turn where
-    // one of them runs along x (the bonsai lit from (-0.6, -0.7, -0.4): 5.3 against 3.6 s): its
-    // slices cut across the volume's rows, and the two sweeps' slices compete for the caches.
-    // Sweeps along y and z alone ran as fast together; on hardware GPUs each dispatch's launch
-    // costs more (docs/light-volume-sweep.md).
-    const bool alongX = std::any_of(sweeps.begin(), sweeps.end(), [](const LightSweep& s) { return s.axis == 0; });
     layout.sweepsInTurn = layout.sweeps > 1 && settings.sweepsInTurn.value_or(m_softwareDevice && alongX);
     m_lastLayout = layout;
     propagate(p, layout, medium, outside, output);
@@ -482,10 +482,12 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
         layout.slab ? glm::ivec2(kSweepTile) : glm::ivec2(p.workGroupSize()) * glm::ivec2(1, layout.columnVoxels);
     const auto groupsX = static_cast<GLuint>((largestSlice.x + tile.x - 1) / tile.x);
     const auto groupsY = static_cast<GLuint>((largestSlice.y + tile.y - 1) / tile.y);
+    // In turn, each sweep runs its own passes only (a light inside the volume: the slices beyond it).
     const int sweepsPerDispatch = layout.sweepsInTurn ? 1 : count;
     for (int first = 0; first < count; first += sweepsPerDispatch) {
         p.set("firstSweep", first);
-        for (int pass = 0; pass < layout.passes; ++pass) {
+        const int passes = layout.sweepsInTurn ? layout.sweepPasses[static_cast<size_t>(first)] : layout.passes;
+        for (int pass = 0; pass < passes; ++pass) {
             p.set("pass", pass);
             glDispatchCompute(groupsX, groupsY, static_cast<GLuint>(sweepsPerDispatch));
             // The next pass reads this one's slices; the ray caster samples the volume afterwards.

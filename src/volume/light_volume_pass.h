@@ -28,6 +28,7 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -105,12 +106,16 @@ public:
         float blendedWeight = 0.0f;
         /// Each sweep's passes in turn instead of all sweeps in each dispatch (software devices).
         bool sweepsInTurn = false;
+        std::vector<int> sweepPasses;  ///< each sweep's own dispatches; passes is the largest
         /// The sweep along x that stores its light along rows of a scratch volume, if any.
         int rowOrderedSweep = -1;
         /// Whether a last pass puts the blended or row-ordered sweep's light in place.
         bool assembles() const { return blendedSweep >= 0 || rowOrderedSweep >= 0; }
         /// Compute dispatches in all: the passes and the last.
-        int dispatches() const { return passes * (sweepsInTurn ? sweeps : 1) + (assembles() ? 1 : 0); }
+        int dispatches() const {
+            const int inTurn = std::accumulate(sweepPasses.begin(), sweepPasses.end(), 0);
+            return (sweepsInTurn ? inTurn : passes) + (assembles() ? 1 : 0);
+        }
     };
 
     /// How the last run or runEyePass laid out its dispatches.
