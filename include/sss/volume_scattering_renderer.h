@@ -235,8 +235,9 @@ struct VolumeRenderOptions {
     /// changes (camera, target size, lights, transfer function, volume, model transform, these
     /// options) and restarts otherwise; accumulatedSamples() says how many it holds. Rays go
     /// through pixel centres (as the CPU's); the first frame shows its first samples, noisy.
-    /// Meshes of a hybrid scene clip the camera rays but cast no shadows into the medium, and a
-    /// mesh that moves while all of the above stays does not restart the mean (default: off).
+    /// Meshes of a hybrid scene clip the camera rays and, with HybridOptions::meshShadowsInVolumes,
+    /// block the lights' next-event terms where their shadow maps say so (light scattered by the
+    /// medium passes through them); a change of those maps restarts the mean (default: off).
     bool multipleScattering = false;
     /// Paths per pixel each render() adds in the multiple-scattering mode, 1..4096 (default: 1).
     int samplesPerFrame = 1;
@@ -253,8 +254,10 @@ struct VolumeRenderOptions {
     /// lights fill it by the path tracer's estimator (delta tracking, HG scattering, Russian
     /// roulette; maxBounces and anisotropy apply), cachePhotonsPerFrame per render()
     /// until it holds cachePhotons; camera moves reuse it, and a change of the lights, transfer
-    /// function, volume, model transform, clip or these options restarts it. Meshes of a hybrid
-    /// scene cast no shadows into it. Its angular model holds for moderate anisotropy: within
+    /// function, volume, model transform, clip or these options restarts it. In a hybrid scene
+    /// with HybridOptions::meshShadowsInVolumes, a photon stops at a mesh between its light and
+    /// its first scattering (the meshes' shadow maps), and a change of those maps restarts it; light
+    /// scattered by the medium passes through meshes, as the path tracer's. Its angular model holds for moderate anisotropy: within
     /// 3-7 % of the path tracer for |g| up to 0.5, 10-80 % off for g 0.65-0.9, depending on the
     /// view (a warning is logged above |g| 0.6; docs/multiple-scattering.md) (default: off).
     bool multipleScatteringCache = false;

@@ -6,6 +6,7 @@
 #include "volume/transfer_function.glsl"
 #include "volume/clip.glsl"
 #include "volume/medium_walk.glsl"
+uniform mat4 modelToWorld;
 #include "volume/direct_light.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;

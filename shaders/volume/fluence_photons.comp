@@ -24,6 +24,7 @@
 #include "volume/clip.glsl"
 #include "common/spot_cone.glsl"
 #include "volume/medium_walk.glsl"
+uniform mat4 modelToWorld;
 #include "volume/direct_light.glsl"
 
 layout(local_size_x = 64) in;
@@ -36,7 +37,6 @@ uniform int stepsPerDispatch;
 uniform int maxBounces;
 uniform ivec3 cacheCells;
 uniform float depositScale;          // fixed-point quanta per unit of w s / majorant
-uniform mat4 modelToWorld;
 uniform vec3 boxCentre;              // the box's bounding sphere, model space
 uniform float boxRadius;
 uniform int lightCount;
@@ -46,6 +46,7 @@ uniform float lightPick[MAX_LIGHTS];        // cumulative probability of emittin
 uniform float lightConeCosine[MAX_LIGHTS];  // point lights: cone of directions that can reach the box
 uniform vec3 lightSpotAxis[MAX_LIGHTS];     // world space, as path_trace.comp
 uniform vec2 lightSpotCosines[MAX_LIGHTS];
+uniform int lightShadowLayer[MAX_LIGHTS];    // the renderer's index of each light (its mesh shadow map)
 
 const int kRouletteStartBounce = 3;  // as the path tracer
 const uint kMaxStepsPerPhoton = 1u << 24;
@@ -57,7 +58,7 @@ struct PhotonState {
     vec4 throughput;  // rgb: weight; a: tau
     vec4 origin;      // xyz: the walk's origin; w: t
     vec4 direction;   // xyz: direction of travel; w: the walk's end
-    ivec4 cell;       // xyz: brick; w: stage
+    ivec4 cell;       // xyz: brick; w: stage + kStages x the light it left
     uvec4 counters;   // x: random state; y: scatterings so far; z: photons left; w: steps
 };
 layout(std430, binding = 0) buffer Photons { PhotonState photons[]; };
@@ -71,8 +72,10 @@ const int kStageDone = 0;
 const int kStageTrack = 1;
 const int kStageScatter = 2;
 const int kStageFinished = 3;
+const int kStages = 4;
 
 int stage;
+int photonLight;  // the layer of the light it left: meshes block its way to the first scattering
 vec3 throughput;
 int bounce;
 uint photonsLeft;
@@ -141,6 +144,10 @@ void walkStep() {
     if (tb > t && majorant > 0.0 && tau < majorant * (tb - t)) {
         t += tau / majorant;
         vec3 p = origin + t * walkDirection;
+        if (bounce == 0 && meshVisibility(photonLight, (modelToWorld * vec4(p, 1.0)).xyz) == 0.0) {
+            stage = kStageFinished;  // a mesh took it before it got here (and it deposits nothing yet)
+            return;
+        }
         vec4 tf;
         float sigma = extinction(p, majorant, tf);
         if (bounce > 0) deposit(p);
@@ -207,6 +214,7 @@ void startPhoton(uint slot) {
     float u = uniform01();
     int i = 0;
     while (i + 1 < lightCount && u >= lightPick[i]) ++i;
+    photonLight = lightShadowLayer[i];
     throughput = lightWeight[i];
     bounce = 0;
     photonSteps = 0u;
@@ -256,7 +264,8 @@ void load(uint i) {
     walkDirection = s.direction.xyz;
     tEnd = s.direction.w;
     cell = s.cell.xyz;
-    stage = s.cell.w;
+    stage = s.cell.w % kStages;
+    photonLight = s.cell.w / kStages;
     rngState = s.counters.x;
     bounce = int(s.counters.y);
     photonsLeft = s.counters.z;
@@ -265,8 +274,8 @@ void load(uint i) {
 }
 
 void store(uint i) {
-    photons[i] = PhotonState(vec4(throughput, tau), vec4(origin, t), vec4(walkDirection, tEnd), ivec4(cell, stage),
-                             uvec4(rngState, uint(bounce), photonsLeft, photonSteps));
+    photons[i] = PhotonState(vec4(throughput, tau), vec4(origin, t), vec4(walkDirection, tEnd),
+                             ivec4(cell, stage + kStages * photonLight), uvec4(rngState, uint(bounce), photonsLeft, photonSteps));
 }
 
 void main() {
@@ -276,7 +285,7 @@ void main() {
         photonsLeft = photonsPerInvocation;
         startPhoton(slot);
     } else {
-        if (photons[slot].cell.w == kStageDone) return;
+        if (photons[slot].cell.w % kStages == kStageDone) return;
         load(slot);
     }
     int budget = stepsPerDispatch;

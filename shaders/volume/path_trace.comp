@@ -30,6 +30,7 @@
 #include "volume/clip.glsl"
 #include "common/spot_cone.glsl"
 #include "volume/medium_walk.glsl"
+#include "volume/mesh_visibility.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -44,6 +45,7 @@ uniform vec3 lightWorldPosition[MAX_LIGHTS];  // point lights: falloff is in wor
 uniform vec3 lightRadiance[MAX_LIGHTS];       // colour * intensity
 uniform vec3 lightSpotAxis[MAX_LIGHTS];       // spot lights: world-space unit cone axis (as in lights.glsl)
 uniform vec2 lightSpotCosines[MAX_LIGHTS];    // spot lights: (cos outer, cos inner); (-2, -2): no cone
+uniform int lightShadowLayer[MAX_LIGHTS];     // the renderer's index of each light (its mesh shadow map)
 uniform int bandFirstRow;          // this dispatch covers rows [bandFirstRow, bandFirstRow + bandRows)
 uniform int bandRows;
 uniform int restart;
@@ -247,6 +249,8 @@ void nextLight() {
     float t0 = 0.0, t1 = distance;
     if (!(distance > 0.0)) {
         ++light;  // at the light: no direction (measure zero), as the CPU
+    } else if (meshVisibility(lightShadowLayer[light], (modelToWorld * vec4(origin, 1.0)).xyz) == 0.0) {
+        ++light;  // a mesh of the hybrid scene blocks it
     } else if (!clipToBox(origin, l, t0, t1)) {
         addNextEvent(1.0);
         ++light;

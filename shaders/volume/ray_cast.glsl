@@ -85,30 +85,13 @@ uniform float gradientThreshold;   // |gradient| (per voxel) below which shading
 uniform sampler3D lightVolumes[MAX_LIGHTS];   // one per light: (c, l) arriving at each point
 uniform mat3 worldToModelDirection;           // inverse of modelToWorld's linear part
 uniform float lightVolumeReach;               // light-volume texels towards the light (see shade)
-// Hybrid scenes (MESH_SHADOWS 1): meshes between a light and the volume cast hard shadows into
-// it (shadow maps of the meshes from each light; see src/hybrid/shared_lighting.h).
-#if MESH_SHADOWS
-uniform sampler2DArray meshShadowDepth;
-uniform mat4 worldToShadowClip[MAX_LIGHTS];
-uniform float meshShadowBias;
-#endif
+#include "volume/mesh_visibility.glsl"
 
 #if EYE_PASS
 uniform sampler3D eyeVolume;    // rgb: scattered light arriving from behind, towards the viewer
 uniform float eyePassStrength;
 #endif
 
-// At model-space point p.
-float meshVisibility(int light, vec3 p) {
-#if !MESH_SHADOWS
-    return 1.0;
-#else
-    vec4 clip = worldToShadowClip[light] * (modelToWorld * vec4(p, 1.0));
-    vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
-    if (any(lessThan(window, vec3(0.0))) || any(greaterThan(window, vec3(1.0)))) return 1.0;
-    return window.z - meshShadowBias > texture(meshShadowDepth, vec3(window.xy, float(light))).r ? 0.0 : 1.0;
-#endif
-}
 #endif
 
 vec3 toTexture(vec3 p) { return (p - boxMin) / (boxMax - boxMin); }
@@ -398,7 +381,7 @@ vec4 arrivingLight(int i, vec3 p, vec3 tc) {
     vec3 reach = full.reach * share;
     vec4 light = share < 1.0 ? vec4(1.0) : texture(lightVolumes[i], tc + reach);
     light = carriedBack(light, tc, reach, full.voxels * share);
-    light.a *= meshVisibility(i, p);
+    light.a *= meshVisibility(i, (modelToWorld * vec4(p, 1.0)).xyz);
     return vec4(light.rgb * light.a, light.a);
 }
 

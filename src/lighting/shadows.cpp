@@ -78,4 +78,21 @@ void setSurfaceShadowUniforms(const gl::Program& program, const SurfaceShadows* 
     program.set("volumeShadowCount", volumes);
 }
 
+bool castsMeshShadows(const MeshShadowMaps* shadows, std::size_t lightCount) {
+    return shadows && shadows->depth && shadows->worldToClip.size() >= lightCount;
+}
+
+std::uint64_t meshShadowRevision(const MeshShadowMaps* shadows, std::size_t lightCount) {
+    return castsMeshShadows(shadows, lightCount) ? shadows->revision : 0;
+}
+
+void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows, std::size_t lightCount) {
+    program.set("meshShadowDepth", units::kMeshShadowDepth);
+    for (std::size_t i = 0; i < lightCount; ++i)
+        program.set("worldToShadowClip[" + std::to_string(i) + "]", shadows.worldToClip[i]);
+    // About two shadow-map texels' worth of depth (the maps span the scene's diameter).
+    program.set("meshShadowBias", 2.0f / static_cast<float>(shadows.depth.size().x));
+    shadows.depth.bind(units::kMeshShadowDepth);
+}
+
 }  // namespace sss::detail

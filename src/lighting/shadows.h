@@ -57,4 +57,16 @@ bool castsSurfaceShadows(const SurfaceShadows* shadows, std::size_t lightCount);
 /// and binds its textures. Volumes beyond kMaxVolumeShadowPairs / lightCount are left out.
 void setSurfaceShadowUniforms(const gl::Program& program, const SurfaceShadows* shadows, std::size_t lightCount);
 
+/// Whether the meshes' maps hold every one of `lightCount` lights: volume passes then compile
+/// shaders/volume/mesh_visibility.glsl with MESH_SHADOWS 1 (null: no meshes shadow the volume).
+bool castsMeshShadows(const MeshShadowMaps* shadows, std::size_t lightCount);
+
+/// The maps' revision where they shadow a volume's `lightCount` lights, else 0: for the keys of
+/// what a volume pass builds from its lights (the multiple-scattering cache, the path tracer).
+std::uint64_t meshShadowRevision(const MeshShadowMaps* shadows, std::size_t lightCount);
+
+/// Sets shaders/volume/mesh_visibility.glsl's uniforms and binds the maps to
+/// units::kMeshShadowDepth; castsMeshShadows(&shadows, lightCount) must hold.
+void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows, std::size_t lightCount);
+
 }  // namespace sss::detail

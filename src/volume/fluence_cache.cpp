@@ -107,21 +107,26 @@ FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
 
 ShaderDefines FluenceCache::defines() const {
     return {{"MAX_LIGHTS", std::to_string(kMaxLights)},
-            {"DIRECT_LIGHTS", std::to_string(m_directLights)},
+            {"DIRECT_LIGHTS", std::to_string(m_variant.directLights)},
+            {"MESH_SHADOWS", m_variant.meshShadows ? "1" : "0"},
             {"BRICK_VOXELS", std::to_string(kBrickVoxels)},
             {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)}};
 }
 
 const gl::Program& FluenceCache::photonProgram() {
-    return gl::linkedOnce(m_photonPrograms, m_directLights, "volume/fluence_photons.comp", [&] { return defines(); });
+    return gl::linkedOnce(m_photonPrograms, m_variant, "volume/fluence_photons.comp", [&] { return defines(); });
 }
 
 const gl::Program& FluenceCache::densityProgram() {
-    return gl::linkedOnce(m_densityPrograms, m_directLights, "volume/fluence_density.comp", [&] { return defines(); });
+    return gl::linkedOnce(m_densityPrograms, m_variant, "volume/fluence_density.comp", [&] { return defines(); });
+}
+
+FluenceCache::ProgramVariant FluenceCache::variantFor(const FluenceCacheInputs& in) {
+    return {directLightCount(in), castsMeshShadows(in.meshShadows, in.lights.size())};
 }
 
 void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameDensityInputs) {
-    m_directLights = directLightCount(in);
+    m_variant = variantFor(in);
     const std::size_t count = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
     if (cells != m_cells) {
         sameDensityInputs = false;
@@ -191,7 +196,8 @@ std::vector<float> directLightWeights(const std::vector<Light>& lights, const gl
 
 void FluenceCache::bindDirectLight(const gl::Program& p, const FluenceCacheInputs& in) const {
     const std::vector<float> weights = directLightWeights(in.lights, in.model, in.volume.box);
-    for (int i = 0; i < m_directLights; ++i) {
+    if (m_variant.meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights.size());
+    for (int i = 0; i < m_variant.directLights; ++i) {
         const std::string index = "[" + std::to_string(i) + "]";
         p.set("lightVolumes" + index, units::kLightVolumes + i);
         (*in.lightVolumes)[static_cast<std::size_t>(i)].bind(static_cast<GLuint>(units::kLightVolumes + i));
@@ -208,6 +214,7 @@ void FluenceCache::setMediumUniforms(const gl::Program& p, const FluenceCacheInp
     p.set("boxMin", box.min);
     p.set("boxMax", box.max);
     p.set("voxelLength", in.volume.voxelLength);
+    p.set("modelToWorld", in.model);
     setClipUniforms(p, in.clip, in.model, box);
 }
 
@@ -221,7 +228,6 @@ void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
     p.set("maxBounces", in.maxBounces);
     p.set("cacheCells", m_cells);
     p.set("depositScale", kQuantaPerUnit);
-    p.set("modelToWorld", in.model);
     const glm::vec3 centre = box.center();
     const float radius = 0.5f * glm::length(box.size());
     p.set("boxCentre", centre);
@@ -239,6 +245,7 @@ void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
         p.set("lightWeight" + i, e.power / largestChannel(e.power));
         p.set("lightPick" + i, k + 1 == emitters.size() ? 1.0f : cumulative);
         p.set("lightConeCosine" + i, e.coneCosine);
+        p.set("lightShadowLayer" + i, static_cast<int>(e.light - in.lights.data()));
         setSpotConeUniforms(p, static_cast<int>(k), *e.light);
     }
     p.set("lightCount", static_cast<int>(emitters.size()));
@@ -246,7 +253,7 @@ void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
 
 void FluenceCache::add(const FluenceCacheInputs& in, int photons) {
     if (photons <= 0 || m_cells.x == 0) return;
-    m_directLights = directLightCount(in);
+    m_variant = variantFor(in);
     setUniforms(in);
     const gl::Program& p = photonProgram();
     const int slots = std::min(photons, kMaxPhotonSlots);

@@ -20,6 +20,7 @@
 #include "sss/camera.h"
 #include "sss/light.h"
 #include "sss/volume_clip.h"
+#include "lighting/shadows.h"
 #include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
 
@@ -44,6 +45,9 @@ struct FluenceCacheInputs {
     const VolumeClip* clip = nullptr;  ///< cut matter casts no shadows unless the clip says so
     /// One per light, as the eye reads them: the direct light the cells' fluence is regressed on.
     const std::vector<gl::Texture>* lightVolumes = nullptr;
+    /// Hybrid scenes: the meshes block each light's way to a photon's first scattering, and the
+    /// direct light the fluence is regressed on (null: no meshes shadow the volume).
+    const MeshShadowMaps* meshShadows = nullptr;
 };
 
 /// What the cache's light towards the eye depends on besides the cache (FluenceCache::evaluateView).
@@ -108,8 +112,15 @@ private:
     void setUniforms(const FluenceCacheInputs& in);
     void setMediumUniforms(const gl::Program& p, const FluenceCacheInputs& in) const;
     void bindDirectLight(const gl::Program& p, const FluenceCacheInputs& in) const;
-    /// The photon and density programs for m_directLights light volumes (a compile-time count:
-    /// shaders/volume/direct_light.glsl), linked on first use.
+    /// What the photon and density programs are compiled for: the number of light volumes (a
+    /// compile-time count: shaders/volume/direct_light.glsl) and whether meshes shadow the lights.
+    struct ProgramVariant {
+        int directLights = 0;
+        bool meshShadows = false;
+        auto operator<=>(const ProgramVariant&) const = default;
+    };
+    static ProgramVariant variantFor(const FluenceCacheInputs& in);
+    /// The photon and density programs for m_variant, linked on first use.
     const gl::Program& photonProgram();
     const gl::Program& densityProgram();
     ShaderDefines defines() const;
@@ -121,9 +132,9 @@ private:
     void resolveSlopes();
 
     VolumeReconstruction m_reconstruction;
-    std::map<int, gl::Program> m_photonPrograms;   // by the number of light volumes
-    std::map<int, gl::Program> m_densityPrograms;
-    int m_directLights = 0;       // light volumes of the current inputs
+    std::map<ProgramVariant, gl::Program> m_photonPrograms;
+    std::map<ProgramVariant, gl::Program> m_densityPrograms;
+    ProgramVariant m_variant;     // of the current inputs
     gl::Program m_resolveProgram;
     gl::Program m_slopeProgram;
     std::map<bool, gl::Program> m_viewPrograms;  // by whether the level read is a whole one

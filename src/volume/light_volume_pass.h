@@ -72,12 +72,12 @@ struct LightVolumeSettings {
     /// Each sweep's dispatches in turn (true) or every sweep in each dispatch (false); unset: in
     /// turn on software rasterisers where a sweep runs along x, where that measured faster. The
     /// same light volume texel for texel either way.
-    std::optional<bool> sweepsInTurn;
+    std::optional<bool> sweepsInTurn = std::nullopt;
     /// A sweep along x stores its light at (y, z, x) in a scratch volume, put in place by a last
     /// pass (true), or in the light volume itself (false); unset: row-ordered on software
     /// rasterisers, where an x slice's stores would each touch another cache line. The same
     /// light volume texel for texel either way.
-    std::optional<bool> rowOrderedXSweeps;
+    std::optional<bool> rowOrderedXSweeps = std::nullopt;
     bool operator==(const LightVolumeSettings&) const = default;
 };
 
@@ -106,7 +106,7 @@ public:
         float blendedWeight = 0.0f;
         /// Each sweep's passes in turn instead of all sweeps in each dispatch (software devices).
         bool sweepsInTurn = false;
-        std::vector<int> sweepPasses;  ///< each sweep's own dispatches; passes is the largest
+        std::vector<int> sweepPasses = {};  ///< each sweep's own dispatches; passes is the largest
         /// The sweep along x that stores its light along rows of a scratch volume, if any.
         int rowOrderedSweep = -1;
         /// Whether a last pass puts the blended or row-ordered sweep's light in place.

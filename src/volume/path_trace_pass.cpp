@@ -46,10 +46,7 @@ gl::Texture brickMajorants(const OccupancyGrid& grid, float voxelLength) {
 }
 
 PathTracePass::PathTracePass(PathTraceBounds bounds, VolumeReconstruction reconstruction)
-    : m_trace(gl::Program::link({{GL_COMPUTE_SHADER, "volume/path_trace.comp"}},
-                                {{"MAX_LIGHTS", std::to_string(kMaxLights)},
-                                 {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(reconstruction)}})),
-      m_resolve(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+    : m_resolve(gl::Program::link({{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                                    {GL_FRAGMENT_SHADER, "volume/path_trace_resolve.frag"}})),
       m_emptyVertexArray(gl::VertexArray::create()),
       m_bounds(bounds),
@@ -94,11 +91,22 @@ void PathTracePass::collectStatus() {
     reportAbandoned(m_statusMapped[1]);
 }
 
+const gl::Program& PathTracePass::traceProgram(bool meshShadows) {
+    return gl::linkedOnce(m_tracePrograms, meshShadows, "volume/path_trace.comp", [&]() -> ShaderDefines {
+        return {{"MAX_LIGHTS", std::to_string(kMaxLights)},
+                {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)},
+                {"MESH_SHADOWS", meshShadows ? "1" : "0"}};
+    });
+}
+
 void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sums) {
     const GpuVolume& volume = in.volume;
     const glm::mat4 viewProjection = in.camera.projection(in.aspect) * in.camera.view();
     const glm::mat4 worldToModel = glm::inverse(in.model);
-    const gl::Program& p = m_trace;
+    const bool meshShadows = castsMeshShadows(in.meshShadows, in.lights.size());
+    const gl::Program& p = traceProgram(meshShadows);
+    m_trace = &p;
+    if (meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights.size());
     p.set("inverseViewProjection", glm::inverse(viewProjection));
     p.set("worldToModel", worldToModel);
     p.set("modelToWorld", in.model);
@@ -136,6 +144,7 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
         p.set("lightModel" + i, modelVector);
         p.set("lightWorldPosition" + i, worldPosition);
         p.set("lightRadiance" + i, radiance);
+        p.set("lightShadowLayer" + i, static_cast<int>(&light - in.lights.data()));
         setSpotConeUniforms(p, count++, light);
     }
     p.set("lightCount", count);
@@ -182,7 +191,7 @@ void PathTracePass::dispatchBands(glm::ivec2 size, int bandRows) {
     // stepsPerDispatch steps per pixel, and the paths' state carries over to the next dispatch
     // until every pixel has finished its paths. The shader counts the invocations with work
     // left, read back after each dispatch.
-    const gl::Program& p = m_trace;
+    const gl::Program& p = *m_trace;
     const std::uint32_t zero = 0;
     std::uint32_t status[2] = {0, 0};
     m_lastDispatches = 0;

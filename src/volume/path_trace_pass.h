@@ -11,6 +11,7 @@
 #include "gl/vertex_array.h"
 #include "sss/camera.h"
 #include "sss/light.h"
+#include "lighting/shadows.h"
 #include "sss/volume_scattering_renderer.h"
 #include "volume/empty_space.h"
 #include "volume/gpu_volume.h"
@@ -18,6 +19,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -41,6 +43,8 @@ struct PathTraceInputs {
     float aspect = 1.0f;
     unsigned firstSample = 0;  ///< paths per pixel already in the sums (keys the random streams)
     const VolumeClip* clip = nullptr;  ///< the clip planes and crop box, if any
+    /// Hybrid scenes: the meshes block each light's next-event term (null: no meshes shadow the volume).
+    const MeshShadowMaps* meshShadows = nullptr;
 };
 
 /// Units (loop iterations) one invocation may spend per dispatch by default. llvmpipe stops every
@@ -99,7 +103,11 @@ private:
     void collectStatus();
     void reportAbandoned(std::uint32_t abandoned);
 
-    gl::Program m_trace;
+    /// The tracing program, by whether meshes shadow the lights (linked on first use).
+    const gl::Program& traceProgram(bool meshShadows);
+
+    std::map<bool, gl::Program> m_tracePrograms;
+    const gl::Program* m_trace = nullptr;  // accumulate()'s, for dispatchBands()
     gl::Program m_resolve;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
     PathTraceBounds m_bounds;

@@ -80,11 +80,6 @@ bool diagonalMetric(const glm::mat4& model) {
     return true;
 }
 
-// Whether `shadows` (null: none) hold a map for each of `lightCount` lights.
-bool castsMeshShadows(const MeshShadowMaps* shadows, std::size_t lightCount) {
-    return shadows && shadows->worldToClip.size() >= lightCount;
-}
-
 }  // namespace
 
 RayCastVariant RayCastVariant::of(const VolumeRenderOptions& options, const RayCastScene& scene) {
@@ -243,14 +238,7 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         }
     }
     if (usesLightVolume(m_variant.shading)) {
-        if (m_variant.meshShadows) {
-            p.set("meshShadowDepth", units::kMeshShadowDepth);
-            for (size_t i = 0; i < lights.size(); ++i)
-                p.set("worldToShadowClip[" + std::to_string(i) + "]", meshShadows->worldToClip[i]);
-            // About two shadow-map texels' worth of depth (the maps span the scene's diameter).
-            p.set("meshShadowBias", 2.0f / static_cast<float>(meshShadows->depth.size().x));
-            meshShadows->depth.bind(units::kMeshShadowDepth);
-        }
+        if (m_variant.meshShadows) setMeshVisibilityUniforms(p, *meshShadows, lights.size());
         if (m_variant.eyePass && in.eyeVolume) {
             p.set("eyeVolume", units::kEyeVolume);
             p.set("eyePassStrength", options.eyePassStrength);

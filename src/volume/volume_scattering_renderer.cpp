@@ -65,6 +65,7 @@ struct PathTraceInputsKey {
     int maxBounces = 0;
     VolumeClip clip;
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
+    std::uint64_t meshShadows = 0;  // detail::meshShadowRevision: the meshes block the lights
     bool operator==(const PathTraceInputsKey&) const = default;
 };
 
@@ -81,6 +82,7 @@ struct FluenceCacheKey {
     glm::ivec3 cells{0};
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
     float lightVolumeScale = 0.0f;  // the cache regresses on the light volumes (FluenceCache)
+    std::uint64_t meshShadows = 0;  // detail::meshShadowRevision: the meshes block the lights
     bool operator==(const FluenceCacheKey&) const = default;
 };
 
@@ -249,7 +251,7 @@ struct VolumeScatteringRenderer::Impl {
         const glm::ivec3 cells = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution);
         FluenceCacheKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
                             model, options.anisotropy, options.maxBounces, clip, cells, options.reconstruction,
-                            lightVolumeScaleInUse};
+                            lightVolumeScaleInUse, detail::meshShadowRevision(meshShadows, lights.size())};
         const auto photons = static_cast<std::uint64_t>(options.cachePhotons);
         if (fluenceKey == key && fluenceCache->photons() >= photons) return;  // refined: nothing to trace
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
@@ -266,12 +268,13 @@ struct VolumeScatteringRenderer::Impl {
                                                 .anisotropy = options.anisotropy,
                                                 .maxBounces = options.maxBounces,
                                                 .clip = clipOrNull(),
-                                                .lightVolumes = &shownLightVolumes()};
+                                                .lightVolumes = &shownLightVolumes(),
+                                                .meshShadows = meshShadows};
         if (fluenceKey != key) {
             // The cells' weights and direct-light moments depend on all but the scattering.
             const auto densityInputs = [](const FluenceCacheKey& k) {
                 return std::tie(k.volumeGeneration, k.transferFunctionRevision, k.transferFunctionEntries, k.lights,
-                                k.model, k.clip, k.cells, k.reconstruction, k.lightVolumeScale);
+                                k.model, k.clip, k.cells, k.reconstruction, k.lightVolumeScale, k.meshShadows);
             };
             fluenceCache->restart(inputs, cells, fluenceKey && densityInputs(*fluenceKey) == densityInputs(key));
             fluenceKey = std::move(key);
@@ -309,7 +312,7 @@ struct VolumeScatteringRenderer::Impl {
         PathTraceInputsKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
                                model, camera.view(), camera.projection(target.aspect()),
                                glm::ivec2(target.width(), target.height()), options.anisotropy, options.maxBounces,
-                               clip, options.reconstruction};
+                               clip, options.reconstruction, detail::meshShadowRevision(meshShadows, lights.size())};
         if (pathKey != key) {
             if (!pathSums || pathSums.size() != glm::ivec3(key.size, 1))
                 pathSums = gl::Texture::create2D(GL_RGBA32F, key.size.x, key.size.y, "path-tracer sums");
@@ -331,7 +334,8 @@ struct VolumeScatteringRenderer::Impl {
                                .camera = camera,
                                .aspect = target.aspect(),
                                .firstSample = static_cast<unsigned>(pathSamples),
-                               .clip = clipOrNull()},
+                               .clip = clipOrNull(),
+                               .meshShadows = meshShadows},
                               pathSums);
         pathSamples += options.samplesPerFrame;
         target.bindForDrawing();
