@@ -163,3 +163,28 @@ TEST_CASE("under a mesh's half shadow the cache agrees with the path tracer", "[
     CHECK(multipleRatio < 1.15);
     gl.requireNoErrors();
 }
+
+TEST_CASE("in a hybrid scene the cache is kept for camera moves and restarted when a mesh moves",
+          "[gl][hybrid][shadows][scattering-cache]") {
+    test::GlTestScope gl;
+    auto s = scene(Blocker::LeftHalf, cached());
+    const auto budget = static_cast<std::uint64_t>(cached().cachePhotons);
+    const auto perFrame = static_cast<std::uint64_t>(cached().cachePhotonsPerFrame);
+    RenderTarget target(kWidth, kHeight);
+    for (int i = 0; i < 5; ++i) s->render(frontCamera(), target);
+    VolumeScatteringRenderer& volume = s->volume(0);
+    REQUIRE(volume.cachedPhotons() == budget);
+    const int traced = volume.stats().runs("scattering-cache");
+
+    Camera moved = frontCamera();
+    moved.setYaw(25.0f);
+    s->render(moved, target);
+    CHECK(volume.cachedPhotons() == budget);
+    CHECK(volume.stats().runs("scattering-cache") == traced);
+
+    // The slab's shadow moves with it: the photons start again.
+    s->setMeshTransform(0, glm::translate(glm::mat4(1.0f), {-0.6f, 0.8f, 0.0f}));
+    s->render(moved, target);
+    CHECK(volume.cachedPhotons() == perFrame);
+    gl.requireNoErrors();
+}
