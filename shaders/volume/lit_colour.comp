@@ -1,9 +1,11 @@
 // Eye pass, step 1: the light each voxel scatters, TF colour * (ambient + diffuse * sum E c l),
-// the source that the eye sweep (light_propagation.comp with EYE_PASS) carries towards the viewer.
+// the source that the eye sweep (light_propagation.comp with EYE_PASS) carries towards the viewer;
+// in a hybrid scene without the light the meshes hide from the voxel (MESH_SHADOWS).
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 #include "common/lights.glsl"
 #include "volume/transfer_function.glsl"
+#include "volume/mesh_visibility.glsl"
 
 uniform sampler3D lightVolumes[MAX_LIGHTS];
 layout(rgba16f) uniform writeonly image3D litColour;
@@ -25,7 +27,7 @@ void main() {
         vec3 radiance;
         lightDirectionAt(i, worldPosition, radiance);
         vec4 arriving = texelFetch(lightVolumes[i], voxel, 0);
-        lit += diffuseStrength * color * radiance * arriving.rgb * arriving.a;
+        lit += diffuseStrength * color * radiance * arriving.rgb * (arriving.a * meshVisibility(i, worldPosition));
     }
     imageStore(litColour, voxel, vec4(lit, 1.0));
 }

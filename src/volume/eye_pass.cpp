@@ -9,14 +9,17 @@ namespace sss::detail {
 
 void EyePass::run(const EyePassInputs& in) {
     const glm::ivec3 dims = in.lightVolumes.front().size();
+    const bool meshShadows = castsMeshShadows(in.meshShadows, in.lights.size());
     if (!m_litColourProgram || m_litColourLights != in.lights.size() ||
-        m_litColourReconstruction != in.settings.reconstruction) {
+        m_litColourReconstruction != in.settings.reconstruction || m_litColourMeshShadows != meshShadows) {
         m_litColourProgram =
             gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}},
                               {{"LIGHT_COUNT", std::to_string(in.lights.size())},
-                               {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(in.settings.reconstruction)}});
+                               {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(in.settings.reconstruction)},
+                               {"MESH_SHADOWS", meshShadows ? "1" : "0"}});
         m_litColourReconstruction = in.settings.reconstruction;
         m_litColourLights = in.lights.size();
+        m_litColourMeshShadows = meshShadows;
     }
     if (!m_litColour || m_litColour.size() != dims)
         m_litColour = gl::Texture::create3D(GL_RGBA16F, dims, "eye pass: scattered light");
@@ -33,6 +36,7 @@ void EyePass::run(const EyePassInputs& in) {
     p.set("ambientStrength", in.ambientStrength);
     p.set("diffuseStrength", in.diffuseStrength);
     setLightUniforms(p, in.lights);
+    if (meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights.size());
     for (size_t i = 0; i < in.lights.size(); ++i) {
         p.set("lightVolumes[" + std::to_string(i) + "]", units::kLightVolumes + static_cast<int>(i));
         in.lightVolumes[i].bind(static_cast<GLuint>(units::kLightVolumes + static_cast<int>(i)));

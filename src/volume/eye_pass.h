@@ -6,6 +6,7 @@
 // View-dependent: it reruns when the camera turns, as well as when the light volumes change.
 #include "gl/program.h"
 #include "gl/texture.h"
+#include "lighting/shadows.h"
 #include "sss/light.h"
 #include "volume/gpu_volume.h"
 #include "volume/light_volume_pass.h"
@@ -28,6 +29,7 @@ struct EyePassInputs {
     LightVolumeSettings settings;
     const gl::Texture* occupiedNeighbourhoods = nullptr;  ///< empty-space skipping (LightVolumeMedium)
     const VolumeClip* clip = nullptr;                     ///< the clip planes and crop box, if any
+    const MeshShadowMaps* meshShadows = nullptr;  ///< hybrid scenes: meshes hide the lights (null: none)
 };
 
 class EyePass {
@@ -42,6 +44,7 @@ private:
     std::optional<gl::Program> m_litColourProgram;
     std::size_t m_litColourLights = 0;  // LIGHT_COUNT m_litColourProgram was built for
     VolumeReconstruction m_litColourReconstruction = VolumeReconstruction::Trilinear;  // and its field
+    bool m_litColourMeshShadows = false;                                                // and MESH_SHADOWS
     std::optional<LightVolumePass> m_sweep;
     gl::Texture m_litColour, m_eyeVolume;
 };

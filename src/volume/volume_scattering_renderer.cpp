@@ -225,7 +225,7 @@ struct VolumeScatteringRenderer::Impl {
             return false;
         }
     }
-    std::optional<std::tuple<LightVolumeInputs, float, glm::vec3, float, float, VolumeClip>> eyeInputs;
+    std::optional<std::tuple<LightVolumeInputs, float, glm::vec3, float, float, VolumeClip, std::uint64_t>> eyeInputs;
     const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
     // Multiple scattering: the path tracer, its running sums and what they were built from.
     std::optional<detail::PathTracePass> pathTrace;
@@ -423,8 +423,8 @@ struct VolumeScatteringRenderer::Impl {
 
     void updateEyePass(const Camera& camera) {
         const auto inputs = std::make_tuple(*lightVolumeInputs, lightVolumeScaleInUse, camera.forward(),
-                                            options.ambient + options.emission,
-                                            options.diffuse, clip);
+                                            options.ambient + options.emission, options.diffuse, clip,
+                                            detail::meshShadowRevision(meshShadows, lights.size()));
         if (eyeInputs == inputs) return;
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         if (!eyePass) eyePass.emplace();
@@ -432,7 +432,8 @@ struct VolumeScatteringRenderer::Impl {
                       options.ambient + options.emission, options.diffuse,
                       {.resolutionScale = lightVolumeScaleInUse, .anisotropy = options.anisotropy,
                        .maxSlicesPerDispatch = options.lightSweepSlices, .reconstruction = options.reconstruction},
-                      options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr, clipOrNull()});
+                      options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr, clipOrNull(),
+                      meshShadows});
         passTimer.end("eye-pass", mark, passTiming());
         eyeInputs = inputs;
     }

@@ -188,3 +188,26 @@ TEST_CASE("in a hybrid scene the cache is kept for camera moves and restarted wh
     CHECK(volume.cachedPhotons() == perFrame);
     gl.requireNoErrors();
 }
+
+TEST_CASE("a mesh that shadows all of a volume leaves the paper model's eye pass no light",
+          "[gl][hybrid][shadows][eye-pass]") {
+    test::GlTestScope gl;
+    // The eye pass carries the light each voxel scatters (ambient off: only the lights') towards
+    // the viewer; under the slab no voxel is lit, so it adds nothing.
+    auto paper = [](bool eyePass) {
+        VolumeRenderOptions o;
+        o.shading = VolumeShading::Scattering;
+        o.model = VolumeModel::Paper;
+        o.ambient = 0.0f;
+        o.eyePass = eyePass;
+        o.eyePassStrength = 4.0f;
+        return o;
+    };
+    const double open = added(render(*scene(Blocker::None, paper(true)), 1), render(*scene(Blocker::None, paper(false)), 1));
+    INFO("unshadowed, the eye pass adds " << open);
+    REQUIRE(open > 1.0);
+    const double shadowed = added(render(*scene(Blocker::Whole, paper(true)), 1), render(*scene(Blocker::Whole, paper(false)), 1));
+    INFO("shadowed, it adds " << shadowed);
+    CHECK(std::abs(shadowed) < 1e-3 * open);
+    gl.requireNoErrors();
+}
