@@ -1,5 +1,6 @@
 #include "lighting/shadows.h"
 
+#include "core/light_geometry.h"
 #include "lighting/light_uniforms.h"
 #include "lighting/texture_units.h"
 
@@ -86,12 +87,16 @@ std::uint64_t meshShadowRevision(const MeshShadowMaps* shadows, std::size_t ligh
     return castsMeshShadows(shadows, lightCount) ? shadows->revision : 0;
 }
 
-void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows, std::size_t lightCount) {
+void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows, const std::vector<Light>& lights) {
     program.set("meshShadowDepth", units::kMeshShadowDepth);
-    for (std::size_t i = 0; i < lightCount; ++i)
-        program.set("worldToShadowClip[" + std::to_string(i) + "]", shadows.worldToClip[i]);
-    // About two shadow-map texels' worth of depth (the maps span the scene's diameter).
-    program.set("meshShadowBias", 2.0f / static_cast<float>(shadows.depth.size().x));
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const std::string index = "[" + std::to_string(i) + "]";
+        program.set("worldToShadowClip" + index, shadows.worldToClip[i]);
+        const auto* directional = std::get_if<DirectionalLight>(&lights[i]);
+        program.set("meshShadowLight" + index, directional ? glm::vec4(-glm::normalize(directional->direction), 0.0f)
+                                                           : glm::vec4(*lightPosition(lights[i]), 1.0f));
+    }
+    program.set("meshShadowTexel", shadows.texelWorldSize);
     shadows.depth.bind(units::kMeshShadowDepth);
 }
 

@@ -4,6 +4,7 @@
 // (src/hybrid/hybrid_compositor.cpp); the renderers only read them.
 #include "gl/program.h"
 #include "gl/texture.h"
+#include "sss/light.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -65,8 +66,8 @@ bool castsMeshShadows(const MeshShadowMaps* shadows, std::size_t lightCount);
 /// what a volume pass builds from its lights (the multiple-scattering cache, the path tracer).
 std::uint64_t meshShadowRevision(const MeshShadowMaps* shadows, std::size_t lightCount);
 
-/// Sets shaders/volume/mesh_visibility.glsl's uniforms and binds the maps to
-/// units::kMeshShadowDepth; castsMeshShadows(&shadows, lightCount) must hold.
-void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows, std::size_t lightCount);
+/// Sets shaders/volume/mesh_visibility.glsl's uniforms for `lights` (the maps' layers, in order)
+/// and binds the maps to units::kMeshShadowDepth; castsMeshShadows(&shadows, lights.size()) must hold.
+void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows, const std::vector<Light>& lights);
 
 }  // namespace sss::detail

@@ -36,7 +36,7 @@ void EyePass::run(const EyePassInputs& in) {
     p.set("ambientStrength", in.ambientStrength);
     p.set("diffuseStrength", in.diffuseStrength);
     setLightUniforms(p, in.lights);
-    if (meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights.size());
+    if (meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights);
     for (size_t i = 0; i < in.lights.size(); ++i) {
         p.set("lightVolumes[" + std::to_string(i) + "]", units::kLightVolumes + static_cast<int>(i));
         in.lightVolumes[i].bind(static_cast<GLuint>(units::kLightVolumes + static_cast<int>(i)));

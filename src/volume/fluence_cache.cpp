@@ -196,7 +196,7 @@ std::vector<float> directLightWeights(const std::vector<Light>& lights, const gl
 
 void FluenceCache::bindDirectLight(const gl::Program& p, const FluenceCacheInputs& in) const {
     const std::vector<float> weights = directLightWeights(in.lights, in.model, in.volume.box);
-    if (m_variant.meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights.size());
+    if (m_variant.meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights);
     for (int i = 0; i < m_variant.directLights; ++i) {
         const std::string index = "[" + std::to_string(i) + "]";
         p.set("lightVolumes" + index, units::kLightVolumes + i);

@@ -106,7 +106,7 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     const bool meshShadows = castsMeshShadows(in.meshShadows, in.lights.size());
     const gl::Program& p = traceProgram(meshShadows);
     m_trace = &p;
-    if (meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights.size());
+    if (meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights);
     p.set("inverseViewProjection", glm::inverse(viewProjection));
     p.set("worldToModel", worldToModel);
     p.set("modelToWorld", in.model);

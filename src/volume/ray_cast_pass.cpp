@@ -238,7 +238,7 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         }
     }
     if (usesLightVolume(m_variant.shading)) {
-        if (m_variant.meshShadows) setMeshVisibilityUniforms(p, *meshShadows, lights.size());
+        if (m_variant.meshShadows) setMeshVisibilityUniforms(p, *meshShadows, lights);
         if (m_variant.eyePass && in.eyeVolume) {
             p.set("eyeVolume", units::kEyeVolume);
             p.set("eyePassStrength", options.eyePassStrength);

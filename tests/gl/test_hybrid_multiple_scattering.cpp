@@ -56,14 +56,15 @@ VolumeRenderOptions pathTraced() {
 
 // The cube with a thin opaque slab above it: none, over all of it, or over its x < 0 half.
 std::unique_ptr<HybridCompositor> scene(Blocker blocker, const VolumeRenderOptions& options,
-                                        const std::vector<Light>& lights = kLights) {
+                                        const std::vector<Light>& lights = kLights,
+                                        const TransferFunction& tf = brightCubeTf()) {
     auto s = std::make_unique<HybridCompositor>(HybridOptions{.meshShadowsInVolumes = true});
     s->setLights(lights);
     if (blocker == Blocker::Whole)
         s->addMesh(makeSlab({3.0f, 0.05f, 3.0f}), glm::translate(glm::mat4(1.0f), {0.0f, 0.8f, 0.0f}));
     if (blocker == Blocker::LeftHalf)
         s->addMesh(makeSlab({1.5f, 0.05f, 3.0f}), glm::translate(glm::mat4(1.0f), {-0.75f, 0.8f, 0.0f}));
-    s->addVolume(brightCube(), glm::mat4(1.0f), options).setTransferFunction(brightCubeTf());
+    s->addVolume(brightCube(), glm::mat4(1.0f), options).setTransferFunction(tf);
     return s;
 }
 
@@ -209,5 +210,33 @@ TEST_CASE("a mesh that shadows all of a volume leaves the paper model's eye pass
     const double shadowed = added(render(*scene(Blocker::Whole, paper(true)), 1), render(*scene(Blocker::Whole, paper(false)), 1));
     INFO("shadowed, it adds " << shadowed);
     CHECK(std::abs(shadowed) < 1e-3 * open);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a point or spot light's mesh shadow in a volume holds right behind the mesh",
+          "[gl][hybrid][shadows][scattering-cache]") {
+    test::GlTestScope gl;
+    // The light 0.7 above the slab, the cube 0.3 below it: a bias in the perspective map's window
+    // depth let the light through to the cube's upper third (single scattering 65.7 of 193.9).
+    for (const Light& light : {Light{PointLight{.position = {0.0f, 1.5f, 0.0f}, .intensity = 20.0f}},
+                               Light{SpotLight{.position = {0.0f, 1.5f, 0.0f}, .direction = {0.0f, -1.0f, 0.0f},
+                                               .intensity = 20.0f}}}) {
+        const std::vector<Light> lights{light};
+        // The same cube, black: it hides what the bright one hides and scatters nothing.
+        const TransferFunction black({{0.0f, glm::vec3(0.0f), 0.3f}, {1.0f, glm::vec3(0.0f), 0.3f}});
+        const Image blackCube = render(*scene(Blocker::Whole, physical(), lights, black), 1);
+        const double open = added(render(*scene(Blocker::None, physical(), lights), 1),
+                                  render(*scene(Blocker::None, physical(), lights, black), 1));
+        const double single = added(render(*scene(Blocker::Whole, physical(), lights), 1), blackCube);
+        const double cache = added(render(*scene(Blocker::Whole, cached(), lights), 5), blackCube);
+        const double traced = added(render(*scene(Blocker::Whole, pathTraced(), lights), 2), blackCube);
+        INFO((std::holds_alternative<PointLight>(light) ? "point" : "spot")
+             << " light: the unshadowed cube's single scattering " << open << "; under the slab single scattering "
+             << single << ", the cache " << cache << ", the path tracer " << traced);
+        REQUIRE(open > 10.0);
+        CHECK(std::abs(single) < 1e-3 * open);
+        CHECK(std::abs(cache) < 1e-3 * open);
+        CHECK(std::abs(traced) < 1e-3 * open);
+    }
     gl.requireNoErrors();
 }
