@@ -275,7 +275,8 @@ void load(uint i) {
 
 void store(uint i) {
     photons[i] = PhotonState(vec4(throughput, tau), vec4(origin, t), vec4(walkDirection, tEnd),
-                             ivec4(cell, stage + kStages * photonLight), uvec4(rngState, uint(bounce), photonsLeft, photonSteps));
+                             ivec4(cell, stage + kStages * photonLight),
+                             uvec4(rngState, uint(bounce), photonsLeft, photonSteps));
 }
 
 void main() {

@@ -87,7 +87,8 @@ std::uint64_t meshShadowRevision(const MeshShadowMaps* shadows, std::size_t ligh
     return castsMeshShadows(shadows, lightCount) ? shadows->revision : 0;
 }
 
-void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows, const std::vector<Light>& lights) {
+void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows,
+                               const std::vector<Light>& lights) {
     program.set("meshShadowDepth", units::kMeshShadowDepth);
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const std::string index = "[" + std::to_string(i) + "]";

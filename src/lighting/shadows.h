@@ -68,6 +68,7 @@ std::uint64_t meshShadowRevision(const MeshShadowMaps* shadows, std::size_t ligh
 
 /// Sets shaders/volume/mesh_visibility.glsl's uniforms for `lights` (the maps' layers, in order)
 /// and binds the maps to units::kMeshShadowDepth; castsMeshShadows(&shadows, lights.size()) must hold.
-void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows, const std::vector<Light>& lights);
+void setMeshVisibilityUniforms(const gl::Program& program, const MeshShadowMaps& shadows,
+                               const std::vector<Light>& lights);
 
 }  // namespace sss::detail

@@ -3,6 +3,7 @@
 // the direct light the cache regresses on is the one the meshes let through, and the GPU path
 // tracer's next-event terms are blocked the same way (shaders/volume/mesh_visibility.glsl).
 #include "support/gl_test.h"
+#include "support/scenes.h"
 
 #include <catch2/catch.hpp>
 #include <sss/hybrid_compositor.h>
@@ -20,13 +21,8 @@ namespace {
 
 constexpr int kWidth = 48, kHeight = 36;
 
-// A bright uniform cube of high albedo (world bounds [-0.5, 0.5]^3), lit straight from above:
-// most of the light it sends out has scattered more than once.
-const Volume& brightCube() {
-    static const Volume cube = Volume::fromData({16, 16, 16}, VoxelType::UInt8, std::vector<uint8_t>(16 * 16 * 16, 255));
-    return cube;
-}
-TransferFunction brightCubeTf() { return TransferFunction({{0.0f, glm::vec3(0.9f), 0.3f}, {1.0f, glm::vec3(0.9f), 0.3f}}); }
+// The bright cube (test::brightCube: albedo 0.9, world bounds [-0.5, 0.5]^3), lit straight from
+// above: most of the light it sends out has scattered more than once.
 const std::vector<Light> kLights{DirectionalLight{.direction = {0.0f, -1.0f, 0.0f}, .intensity = 10.0f}};
 
 enum class Blocker { None, Whole, LeftHalf };
@@ -57,14 +53,14 @@ VolumeRenderOptions pathTraced() {
 // The cube with a thin opaque slab above it: none, over all of it, or over its x < 0 half.
 std::unique_ptr<HybridCompositor> scene(Blocker blocker, const VolumeRenderOptions& options,
                                         const std::vector<Light>& lights = kLights,
-                                        const TransferFunction& tf = brightCubeTf()) {
+                                        const TransferFunction& tf = test::brightCubeTransferFunction()) {
     auto s = std::make_unique<HybridCompositor>(HybridOptions{.meshShadowsInVolumes = true});
     s->setLights(lights);
     if (blocker == Blocker::Whole)
         s->addMesh(makeSlab({3.0f, 0.05f, 3.0f}), glm::translate(glm::mat4(1.0f), {0.0f, 0.8f, 0.0f}));
     if (blocker == Blocker::LeftHalf)
         s->addMesh(makeSlab({1.5f, 0.05f, 3.0f}), glm::translate(glm::mat4(1.0f), {-0.75f, 0.8f, 0.0f}));
-    s->addVolume(brightCube(), glm::mat4(1.0f), options).setTransferFunction(tf);
+    s->addVolume(test::brightCube(), glm::mat4(1.0f), options).setTransferFunction(tf);
     return s;
 }
 
@@ -135,7 +131,8 @@ TEST_CASE("a mesh that shadows all of a volume leaves the cache and the path tra
     gl.requireNoErrors();
 }
 
-TEST_CASE("under a mesh's half shadow the cache agrees with the path tracer", "[gl][hybrid][shadows][scattering-cache]") {
+TEST_CASE("under a mesh's half shadow the cache agrees with the path tracer",
+          "[gl][hybrid][shadows][scattering-cache]") {
     test::GlTestScope gl;
     const Image cache = refinedCache(Blocker::LeftHalf);
     auto traced = scene(Blocker::LeftHalf, pathTraced());
@@ -175,7 +172,7 @@ TEST_CASE("in a hybrid scene the cache is kept for camera moves and restarted wh
     for (int i = 0; i < 5; ++i) s->render(frontCamera(), target);
     VolumeScatteringRenderer& volume = s->volume(0);
     REQUIRE(volume.cachedPhotons() == budget);
-    const int traced = volume.stats().runs("scattering-cache");
+    const auto traced = volume.stats().runs("scattering-cache");
 
     Camera moved = frontCamera();
     moved.setYaw(25.0f);
@@ -204,10 +201,12 @@ TEST_CASE("a mesh that shadows all of a volume leaves the paper model's eye pass
         o.eyePassStrength = 4.0f;
         return o;
     };
-    const double open = added(render(*scene(Blocker::None, paper(true)), 1), render(*scene(Blocker::None, paper(false)), 1));
+    const double open =
+        added(render(*scene(Blocker::None, paper(true)), 1), render(*scene(Blocker::None, paper(false)), 1));
     INFO("unshadowed, the eye pass adds " << open);
     REQUIRE(open > 1.0);
-    const double shadowed = added(render(*scene(Blocker::Whole, paper(true)), 1), render(*scene(Blocker::Whole, paper(false)), 1));
+    const double shadowed =
+        added(render(*scene(Blocker::Whole, paper(true)), 1), render(*scene(Blocker::Whole, paper(false)), 1));
     INFO("shadowed, it adds " << shadowed);
     CHECK(std::abs(shadowed) < 1e-3 * open);
     gl.requireNoErrors();

@@ -95,12 +95,6 @@ struct Scene {
 };
 
 
-// A bright uniform cube, one cell per voxel at 16 cells.
-const Volume& brightCube() {
-    static const Volume cube = Volume::fromData({16, 16, 16}, VoxelType::UInt8, std::vector<uint8_t>(16 * 16 * 16, 255));
-    return cube;
-}
-TransferFunction brightCubeTf() { return TransferFunction({{0.0f, glm::vec3(0.9f), 0.3f}, {1.0f, glm::vec3(0.9f), 0.3f}}); }
 
 
 }  // namespace
@@ -148,8 +142,8 @@ TEST_CASE("the cache's measured second angular band makes g 0.5 as accurate as g
     // g = 0.5 also the radiance's shape. Taken as an HG lobe from the first moment alone, its
     // multiple-scattering part was 4 % dark at g = 0.5 (0.959 of the truth's, 1.017 at g = 0).
     test::GlTestScope gl;
-    const Volume& cube = brightCube();
-    const TransferFunction tf = brightCubeTf();
+    const Volume& cube = test::brightCube();
+    const TransferFunction tf = test::brightCubeTransferFunction();
     const Camera camera = orbitCamera(cube.worldBounds(), 30.0f, 20.0f);
     double multiplePart[2] = {0.0, 0.0};
     for (int i = 0; i < 2; ++i) {
@@ -251,12 +245,13 @@ TEST_CASE("the cache's first frames read coarser levels and keep their brightnes
     // by noise, had made the lobes near deltas (first frame too dark), and the finest level's
     // noise was most of the error.
     test::GlTestScope gl;
-    const Camera camera = orbitCamera(brightCube().worldBounds(), 30.0f, 20.0f);
+    const Camera camera = orbitCamera(test::brightCube().worldBounds(), 30.0f, 20.0f);
     const VolumePathTracerResult truth =
-        cpuPathTraced(brightCube(), brightCubeTf(), camera, VolumeScatteringMode::MultipleScattering, 2048);
+        cpuPathTraced(test::brightCube(), test::brightCubeTransferFunction(), camera,
+                      VolumeScatteringMode::MultipleScattering, 2048);
     VolumeRenderOptions o = cached(1 << 20, 16);
     o.cachePhotonsPerFrame = 1 << 14;
-    Scene scene(o, brightCube(), brightCubeTf());
+    Scene scene(o, test::brightCube(), test::brightCubeTransferFunction());
     const Image first = scene.frame(camera);
     const double error = computeErrorMetrics(first, truth.image).relRmse;
     const double ratio = meanRatio(first, truth.image);

@@ -38,6 +38,17 @@ inline TransferFunction highAlbedoBlobsTransferFunction(glm::vec3 albedo = {0.95
     return TransferFunction({{0.0f, albedo, 0.0f}, {0.2f, albedo, 0.0f}, {0.5f, albedo, 0.25f}, {1.0f, albedo, 0.6f}});
 }
 
+/// A bright uniform cube, 16^3 voxels of opacity 0.3 (world bounds [-0.5, 0.5]^3): one cell per
+/// voxel for a 16-cell multiple-scattering cache. Its transfer function: brightCubeTransferFunction.
+inline const Volume& brightCube() {
+    static const Volume cube =
+        Volume::fromData({16, 16, 16}, VoxelType::UInt8, std::vector<std::uint8_t>(16 * 16 * 16, 255));
+    return cube;
+}
+inline TransferFunction brightCubeTransferFunction() {
+    return TransferFunction({{0.0f, glm::vec3(0.9f), 0.3f}, {1.0f, glm::vec3(0.9f), 0.3f}});
+}
+
 /// Sum of `test`'s rgb over the sum of `reference`'s.
 inline double meanRatio(const Image& test, const Image& reference) {
     double a = 0.0, b = 0.0;
