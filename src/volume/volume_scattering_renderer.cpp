@@ -359,14 +359,19 @@ struct VolumeScatteringRenderer::Impl {
     void updateLightVolumes() {
         // The physical model reads the intensity alone (grey extinction), and so do the meshes it
         // shadows in a hybrid scene: the sweep leaves the chromaticity out.
-        const detail::LightVolumeSettings asked{.resolutionScale = options.lightVolumeScale,
-                                                .anisotropy = options.anisotropy,
-                                                .chromaticity = options.model != VolumeModel::Physical,
-                                                .maxSlicesPerDispatch = options.lightSweepSlices,
-                                                .reconstruction = options.reconstruction,
-                                                .propagation = options.lightPropagation};
-        const LightVolumeInputs inputs{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
-                                       lights, model, asked, lightClip() ? clip : VolumeClip{}};
+        const LightVolumeInputs inputs{volumeGeneration,
+                                       transferFunction.revision(),
+                                       options.transferFunctionEntries,
+                                       lights,
+                                       model,
+                                       {.resolutionScale = options.lightVolumeScale,
+                                        .anisotropy = options.anisotropy,
+                                        .chromaticity = options.model != VolumeModel::Physical,
+                                        .maxSlicesPerDispatch = options.lightSweepSlices,
+                                        .reconstruction = options.reconstruction,
+                                        .propagation = options.lightPropagation},
+                                       lightClip() ? clip : VolumeClip{}};
+        const detail::LightVolumeSettings& asked = inputs.settings;
         const bool changed = lightVolumeInputs != inputs;
         // View-independent: camera moves cost nothing.
         if (!changed && preview != Preview::Shown) return;
