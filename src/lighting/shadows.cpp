@@ -26,8 +26,7 @@ std::uint64_t SurfaceShadows::revision() const {
 namespace {
 
 bool meshShadowsEnabled(const SurfaceShadows* shadows, std::size_t lightCount) {
-    const MeshShadowMaps* meshes = shadows ? shadows->meshes : nullptr;
-    return meshes && meshes->depth && meshes->worldToClip.size() >= lightCount;
+    return castsMeshShadows(shadows ? shadows->meshes : nullptr, lightCount);
 }
 
 bool shadowsWith(const VolumeShadows& v, std::size_t lightCount) {

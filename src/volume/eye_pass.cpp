@@ -10,20 +10,15 @@ namespace sss::detail {
 void EyePass::run(const EyePassInputs& in) {
     const glm::ivec3 dims = in.lightVolumes.front().size();
     const bool meshShadows = castsMeshShadows(in.meshShadows, in.lights.size());
-    if (!m_litColourProgram || m_litColourLights != in.lights.size() ||
-        m_litColourReconstruction != in.settings.reconstruction || m_litColourMeshShadows != meshShadows) {
-        m_litColourProgram =
-            gl::Program::link({{GL_COMPUTE_SHADER, "volume/lit_colour.comp"}},
-                              {{"LIGHT_COUNT", std::to_string(in.lights.size())},
-                               {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(in.settings.reconstruction)},
-                               {"MESH_SHADOWS", meshShadows ? "1" : "0"}});
-        m_litColourReconstruction = in.settings.reconstruction;
-        m_litColourLights = in.lights.size();
-        m_litColourMeshShadows = meshShadows;
-    }
+    const LitColourVariant variant{in.lights.size(), in.settings.reconstruction, meshShadows};
+    const auto defines = [&]() -> ShaderDefines {
+        return {{"LIGHT_COUNT", std::to_string(in.lights.size())},
+                {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(in.settings.reconstruction)},
+                {"MESH_SHADOWS", meshShadows ? "1" : "0"}};
+    };
+    const gl::Program& p = gl::linkedOnce(m_litColourPrograms, variant, "volume/lit_colour.comp", defines);
     if (!m_litColour || m_litColour.size() != dims)
         m_litColour = gl::Texture::create3D(GL_RGBA16F, dims, "eye pass: scattered light");
-    const gl::Program& p = *m_litColourProgram;
     p.set("volumeTexture", 0);
     p.set("transferFunction", 1);
     p.set("transferFunctionEntries", static_cast<float>(in.transferFunction.size().x));

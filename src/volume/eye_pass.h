@@ -13,7 +13,9 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <map>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 namespace sss::detail {
@@ -41,10 +43,9 @@ public:
     void release();
 
 private:
-    std::optional<gl::Program> m_litColourProgram;
-    std::size_t m_litColourLights = 0;  // LIGHT_COUNT m_litColourProgram was built for
-    VolumeReconstruction m_litColourReconstruction = VolumeReconstruction::Trilinear;  // and its field
-    bool m_litColourMeshShadows = false;                                                // and MESH_SHADOWS
+    /// lit_colour.comp by LIGHT_COUNT, the field's reconstruction and MESH_SHADOWS.
+    using LitColourVariant = std::tuple<std::size_t, VolumeReconstruction, bool>;
+    std::map<LitColourVariant, gl::Program> m_litColourPrograms;
     std::optional<LightVolumePass> m_sweep;
     gl::Texture m_litColour, m_eyeVolume;
 };

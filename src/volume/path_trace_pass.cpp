@@ -105,7 +105,6 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     const glm::mat4 worldToModel = glm::inverse(in.model);
     const bool meshShadows = castsMeshShadows(in.meshShadows, in.lights.size());
     const gl::Program& p = traceProgram(meshShadows);
-    m_trace = &p;
     if (meshShadows) setMeshVisibilityUniforms(p, *in.meshShadows, in.lights);
     p.set("inverseViewProjection", glm::inverse(viewProjection));
     p.set("worldToModel", worldToModel);
@@ -170,7 +169,7 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     collectStatus();
     const std::uint32_t zero[2] = {0, 0};
     m_status.upload(0, sizeof(zero), zero);
-    dispatchBands(glm::ivec2(size), bandRows);
+    dispatchBands(p, glm::ivec2(size), bandRows);
     if (!m_resumable && !m_statusFence) {
         glCopyNamedBufferSubData(m_status.id(), m_statusCopy.id(), 0, 0, sizeof(zero));
         glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
@@ -183,7 +182,7 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
 }
 
-void PathTracePass::dispatchBands(glm::ivec2 size, int bandRows) {
+void PathTracePass::dispatchBands(const gl::Program& p, glm::ivec2 size, int bandRows) {
     // llvmpipe gives each invocation 65535 loop iterations in all, over all its loops (measured:
     // two loops of 40000 ran 40000 and 25534), then leaves every loop early; many paths in one
     // invocation were cut short that way (512 paths lost 28 % of the light). So there no
@@ -191,7 +190,6 @@ void PathTracePass::dispatchBands(glm::ivec2 size, int bandRows) {
     // stepsPerDispatch steps per pixel, and the paths' state carries over to the next dispatch
     // until every pixel has finished its paths. The shader counts the invocations with work
     // left, read back after each dispatch.
-    const gl::Program& p = *m_trace;
     const std::uint32_t zero = 0;
     std::uint32_t status[2] = {0, 0};
     m_lastDispatches = 0;

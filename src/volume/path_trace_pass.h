@@ -98,7 +98,7 @@ public:
     bool resumable() const { return m_resumable; }
 
 private:
-    void dispatchBands(glm::ivec2 size, int bandRows);
+    void dispatchBands(const gl::Program& p, glm::ivec2 size, int bandRows);
     /// Without resuming: records the status of a finished earlier frame, never waiting.
     void collectStatus();
     void reportAbandoned(std::uint32_t abandoned);
@@ -107,7 +107,6 @@ private:
     const gl::Program& traceProgram(bool meshShadows);
 
     std::map<bool, gl::Program> m_tracePrograms;
-    const gl::Program* m_trace = nullptr;  // accumulate()'s, for dispatchBands()
     gl::Program m_resolve;
     gl::VertexArray m_emptyVertexArray;  // core profile needs a VAO even without attributes
     PathTraceBounds m_bounds;
