@@ -5,6 +5,8 @@
 // have arrived has about as many per cell as the finest level once refined, so its slope is no
 // noisier (docs/multiple-scattering.md, "While it refines"). Levels are solved in order, finest
 // first: a coarse cell's largest direct light is the largest of its children's.
+#include "volume/direct_slope.glsl"
+
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 uniform sampler3D cacheFluence;     // alpha: the cell's mean weight w
@@ -12,12 +14,8 @@ uniform sampler3D onceMoments;      // w phi1 (rgb), w E
 uniform sampler3D onceTimesDirect;  // w phi1 E (rgb), w E^2
 uniform sampler3D cacheFluxLengths;  // alpha: w times the largest E of the cell's voxel centres
 uniform int level;
-layout(rgba32f, binding = 0) uniform writeonly image3D directSlope;  // w B (rgb), w E; at `level`
+layout(rgba32f, binding = 0) uniform writeonly image3D directSlopeAtLevel;  // w B (rgb), w E; at `level`
 layout(rgba32f, binding = 1) uniform image3D fluxLengthsAtLevel;    // at `level` (above 0)
-
-// Measured on the bench's bonsai and engine (docs/multiple-scattering.md): 0.03 let noise in
-// (engine 25 %), 0.3 took a little of the bonsai's gain (11.4 against 10.8 %).
-const float kSlopeDamping = 0.1;
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
@@ -25,15 +23,7 @@ void main() {
     float w = texelFetch(cacheFluence, c, level).a;
     vec4 once = texelFetch(onceMoments, c, level);
     vec4 onceTimesE = texelFetch(onceTimesDirect, c, level);
-    // B = cov(phi1, E) / var(E), the variance raised by kSlopeDamping times the mean of E^2 so
-    // that cells whose E barely varies (all lit or all in shadow) keep a small slope.
-    vec3 slope = vec3(0.0);
-    if (w > 0.0) {
-        float meanE = once.a / w;
-        float variance = max(onceTimesE.a / w - meanE * meanE, 0.0);
-        slope = (onceTimesE.rgb / w - (once.rgb / w) * meanE) / (variance + kSlopeDamping * onceTimesE.a / w + 1e-30);
-    }
-    imageStore(directSlope, c, vec4(w * slope, once.a));
+    imageStore(directSlopeAtLevel, c, vec4(w * directSlope(w, once, onceTimesE), once.a));
     if (level > 0) {
         // The mipmap averaged the children's largest E; the cap (ray_cast.glsl) needs the largest.
         float largest = 0.0;

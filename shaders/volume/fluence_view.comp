@@ -1,5 +1,5 @@
-// The multiple-scattering cache's light towards one viewer (FluenceCache::evaluateView): per cell
-// of the level the ray caster reads, what the cell scatters towards the eye, as a line in the
+// The multiple-scattering cache's light towards one viewer (FluenceCache::evaluateView): per cell,
+// what the cell scatters towards the eye, as a line in the
 // direct light E that the eye knows at each sample. The ray caster then reads three textures per
 // sample instead of the cache's five, and none of the lobe's arithmetic: it is done here once per
 // cell and camera move, not once per sample and frame. (Where the cells outnumber the pixels on a
@@ -15,7 +15,6 @@ uniform sampler3D cacheFlux;          // w F of the mean channel (xyz), w M_yz
 uniform sampler3D cacheFluxLengths;   // w |F| per channel (rgb), w times the largest E
 uniform sampler3D cacheSecondMoment;  // w M_xx, w M_yy, w M_xy, w M_xz (traceless)
 uniform sampler3D cacheDirectSlope;   // w B (rgb), w mean E
-uniform float cacheLevel;             // FluenceCache::readLevel
 uniform vec4 viewer;                  // model space: the eye (w 1) or the direction towards it (w 0)
 uniform vec3 boxMin;
 uniform vec3 boxMax;
@@ -27,21 +26,17 @@ layout(rgba32f, binding = 0) uniform writeonly image3D towardsViewer;
 layout(rgba32f, binding = 1) uniform writeonly image3D towardsViewerSlope;
 layout(r32f, binding = 2) uniform writeonly image3D towardsViewerCap;
 
-// A cache texture at cell c of the read level. At a whole level (WHOLE_LEVEL, FluenceCache's
-// program variant) the cells are the level's texels: the texel itself, unfiltered, which took
-// llvmpipe's pass over 128^3 cells from 200 to 135 ms; between two levels, filtered.
-#if WHOLE_LEVEL
-vec4 cacheAt(sampler3D t, ivec3 c, vec3 tc) { return texelFetch(t, c, int(cacheLevel)); }
-#else
-vec4 cacheAt(sampler3D t, ivec3 c, vec3 tc) { return textureLod(t, tc, cacheLevel); }
-#endif
+// A cache texture at cell c: the texel itself, unfiltered (filtered, llvmpipe's pass over 128^3
+// cells took 200 ms instead of 135). While the cache refines its finest cells hold what the
+// readers need (fluence_finest.comp).
+vec4 cacheAt(sampler3D t, ivec3 c) { return texelFetch(t, c, 0); }
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
     ivec3 size = imageSize(towardsViewer);
     if (any(greaterThanEqual(c, size))) return;
     vec3 tc = (vec3(c) + 0.5) / vec3(size);
-    vec4 weighted = cacheAt(cacheFluence, c, tc);
+    vec4 weighted = cacheAt(cacheFluence, c);
     if (!(weighted.a > 0.0)) {
         imageStore(towardsViewer, c, vec4(0.0));
         imageStore(towardsViewerSlope, c, vec4(0.0));
@@ -51,8 +46,8 @@ void main() {
     vec3 towards = viewer.w != 0.0 ? viewer.xyz - mix(boxMin, boxMax, tc) : viewer.xyz;
     vec3 v = length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0);
     CacheTowardsViewer light =
-        cacheTowards(v, phaseG, weighted, cacheAt(cacheFlux, c, tc), cacheAt(cacheFluxLengths, c, tc),
-                     cacheAt(cacheSecondMoment, c, tc), cacheAt(cacheDirectSlope, c, tc));
+        cacheTowards(v, phaseG, weighted, cacheAt(cacheFlux, c), cacheAt(cacheFluxLengths, c),
+                     cacheAt(cacheSecondMoment, c), cacheAt(cacheDirectSlope, c));
     imageStore(towardsViewer, c, light.atMean);
     imageStore(towardsViewerSlope, c, light.slope);
     imageStore(towardsViewerCap, c, vec4(light.cap));

@@ -239,7 +239,7 @@ LightReach rayLightReaches[MAX_LIGHTS];
 #include "volume/fluence_lobe.glsl"
 uniform float cacheDirectWeight[MAX_LIGHTS];  // volume/direct_light.glsl's weights
 #if CACHE_PER_SAMPLE
-// The cache's five textures (FluenceCache::bindSources), read at cacheLevel, and the lobe towards
+// The cache's five textures (FluenceCache::bindSources) at their finest cells, and the lobe towards
 // the viewer evaluated at every shaded sample: cheaper than the view pass over every cell where
 // the cells outnumber the pixels (VolumeRenderOptions::cacheViewEvaluation).
 uniform sampler3D cacheFluence;
@@ -247,17 +247,16 @@ uniform sampler3D cacheFlux;
 uniform sampler3D cacheFluxLengths;
 uniform sampler3D cacheSecondMoment;
 uniform sampler3D cacheDirectSlope;
-uniform float cacheLevel;  // FluenceCache::readLevel
 uniform vec4 cacheViewer;  // model space: the eye (w 1) or the direction towards it (w 0)
 
 CacheTowardsViewer cacheTowardsViewerAt(vec3 p, vec3 tc) {
-    vec4 weighted = textureLod(cacheFluence, tc, cacheLevel);
+    vec4 weighted = textureLod(cacheFluence, tc, 0.0);
     if (!(weighted.a > 0.0)) return CacheTowardsViewer(vec4(0.0), vec4(0.0), 0.0);
     vec3 towards = cacheViewer.w != 0.0 ? cacheViewer.xyz - p : cacheViewer.xyz;
     vec3 v = length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0);
-    return cacheTowards(v, phaseG, weighted, textureLod(cacheFlux, tc, cacheLevel),
-                        textureLod(cacheFluxLengths, tc, cacheLevel), textureLod(cacheSecondMoment, tc, cacheLevel),
-                        textureLod(cacheDirectSlope, tc, cacheLevel));
+    return cacheTowards(v, phaseG, weighted, textureLod(cacheFlux, tc, 0.0),
+                        textureLod(cacheFluxLengths, tc, 0.0), textureLod(cacheSecondMoment, tc, 0.0),
+                        textureLod(cacheDirectSlope, tc, 0.0));
 }
 #else
 // The cache's light towards this viewer (FluenceCache::evaluateView, volume/fluence_view.comp),

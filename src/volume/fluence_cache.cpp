@@ -99,7 +99,10 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution)
 FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     : m_reconstruction(reconstruction),
       m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})),
-      m_slopeProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_slope.comp"}})) {
+      m_slopeProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_slope.comp"}})),
+      m_denoiseProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_denoise.comp"}})),
+      m_finestProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_finest.comp"}})),
+      m_viewProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_view.comp"}})) {
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");
     m_resumable = gl::currentDeviceIsSoftware();
@@ -142,6 +145,8 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_onceMoments = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered moments", m_levels);
         m_onceTimesDirect =
             gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered direct-light moments", m_levels);
+        m_denoised = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered fluence");
+        m_denoisedSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered direct-light slope");
         for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
             t->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
         m_cells = cells;
@@ -251,7 +256,7 @@ void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
     p.set("lightCount", static_cast<int>(emitters.size()));
 }
 
-void FluenceCache::add(const FluenceCacheInputs& in, int photons) {
+void FluenceCache::add(const FluenceCacheInputs& in, int photons, std::uint64_t budget) {
     if (photons <= 0 || m_cells.x == 0) return;
     m_variant = variantFor(in);
     setUniforms(in);
@@ -276,6 +281,10 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons) {
     if (m_powerUnit > 0.0f) dispatchPhotons(slots);
     m_photons += static_cast<std::uint64_t>(slots) * perSlot;
     resolve();
+    if (const float level = readLevel(budget); level > 0.0f) {
+        denoise(level);
+        settle(level);
+    }
     glUseProgram(0);
     for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
@@ -355,6 +364,42 @@ void FluenceCache::resolveSlopes() {
     for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
+void FluenceCache::denoise(float level) {
+    const gl::Program& p = m_denoiseProgram;
+    p.set("cacheFluence", 0);
+    p.set("onceMoments", 1);
+    p.set("onceTimesDirect", 2);
+    // A level up has cells 2^level finest cells wide: the filter reaches about as far.
+    p.set("spatialSigma", std::exp2(level) - 1.0f);
+    m_fluence.bind(0);
+    m_onceMoments.bind(1);
+    m_onceTimesDirect.bind(2);
+    m_denoised.bindImage(0, GL_WRITE_ONLY);
+    m_denoisedSlope.bindImage(1, GL_WRITE_ONLY);
+    p.use();
+    dispatchOverCells(m_cells);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+}
+
+void FluenceCache::settle(float level) {
+    const gl::Program& p = m_finestProgram;
+    const char* names[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "denoised",
+                           "denoisedSlope"};
+    const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_denoised, &m_denoisedSlope};
+    for (int i = 0; i < 6; ++i) {
+        p.set(names[i], i);
+        textures[i]->bind(static_cast<GLuint>(i));
+    }
+    p.set("readLevel", level);
+    for (int i = 0; i < 4; ++i) textures[i]->bindImage(static_cast<GLuint>(i), GL_READ_WRITE, 0);
+    m_directSlope.bindImage(4, GL_WRITE_ONLY, 0);
+    p.use();
+    dispatchOverCells(m_cells);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    for (GLuint unit = 0; unit < 5; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+}
+
 glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model) {
     const glm::mat4 worldToModel = glm::inverse(model);
     if (camera.projectionType() == Projection::Orthographic)
@@ -362,14 +407,13 @@ glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model) {
     return glm::vec4(glm::vec3(worldToModel * glm::vec4(camera.position(), 1.0f)), 1.0f);
 }
 
-void FluenceCache::bindSources(const gl::Program& p, int firstUnit, float level) const {
+void FluenceCache::bindSources(const gl::Program& p, int firstUnit) const {
     const char* names[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "cacheDirectSlope"};
     const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope};
     for (int i = 0; i < 5; ++i) {
         p.set(names[i], firstUnit + i);
         textures[i]->bind(static_cast<GLuint>(firstUnit + i));
     }
-    p.set("cacheLevel", level);
 }
 
 bool FluenceCache::viewOutdated(const FluenceViewInputs& in) const {
@@ -378,18 +422,14 @@ bool FluenceCache::viewOutdated(const FluenceViewInputs& in) const {
 
 void FluenceCache::evaluateView(const FluenceViewInputs& in) {
     if (m_cells.x == 0) return;
-    const int level = std::clamp(static_cast<int>(in.level), 0, m_levels - 1);
-    const glm::ivec3 cells = glm::max(m_cells >> level, glm::ivec3(1));
+    const glm::ivec3 cells = m_cells;
     if (m_towardsViewer.size() != cells) {
         m_towardsViewer = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache towards the viewer");
         m_towardsViewerSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache towards the viewer: slope");
         m_towardsViewerCap = gl::Texture::create3D(GL_R32F, cells, "fluence cache towards the viewer: cap");
     }
-    const bool wholeLevel = in.level == static_cast<float>(level);
-    const gl::Program& p = gl::linkedOnce(m_viewPrograms, wholeLevel, "volume/fluence_view.comp", [&] {
-        return ShaderDefines{{"WHOLE_LEVEL", wholeLevel ? "1" : "0"}};
-    });
-    bindSources(p, 0, in.level);
+    const gl::Program& p = m_viewProgram;
+    bindSources(p, 0);
     p.set("viewer", in.viewer);
     p.set("boxMin", m_box.min);
     p.set("boxMax", m_box.max);

@@ -53,7 +53,6 @@ struct FluenceCacheInputs {
 /// What the cache's light towards the eye depends on besides the cache (FluenceCache::evaluateView).
 struct FluenceViewInputs {
     glm::vec4 viewer{0.0f};  ///< model space: the eye (w 1, perspective) or the unit direction towards it (w 0)
-    float level = 0.0f;      ///< the mip level read (readLevel)
     float anisotropy = 0.5f; ///< Henyey-Greenstein g
     bool operator==(const FluenceViewInputs&) const = default;
 };
@@ -78,12 +77,15 @@ public:
     /// medium, the lights and the light volumes are those of the last restart: only the
     /// scattering changed), it takes each cell's weight and direct-light moments anew.
     void restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameDensityInputs);
-    /// Traces `photons` more photons into the sums and updates the textures to their mean.
-    void add(const FluenceCacheInputs& in, int photons);
+    /// Traces `photons` more photons into the sums and updates the textures to their mean. Until
+    /// the cache holds `budget` photons, its finest cells then hold a filtered fluence and the
+    /// angular shape and direct-light slope of a coarser level (denoise, settle): readers always
+    /// read the finest cells.
+    void add(const FluenceCacheInputs& in, int photons, std::uint64_t budget);
 
     /// Whether evaluateView(in) would change the textures it fills: the cache or `in` changed.
     bool viewOutdated(const FluenceViewInputs& in) const;
-    /// Per cell of level floor(in.level), what the cache scatters towards the viewer
+    /// Per cell, what the cache scatters towards the viewer
     /// (shaders/volume/fluence_view.comp): the ray caster reads three textures per sample instead
     /// of five, and none of the lobe's arithmetic. View-dependent: run once per camera move.
     void evaluateView(const FluenceViewInputs& in);
@@ -95,12 +97,12 @@ public:
     /// w times the largest direct light the slope applies to (R32F).
     const gl::Texture& towardsViewerCap() const { return m_towardsViewerCap; }
     /// Binds the cache's five textures to units firstUnit..firstUnit + 4 as p's samplers
-    /// cacheFluence, cacheFlux, cacheFluxLengths, cacheSecondMoment and cacheDirectSlope, and sets
-    /// its cacheLevel to `level` (shaders/volume/fluence_lobe.glsl evaluates them towards a viewer).
-    void bindSources(const gl::Program& p, int firstUnit, float level) const;
-    /// The mip level to read while the cache refines towards `budget` photons: each level up has
-    /// 8 times the photons per cell, so log8(budget / photons) reads about the noise the finest
-    /// level will have once refined (0 once it is; at most the coarsest level).
+    /// cacheFluence, cacheFlux, cacheFluxLengths, cacheSecondMoment and cacheDirectSlope
+    /// (shaders/volume/fluence_lobe.glsl evaluates them towards a viewer).
+    void bindSources(const gl::Program& p, int firstUnit) const;
+    /// The mip level whose cells hold about as many photons as the finest will once the cache
+    /// holds `budget`: each level up has 8 times the photons per cell, so log8(budget / photons)
+    /// (0 once refined; at most the coarsest level).
     float readLevel(std::uint64_t budget) const;
     /// Photons traced since the last restart (those that missed the box included).
     std::uint64_t photons() const { return m_photons; }
@@ -130,6 +132,10 @@ private:
     void resolve();
     /// Each level's slope of the once-scattered fluence against the direct light.
     void resolveSlopes();
+    /// The finest cells' fluence, filtered over about the read level's cells (fluence_denoise.comp).
+    void denoise(float level);
+    /// The finest cells' textures for the readers while the cache refines (fluence_finest.comp).
+    void settle(float level);
 
     VolumeReconstruction m_reconstruction;
     std::map<ProgramVariant, gl::Program> m_photonPrograms;
@@ -137,7 +143,9 @@ private:
     ProgramVariant m_variant;     // of the current inputs
     gl::Program m_resolveProgram;
     gl::Program m_slopeProgram;
-    std::map<bool, gl::Program> m_viewPrograms;  // by whether the level read is a whole one
+    gl::Program m_denoiseProgram;
+    gl::Program m_finestProgram;
+    gl::Program m_viewProgram;
     glm::ivec3 m_cells{0};
     gl::Buffer m_sums;            // 23 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
@@ -153,6 +161,7 @@ private:
     gl::Texture m_secondMoment;  // the mean channel's traceless xx - 1/3, yy - 1/3, xy, xz
     gl::Texture m_directSlope;   // rgb slope against the direct light, and its mean (each level its own)
     gl::Texture m_onceMoments, m_onceTimesDirect;  // the slope's moments (fluence_resolve.comp)
+    gl::Texture m_denoised, m_denoisedSlope;  // the finest cells' fluence and slope, filtered (fluence_denoise.comp)
     std::uint64_t m_photons = 0;
     float m_cellVolume = 1.0f;    // model units^3
     Bounds m_box;                 // the volume's, model space

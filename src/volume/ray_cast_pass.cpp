@@ -247,7 +247,7 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         p.set("worldToModelDirection", glm::inverse(glm::mat3(model)));
         if (m_variant.scatteringCache && in.cache) {
             if (m_variant.cachePerSample) {
-                in.cache->bindSources(p, units::kCacheSources, in.cacheLevel);
+                in.cache->bindSources(p, units::kCacheSources);
                 p.set("cacheViewer", modelSpaceViewer(in.camera, model));
             } else {
                 p.set("cacheTowardsViewer", units::kCacheTowardsViewer);

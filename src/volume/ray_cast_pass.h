@@ -67,7 +67,6 @@ struct RayCastInputs {
     /// The multiple-scattering cache, if it is on, its light towards this camera evaluated
     /// (FluenceCache::evaluateView) unless the variant evaluates it per sample.
     const FluenceCache* cache = nullptr;
-    float cacheLevel = 0.0f;  ///< per sample: the cache's mip level to read (FluenceCache::readLevel)
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)

@@ -280,7 +280,7 @@ struct VolumeScatteringRenderer::Impl {
             fluenceKey = std::move(key);
         }
         const std::uint64_t left = photons - std::min(photons, fluenceCache->photons());
-        fluenceCache->add(inputs, static_cast<int>(std::min<std::uint64_t>(left, options.cachePhotonsPerFrame)));
+        fluenceCache->add(inputs, static_cast<int>(std::min<std::uint64_t>(left, options.cachePhotonsPerFrame)), photons);
         passTimer.end("scattering-cache", mark, passTiming());
     }
 
@@ -294,13 +294,10 @@ struct VolumeScatteringRenderer::Impl {
                                                static_cast<double>(target.width()) * target.height());
     }
 
-    float cacheReadLevel() const { return fluenceCache->readLevel(static_cast<std::uint64_t>(options.cachePhotons)); }
-
     // The cache's light towards the camera: evaluated again when the camera or the cache changed.
     void updateFluenceView(const Camera& camera) {
         const detail::FluenceViewInputs in{
             .viewer = detail::modelSpaceViewer(camera, model),
-            .level = cacheReadLevel(),
             .anisotropy = options.anisotropy};
         if (fluenceCache->viewOutdated(in))
             passTimer.time("scattering-cache-view", passTiming(), [&] { fluenceCache->evaluateView(in); });
@@ -591,7 +588,6 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .meshShadows = r.meshShadows,
                     .eyeVolume = eyePass ? &r.eyePass->eyeVolume() : nullptr,
                     .cache = scatteringCache ? &*r.fluenceCache : nullptr,
-                    .cacheLevel = scatteringCache ? r.cacheReadLevel() : 0.0f,
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,
