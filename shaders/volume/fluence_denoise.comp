@@ -20,6 +20,7 @@ uniform sampler3D cacheFluence;     // level 0: w phi (rgb), w
 uniform sampler3D onceMoments;      // level 0: w phi1 (rgb), w E
 uniform sampler3D onceTimesDirect;  // level 0: w phi1 E (rgb), w E^2
 uniform float spatialSigma;         // in cells, > 0
+uniform int radius;                 // cells, at most kRadius: where the spatial weight is still above 2 %
 layout(rgba32f, binding = 0) uniform writeonly image3D denoised;       // w phi (rgb), w
 layout(rgba32f, binding = 1) uniform writeonly image3D denoisedSlope;  // w B (rgb), w E
 
@@ -78,9 +79,9 @@ void main() {
     float spatialScale = -kLog2e / (2.0 * spatialSigma * spatialSigma);
     vec2 ownGuide = tileGuide[own];
     vec4 fluence = vec4(0.0), once = vec4(0.0), onceTimesE = vec4(0.0);
-    for (int z = -kRadius; z <= kRadius; ++z)
-        for (int y = -kRadius; y <= kRadius; ++y)
-            for (int x = -kRadius; x <= kRadius; ++x) {
+    for (int z = -radius; z <= radius; ++z)
+        for (int y = -radius; y <= radius; ++y)
+            for (int x = -radius; x <= radius; ++x) {
                 int n = own + (z * kTile + y) * kTile + x;
                 vec2 d = tileGuide[n] - ownGuide;
                 float k = exp2(dot(guideScale, d * d) + spatialScale * float(x * x + y * y + z * z));

@@ -15,7 +15,7 @@ uniform sampler3D cacheFluence;  // w phi (rgb), w: the photons' estimate, mipma
 uniform sampler3D cacheFlux;
 uniform sampler3D cacheFluxLengths;
 uniform sampler3D cacheSecondMoment;
-uniform sampler3D denoised;       // w phi (rgb), w (fluence_denoise.comp)
+uniform sampler3D denoised;       // w phi (rgb), w (fluence_denoise.comp; the cells' own where it did not run)
 uniform sampler3D denoisedSlope;  // w B (rgb), w E
 uniform float readLevel;         // > 0
 layout(rgba32f, binding = 0) uniform writeonly image3D fluenceAtFinest;

@@ -32,9 +32,12 @@ constexpr float kQuantaPerUnit = 1048576.0f;
 // Voxels per cell side at most: the weights' pass loops over a cell's voxels in one invocation,
 // which llvmpipe stops after 65535 iterations.
 constexpr int kMaxVoxelsPerCell = 32;
-// Mip levels of the cache's textures at most (64 cells: 64, 32, 16, 8): read coarser while few
-// photons have arrived (FluenceCache::readLevel).
+// Mip levels of the cache's textures at most (64 cells: 64, 32, 16, 8): the light's angular shape
+// is read coarser while few photons have arrived (FluenceCache::readLevel).
 constexpr int kMaxLevels = 4;
+// The narrowest filter of the finest cells' fluence (fluence_denoise.comp), in cells: at 0.35 a
+// neighbour's weight is exp(-1 / (2 0.35^2)) = 1.7 %, and at twice it one two cells away.
+constexpr float kLeastSigma = 0.35f;
 
 float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
@@ -281,10 +284,7 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons, std::uint64_t 
     if (m_powerUnit > 0.0f) dispatchPhotons(slots);
     m_photons += static_cast<std::uint64_t>(slots) * perSlot;
     resolve();
-    if (const float level = readLevel(budget); level > 0.0f) {
-        denoise(level);
-        settle(level);
-    }
+    if (const float level = readLevel(budget); level > 0.0f) settle(level, denoise(level));
     glUseProgram(0);
     for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
@@ -364,13 +364,17 @@ void FluenceCache::resolveSlopes() {
     for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
-void FluenceCache::denoise(float level) {
+bool FluenceCache::denoise(float level) {
+    // A level up has cells 2^level finest cells wide: the filter reaches about as far. Below
+    // kLeastSigma a neighbour's weight is under 2 %: the filter would change nothing.
+    const float sigma = std::exp2(level) - 1.0f;
+    if (sigma < kLeastSigma) return false;
     const gl::Program& p = m_denoiseProgram;
     p.set("cacheFluence", 0);
     p.set("onceMoments", 1);
     p.set("onceTimesDirect", 2);
-    // A level up has cells 2^level finest cells wide: the filter reaches about as far.
-    p.set("spatialSigma", std::exp2(level) - 1.0f);
+    p.set("spatialSigma", sigma);
+    p.set("radius", sigma > 2.0f * kLeastSigma ? 2 : 1);
     m_fluence.bind(0);
     m_onceMoments.bind(1);
     m_onceTimesDirect.bind(2);
@@ -380,13 +384,15 @@ void FluenceCache::denoise(float level) {
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    return true;
 }
 
-void FluenceCache::settle(float level) {
+void FluenceCache::settle(float level, bool denoised) {
     const gl::Program& p = m_finestProgram;
     const char* names[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "denoised",
                            "denoisedSlope"};
-    const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_denoised, &m_denoisedSlope};
+    const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment,
+                                     denoised ? &m_denoised : &m_fluence, denoised ? &m_denoisedSlope : &m_directSlope};
     for (int i = 0; i < 6; ++i) {
         p.set(names[i], i);
         textures[i]->bind(static_cast<GLuint>(i));

@@ -132,10 +132,12 @@ private:
     void resolve();
     /// Each level's slope of the once-scattered fluence against the direct light.
     void resolveSlopes();
-    /// The finest cells' fluence, filtered over about the read level's cells (fluence_denoise.comp).
-    void denoise(float level);
-    /// The finest cells' textures for the readers while the cache refines (fluence_finest.comp).
-    void settle(float level);
+    /// The finest cells' fluence and direct-light slope, filtered over about the read level's cells
+    /// (fluence_denoise.comp); false where the filter would be too narrow to change them.
+    bool denoise(float level);
+    /// The finest cells' textures for the readers while the cache refines (fluence_finest.comp),
+    /// with the filtered fluence and slope if `denoised`, the cells' own otherwise.
+    void settle(float level, bool denoised);
 
     VolumeReconstruction m_reconstruction;
     std::map<ProgramVariant, gl::Program> m_photonPrograms;
