@@ -1,6 +1,6 @@
 // The regression of the once-scattered fluence phi1 on the direct light E within a region (a
-// cell, a level's larger cell, a filter's neighbourhood), from its weighted moments: w, w phi1
-// (rgb) and w E, w phi1 E (rgb) and w E^2. B = cov(phi1, E) / var(E), the variance raised by
+// cell, or a filter's neighbourhood), from its weighted moments: w, w phi1 (rgb) and w E,
+// w phi1 E (rgb) and w E^2. B = cov(phi1, E) / var(E), the variance raised by
 // kSlopeDamping times the mean of E^2 so that regions whose E barely varies (all lit or all in
 // shadow) keep a small slope. Measured on the bench's bonsai and engine
 // (docs/multiple-scattering.md): 0.03 let noise in (engine 25 %), 0.3 took a little of the

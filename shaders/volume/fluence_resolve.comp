@@ -7,6 +7,8 @@
 // texture's alpha holds. Readers divide the filtered values by the filtered weight: cells
 // interpolate in proportion to the medium they hold, and cells without medium, which hold no
 // estimate, do not pull their neighbours' values towards zero.
+#include "volume/direct_slope.glsl"
+
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(std430, binding = 2) readonly buffer Sums { uint sums[]; };
@@ -15,10 +17,12 @@ layout(rgba32f, binding = 0) uniform writeonly image3D fluence;
 layout(rgba32f, binding = 1) uniform writeonly image3D flux;
 layout(rgba32f, binding = 2) uniform writeonly image3D fluxLengths;
 layout(rgba32f, binding = 3) uniform writeonly image3D secondMoment;
-// The once-scattered fluence's regression on the direct light E (fluence_slope.comp solves it at
-// each level): w phi1 (rgb) and w E; w phi1 E (rgb) and w E^2.
+// The once-scattered fluence's regression on the direct light E: its moments, w phi1 (rgb) and
+// w E, w phi1 E (rgb) and w E^2 (the first frames' filter pools them, fluence_denoise.comp), and
+// the cell's own slope, w B (rgb) and w E.
 layout(rgba32f, binding = 4) uniform writeonly image3D onceMoments;
 layout(rgba32f, binding = 5) uniform writeonly image3D onceTimesDirect;
+layout(rgba32f, binding = 6) uniform writeonly image3D cellSlope;
 layout(std430, binding = 4) readonly buffer DirectMoments { vec4 cellDirect[]; };  // fluence_density.comp
 uniform ivec3 cacheCells;
 uniform float sumsToFluence;  // power per photon / (photons x quanta per unit)
@@ -48,6 +52,9 @@ void main() {
     float w = cellWeight[cellIndex] / cellVolume;
     imageStore(fluxLengths, c, vec4(length(red), length(green), length(blue), w * cellDirect[cellIndex].z));
     vec2 moments = cellDirect[cellIndex].xy / cellVolume;  // w E, w E^2 (cell means)
-    imageStore(onceMoments, c, vec4(slotVector(base + 17u) * scale, moments.x));
-    imageStore(onceTimesDirect, c, vec4(slotVector(base + 20u) * scale, moments.y));
+    vec4 once = vec4(slotVector(base + 17u) * scale, moments.x);
+    vec4 onceTimesE = vec4(slotVector(base + 20u) * scale, moments.y);
+    imageStore(onceMoments, c, once);
+    imageStore(onceTimesDirect, c, onceTimesE);
+    imageStore(cellSlope, c, vec4(w * directSlope(w, once, onceTimesE), once.a));
 }

@@ -1,9 +1,9 @@
 // The multiple-scattering cache's light towards one viewer (FluenceCache::evaluateView): per cell,
-// what the cell scatters towards the eye, as a line in the
-// direct light E that the eye knows at each sample. The ray caster then reads three textures per
-// sample instead of the cache's five, and none of the lobe's arithmetic: it is done here once per
-// cell and camera move, not once per sample and frame. (Where the cells outnumber the pixels on a
-// software rasteriser the ray caster evaluates the same lobe per sample instead: CACHE_PER_SAMPLE.)
+// what the cell scatters towards the eye, as a line in the direct light E that the eye knows at
+// each sample. The ray caster then reads three textures per sample instead of the cache's five,
+// and none of the lobe's arithmetic: it is done here once per cell and camera move, not once per
+// sample and frame. (Where the cells outnumber the pixels on a software rasteriser the ray
+// caster evaluates the same lobe per sample instead: CACHE_PER_SAMPLE.)
 //
 // The lobe: volume/fluence_lobe.glsl.
 #include "volume/fluence_lobe.glsl"

@@ -102,7 +102,6 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution)
 FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     : m_reconstruction(reconstruction),
       m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})),
-      m_slopeProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_slope.comp"}})),
       m_denoiseProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_denoise.comp"}})),
       m_finestProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_finest.comp"}})),
       m_viewProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_view.comp"}})) {
@@ -144,10 +143,9 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_flux = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux", m_levels);
         m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths", m_levels);
         m_secondMoment = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache second moment", m_levels);
-        m_directSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache direct-light slope", m_levels);
-        m_onceMoments = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered moments", m_levels);
-        m_onceTimesDirect =
-            gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered direct-light moments", m_levels);
+        m_directSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache direct-light slope");
+        m_onceMoments = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered moments");
+        m_onceTimesDirect = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered direct-light moments");
         m_denoised = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered fluence");
         m_denoisedSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered direct-light slope");
         for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
@@ -157,8 +155,9 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
     const std::uint32_t zero = 0;
     glClearNamedBufferData(m_sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
+    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
         for (int level = 0; level < m_levels; ++level) glClearTexImage(t->id(), level, GL_RGBA, GL_FLOAT, black);
+    glClearTexImage(m_directSlope.id(), 0, GL_RGBA, GL_FLOAT, black);
     m_photons = 0;
     ++m_revision;
     m_cellVolume = glm::compMul(in.volume.box.size()) / static_cast<float>(count);
@@ -330,38 +329,17 @@ void FluenceCache::resolve() {
     m_secondMoment.bindImage(3, GL_WRITE_ONLY);
     m_onceMoments.bindImage(4, GL_WRITE_ONLY);
     m_onceTimesDirect.bindImage(5, GL_WRITE_ONLY);
+    m_directSlope.bindImage(6, GL_WRITE_ONLY);
     p.use();
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by the mipmaps too
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
-    for (GLuint unit = 0; unit < 6; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    // Every texture holds weighted sums (premultiplied by the cell's weight), so a level's box
-    // filter gives its larger cells' weighted means.
-    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_onceMoments, &m_onceTimesDirect})
-        glGenerateTextureMipmap(t->id());
-    resolveSlopes();
+    for (GLuint unit = 0; unit < 7; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    // These textures hold weighted sums (premultiplied by the cell's weight), so a level's box
+    // filter gives its larger cells' weighted means: the light's angular shape while the cache
+    // refines (fluence_finest.comp).
+    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment}) glGenerateTextureMipmap(t->id());
     ++m_revision;
-}
-
-void FluenceCache::resolveSlopes() {
-    const gl::Program& p = m_slopeProgram;
-    p.set("cacheFluence", 0);
-    p.set("onceMoments", 1);
-    p.set("onceTimesDirect", 2);
-    p.set("cacheFluxLengths", 3);
-    m_fluence.bind(0);
-    m_onceMoments.bind(1);
-    m_onceTimesDirect.bind(2);
-    m_fluxLengths.bind(3);
-    p.use();
-    for (int level = 0; level < m_levels; ++level) {
-        p.set("level", level);
-        m_directSlope.bindImage(0, GL_WRITE_ONLY, level);
-        m_fluxLengths.bindImage(1, GL_READ_WRITE, level);
-        dispatchOverCells(glm::max(m_cells >> level, glm::ivec3(1)));
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);  // the next level reads it
-    }
-    for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 bool FluenceCache::denoise(float level) {

@@ -130,8 +130,6 @@ private:
     void computeWeights(const FluenceCacheInputs& in);
     void dispatchPhotons(int invocations);
     void resolve();
-    /// Each level's slope of the once-scattered fluence against the direct light.
-    void resolveSlopes();
     /// The finest cells' fluence and direct-light slope, filtered over about the read level's cells
     /// (fluence_denoise.comp); false where the filter would be too narrow to change them.
     bool denoise(float level);
@@ -144,7 +142,6 @@ private:
     std::map<ProgramVariant, gl::Program> m_densityPrograms;
     ProgramVariant m_variant;     // of the current inputs
     gl::Program m_resolveProgram;
-    gl::Program m_slopeProgram;
     gl::Program m_denoiseProgram;
     gl::Program m_finestProgram;
     gl::Program m_viewProgram;
@@ -154,15 +151,18 @@ private:
     gl::Buffer m_directMoments;   // per cell, the integrals of s E and s E^2, the largest E (fluence_density.comp)
     gl::Buffer m_photonStates;
     gl::Buffer m_status;
-    // Mipmapped, per cell and premultiplied by its mean weight w (readers divide filtered values by
-    // the filtered w; texel centres are the cells' centres), model space, all RGBA32F:
+    // Per cell and premultiplied by its mean weight w (readers divide filtered values by the
+    // filtered w; texel centres are the cells' centres), model space, all RGBA32F; these four
+    // mipmapped:
     gl::Texture m_fluence;       // rgb fluence, and w (fluence_resolve.comp)
     gl::Texture m_flux;          // the mean channel's flux vector, and the second moment's yz
     gl::Texture m_fluxLengths;   // each channel's flux length, and the largest direct light of the
-                                 // cell's voxel centres (coarser levels: of its children, fluence_slope.comp)
+                                 // cell's voxel centres
     gl::Texture m_secondMoment;  // the mean channel's traceless xx - 1/3, yy - 1/3, xy, xz
-    gl::Texture m_directSlope;   // rgb slope against the direct light, and its mean (each level its own)
-    gl::Texture m_onceMoments, m_onceTimesDirect;  // the slope's moments (fluence_resolve.comp)
+    // Single level: the finest cells' slope against the direct light (rgb) and its mean, and the
+    // moments it is solved from (the filter pools them, fluence_denoise.comp).
+    gl::Texture m_directSlope;
+    gl::Texture m_onceMoments, m_onceTimesDirect;
     gl::Texture m_denoised, m_denoisedSlope;  // the finest cells' fluence and slope, filtered (fluence_denoise.comp)
     std::uint64_t m_photons = 0;
     float m_cellVolume = 1.0f;    // model units^3
