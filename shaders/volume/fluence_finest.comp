@@ -24,17 +24,13 @@ layout(rgba32f, binding = 2) uniform image3D fluxLengthsAtFinest;
 layout(rgba32f, binding = 3) uniform writeonly image3D secondMomentAtFinest;
 layout(rgba32f, binding = 4) uniform writeonly image3D directSlopeAtFinest;
 
-// A texture's value at the read level at cell c (centre tc), divided by the weight there.
+// A texture's weighted value at the read level at cell c (centre tc): the fluence's alpha there
+// is its weight.
 vec4 atReadLevel(sampler3D t, ivec3 c, vec3 tc) {
     int below = int(readLevel);
     float blend = readLevel - float(below);
     vec4 value = below == 0 ? texelFetch(t, c, 0) : textureLod(t, tc, float(below));
-    float weight = below == 0 ? texelFetch(cacheFluence, c, 0).a : textureLod(cacheFluence, tc, float(below)).a;
-    if (blend > 0.0) {
-        value = mix(value, textureLod(t, tc, float(below + 1)), blend);
-        weight = mix(weight, textureLod(cacheFluence, tc, float(below + 1)).a, blend);
-    }
-    return weight > 0.0 ? value / weight : vec4(0.0);
+    return blend > 0.0 ? mix(value, textureLod(t, tc, float(below + 1)), blend) : value;
 }
 
 float meanChannel(vec3 v) { return (v.r + v.g + v.b) / 3.0; }
@@ -47,9 +43,11 @@ void main() {
     float w = own.a;
     vec3 tc = (vec3(c) + 0.5) / vec3(size);
     vec4 fluence = atReadLevel(cacheFluence, c, tc);
-    vec4 flux = atReadLevel(cacheFlux, c, tc);
-    vec4 lengths = atReadLevel(cacheFluxLengths, c, tc);
-    vec4 moment = atReadLevel(cacheSecondMoment, c, tc);
+    float inverseWeight = fluence.a > 0.0 ? 1.0 / fluence.a : 0.0;
+    fluence *= inverseWeight;
+    vec4 flux = atReadLevel(cacheFlux, c, tc) * inverseWeight;
+    vec4 lengths = atReadLevel(cacheFluxLengths, c, tc) * inverseWeight;
+    vec4 moment = atReadLevel(cacheSecondMoment, c, tc) * inverseWeight;
     float ownLargest = imageLoad(fluxLengthsAtFinest, c).a;
     // The cell's fluence over the read level's: per channel, and for the mean channel.
     vec3 phi = w > 0.0 ? own.rgb / w : vec3(0.0);

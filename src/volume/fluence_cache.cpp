@@ -14,9 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <variant>
 
 namespace sss::detail {
@@ -45,6 +47,21 @@ float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 void dispatchOverCells(glm::ivec3 cells) {
     glDispatchCompute(static_cast<GLuint>((cells.x + 3) / 4), static_cast<GLuint>((cells.y + 3) / 4),
                       static_cast<GLuint>((cells.z + 3) / 4));
+}
+
+// Each of p's samplers on its own unit from firstUnit on, with its texture bound there.
+void bindSamplers(const gl::Program& p, int firstUnit,
+                  std::initializer_list<std::pair<const char*, const gl::Texture*>> samplers) {
+    int unit = firstUnit;
+    for (const auto& [name, texture] : samplers) {
+        p.set(name, unit);
+        texture->bind(static_cast<GLuint>(unit++));
+    }
+}
+
+// Image units 0..count - 1 left unbound after a pass.
+void unbindImages(GLuint count) {
+    for (GLuint unit = 0; unit < count; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 // The light volumes the direct light sums (one per light; none before they exist).
@@ -334,7 +351,7 @@ void FluenceCache::resolve() {
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by the mipmaps too
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
-    for (GLuint unit = 0; unit < 7; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    unbindImages(7);
     // These textures hold weighted sums (premultiplied by the cell's weight), so a level's box
     // filter gives its larger cells' weighted means: the light's angular shape while the cache
     // refines (fluence_finest.comp).
@@ -348,40 +365,37 @@ bool FluenceCache::denoise(float level) {
     const float sigma = std::exp2(level) - 1.0f;
     if (sigma < kLeastSigma) return false;
     const gl::Program& p = m_denoiseProgram;
-    p.set("cacheFluence", 0);
-    p.set("onceMoments", 1);
-    p.set("onceTimesDirect", 2);
+    bindSamplers(p, 0,
+                 {{"cacheFluence", &m_fluence}, {"onceMoments", &m_onceMoments}, {"onceTimesDirect", &m_onceTimesDirect}});
     p.set("spatialSigma", sigma);
     p.set("radius", sigma > 2.0f * kLeastSigma ? 2 : 1);
-    m_fluence.bind(0);
-    m_onceMoments.bind(1);
-    m_onceTimesDirect.bind(2);
     m_denoised.bindImage(0, GL_WRITE_ONLY);
     m_denoisedSlope.bindImage(1, GL_WRITE_ONLY);
     p.use();
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    for (GLuint unit = 0; unit < 2; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    unbindImages(2);
     return true;
 }
 
 void FluenceCache::settle(float level, bool denoised) {
     const gl::Program& p = m_finestProgram;
-    const char* names[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "denoised",
-                           "denoisedSlope"};
-    const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment,
-                                     denoised ? &m_denoised : &m_fluence, denoised ? &m_denoisedSlope : &m_directSlope};
-    for (int i = 0; i < 6; ++i) {
-        p.set(names[i], i);
-        textures[i]->bind(static_cast<GLuint>(i));
-    }
+    bindSamplers(p, 0,
+                 {{"cacheFluence", &m_fluence},
+                  {"cacheFlux", &m_flux},
+                  {"cacheFluxLengths", &m_fluxLengths},
+                  {"cacheSecondMoment", &m_secondMoment},
+                  {"denoised", denoised ? &m_denoised : &m_fluence},
+                  {"denoisedSlope", denoised ? &m_denoisedSlope : &m_directSlope}});
     p.set("readLevel", level);
-    for (int i = 0; i < 4; ++i) textures[i]->bindImage(static_cast<GLuint>(i), GL_READ_WRITE, 0);
-    m_directSlope.bindImage(4, GL_WRITE_ONLY, 0);
+    GLuint unit = 0;
+    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+        t->bindImage(unit++, GL_READ_WRITE, 0);
+    m_directSlope.bindImage(unit, GL_WRITE_ONLY, 0);
     p.use();
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    for (GLuint unit = 0; unit < 5; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    unbindImages(5);
 }
 
 glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model) {
@@ -392,12 +406,12 @@ glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model) {
 }
 
 void FluenceCache::bindSources(const gl::Program& p, int firstUnit) const {
-    const char* names[] = {"cacheFluence", "cacheFlux", "cacheFluxLengths", "cacheSecondMoment", "cacheDirectSlope"};
-    const gl::Texture* textures[] = {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope};
-    for (int i = 0; i < 5; ++i) {
-        p.set(names[i], firstUnit + i);
-        textures[i]->bind(static_cast<GLuint>(firstUnit + i));
-    }
+    bindSamplers(p, firstUnit,
+                 {{"cacheFluence", &m_fluence},
+                  {"cacheFlux", &m_flux},
+                  {"cacheFluxLengths", &m_fluxLengths},
+                  {"cacheSecondMoment", &m_secondMoment},
+                  {"cacheDirectSlope", &m_directSlope}});
 }
 
 bool FluenceCache::viewOutdated(const FluenceViewInputs& in) const {
@@ -425,7 +439,7 @@ void FluenceCache::evaluateView(const FluenceViewInputs& in) {
     dispatchOverCells(cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(0);
-    for (GLuint unit = 0; unit < 3; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    unbindImages(3);
     m_viewKey = std::make_pair(in, m_revision);
 }
 

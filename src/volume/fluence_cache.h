@@ -100,10 +100,6 @@ public:
     /// cacheFluence, cacheFlux, cacheFluxLengths, cacheSecondMoment and cacheDirectSlope
     /// (shaders/volume/fluence_lobe.glsl evaluates them towards a viewer).
     void bindSources(const gl::Program& p, int firstUnit) const;
-    /// The mip level whose cells hold about as many photons as the finest will once the cache
-    /// holds `budget`: each level up has 8 times the photons per cell, so log8(budget / photons)
-    /// (0 once refined; at most the coarsest level).
-    float readLevel(std::uint64_t budget) const;
     /// Photons traced since the last restart (those that missed the box included).
     std::uint64_t photons() const { return m_photons; }
     glm::ivec3 cells() const { return m_cells; }
@@ -130,6 +126,10 @@ private:
     void computeWeights(const FluenceCacheInputs& in);
     void dispatchPhotons(int invocations);
     void resolve();
+    /// The mip level whose cells hold about as many photons as the finest will once the cache
+    /// holds `budget`: each level up has 8 times the photons per cell, so log8(budget / photons)
+    /// (0 once refined; at most the coarsest level).
+    float readLevel(std::uint64_t budget) const;
     /// The finest cells' fluence and direct-light slope, filtered over about the read level's cells
     /// (fluence_denoise.comp); false where the filter would be too narrow to change them.
     bool denoise(float level);
