@@ -4,8 +4,8 @@
 // with the neighbours that hold medium like theirs and are lit like them, and a dense lit surface
 // keeps its light apart from its dark inside and the thin medium around it. The photons' own
 // values are too noisy to guide it. The spatial width shrinks to nothing as the cache refines
-// (`spatialSigma`, from FluenceCache::readLevel); docs/multiple-scattering.md has the measurements
-// behind the widths.
+// (`spatialSigma`, from FluenceCache::poolingLevels); docs/multiple-scattering.md has the
+// measurements behind the widths.
 //
 // The once-scattered fluence's regression on E (volume/direct_slope.glsl) is pooled with the same
 // weights, and the pooled fluence is carried along its line from the neighbourhood's mean E to
@@ -21,6 +21,7 @@ uniform sampler3D onceMoments;      // level 0: w phi1 (rgb), w E
 uniform sampler3D onceTimesDirect;  // level 0: w phi1 E (rgb), w E^2
 uniform float spatialSigma;         // in cells, > 0
 uniform int radius;                 // cells, at most kRadius: where the spatial weight is still above 2 %
+uniform float rangeWidening;        // >= 1: the range terms' widths over kDirectWidth and kWeightWidth
 layout(rgba32f, binding = 0) uniform writeonly image3D denoised;       // w phi (rgb), w
 layout(rgba32f, binding = 1) uniform writeonly image3D denoisedSlope;  // w B (rgb), w E
 
@@ -75,7 +76,8 @@ void main() {
     }
     // (a - b) / (a + b) is about ln(a / b) / 2; each term is a Gaussian, exp2 of a sum.
     const float kHalfLn2 = 0.34657359, kLog2e = 1.44269504;
-    vec2 guideScale = -kLog2e * kHalfLn2 * kHalfLn2 / vec2(kDirectWidth * kDirectWidth, kWeightWidth * kWeightWidth);
+    vec2 widths = rangeWidening * vec2(kDirectWidth, kWeightWidth);
+    vec2 guideScale = -kLog2e * kHalfLn2 * kHalfLn2 / (widths * widths);
     float spatialScale = -kLog2e / (2.0 * spatialSigma * spatialSigma);
     vec2 ownGuide = tileGuide[own];
     vec4 fluence = vec4(0.0), once = vec4(0.0), onceTimesE = vec4(0.0);

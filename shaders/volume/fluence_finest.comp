@@ -2,8 +2,8 @@
 // (FluenceCache::settle), so that its readers (the view pass, the ray caster's per-sample form)
 // read level 0 whatever the photons so far. The fluence and its slope against the direct light
 // are the filtered ones (fluence_denoise.comp). The light's angular shape needs more photons per
-// cell: it is taken from the read level (readLevel, whose cells have about as many photons as the
-// finest will have once refined), the flux and the second moment as that level's ratios to its
+// cell: it is taken from the read level (FluenceCache::poolingLevels' shape level, whose cells hold
+// enough photons), the flux and the second moment as that level's ratios to its
 // fluence (the lobe's mean cosine and second band). The cell's largest direct light stays: it is
 // exact at every level.
 //
@@ -17,7 +17,7 @@ uniform sampler3D cacheFluxLengths;
 uniform sampler3D cacheSecondMoment;
 uniform sampler3D denoised;       // w phi (rgb), w (fluence_denoise.comp; the cells' own where it did not run)
 uniform sampler3D denoisedSlope;  // w B (rgb), w E
-uniform float readLevel;         // > 0
+uniform float readLevel;         // >= 0
 layout(rgba32f, binding = 0) uniform writeonly image3D fluenceAtFinest;
 layout(rgba32f, binding = 1) uniform writeonly image3D fluxAtFinest;
 layout(rgba32f, binding = 2) uniform image3D fluxLengthsAtFinest;

@@ -35,11 +35,18 @@ constexpr float kQuantaPerUnit = 1048576.0f;
 // which llvmpipe stops after 65535 iterations.
 constexpr int kMaxVoxelsPerCell = 32;
 // Mip levels of the cache's textures at most (64 cells: 64, 32, 16, 8): the light's angular shape
-// is read coarser while few photons have arrived (FluenceCache::readLevel).
+// is read coarser while few photons have arrived (FluenceCache::poolingLevels).
 constexpr int kMaxLevels = 4;
+// Photons per finest cell (photons over cells, medium or not) from which a cell's own fluence,
+// and its own angular shape, are read unpooled; the default 2^21 photons give 64^3 cells 8. Finer
+// grids hold fewer per cell, also once refined (docs/multiple-scattering.md, "Finer cells").
+constexpr float kPhotonsForOwnFluence = 8.0f;
+constexpr float kPhotonsForOwnShape = 64.0f;
 // The narrowest filter of the finest cells' fluence (fluence_denoise.comp), in cells: at 0.35 a
 // neighbour's weight is exp(-1 / (2 0.35^2)) = 1.7 %, and at twice it one two cells away.
 constexpr float kLeastSigma = 0.35f;
+// The widest spatial sigma of that filter: its 5^3 window holds little more.
+constexpr float kWidestSigma = 2.2f;
 
 float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
@@ -300,7 +307,9 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons, std::uint64_t 
     if (m_powerUnit > 0.0f) dispatchPhotons(slots);
     m_photons += static_cast<std::uint64_t>(slots) * perSlot;
     resolve();
-    if (const float level = readLevel(budget); level > 0.0f) settle(level, denoise(level));
+    const PoolingLevels levels = poolingLevels(budget);
+    const bool filtered = denoise(levels.fluence);
+    if (levels.shape > 0.0f || filtered) settle(levels.shape, filtered);
     glUseProgram(0);
     for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
@@ -326,10 +335,17 @@ void FluenceCache::dispatchPhotons(int invocations) {
                                    " photons were given up after 2^24 steps each (degenerate rays)");
 }
 
-float FluenceCache::readLevel(std::uint64_t budget) const {
-    if (m_photons == 0 || m_photons >= budget) return 0.0f;
-    const float level = std::log2(static_cast<float>(budget) / static_cast<float>(m_photons)) / 3.0f;
-    return std::min(level, static_cast<float>(m_levels - 1));
+FluenceCache::PoolingLevels FluenceCache::poolingLevels(std::uint64_t budget) const {
+    if (m_photons == 0) return {};
+    const float photons = static_cast<float>(m_photons);
+    const float cells = static_cast<float>(m_cells.x) * static_cast<float>(m_cells.y) * static_cast<float>(m_cells.z);
+    // Each level up has 8 times the photons per cell.
+    const float forBudget = m_photons < budget ? std::log2(static_cast<float>(budget) / photons) / 3.0f : 0.0f;
+    const auto levelHolding = [&](float perCell) {
+        return std::max(forBudget, std::log2(perCell * cells / photons) / 3.0f);
+    };
+    return {levelHolding(kPhotonsForOwnFluence),
+            std::min(levelHolding(kPhotonsForOwnShape), static_cast<float>(m_levels - 1))};
 }
 
 void FluenceCache::resolve() {
@@ -364,10 +380,14 @@ bool FluenceCache::denoise(float level) {
     // kLeastSigma a neighbour's weight is under 2 %: the filter would change nothing.
     const float sigma = std::exp2(level) - 1.0f;
     if (sigma < kLeastSigma) return false;
+    // Where the photons call for a reach beyond the window's, the range terms widen instead,
+    // fourfold per level (measured at 128 cells: docs/multiple-scattering.md).
+    const float beyondWindow = std::max(0.0f, level - std::log2(1.0f + kWidestSigma));
     const gl::Program& p = m_denoiseProgram;
     bindSamplers(p, 0,
                  {{"cacheFluence", &m_fluence}, {"onceMoments", &m_onceMoments}, {"onceTimesDirect", &m_onceTimesDirect}});
-    p.set("spatialSigma", sigma);
+    p.set("spatialSigma", std::min(sigma, kWidestSigma));
+    p.set("rangeWidening", std::exp2(2.0f * beyondWindow));
     p.set("radius", sigma > 2.0f * kLeastSigma ? 2 : 1);
     m_denoised.bindImage(0, GL_WRITE_ONLY);
     m_denoisedSlope.bindImage(1, GL_WRITE_ONLY);

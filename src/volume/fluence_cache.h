@@ -126,11 +126,17 @@ private:
     void computeWeights(const FluenceCacheInputs& in);
     void dispatchPhotons(int invocations);
     void resolve();
-    /// The mip level whose cells hold about as many photons as the finest will once the cache
-    /// holds `budget`: each level up has 8 times the photons per cell, so log8(budget / photons)
-    /// (0 once refined; at most the coarsest level).
-    float readLevel(std::uint64_t budget) const;
-    /// The finest cells' fluence and direct-light slope, filtered over about the read level's cells
+    /// How far the cells' values are pooled, as mip levels (cells 2^level finest cells wide):
+    /// the fluence's filter reaches over about `fluence`'s cells, the angular shape is read at
+    /// `shape`. Each is the level whose cells hold about as many photons as the finest will once
+    /// the cache holds `budget` (log8(budget / photons)), or more where that leaves a cell fewer
+    /// than kPhotonsForOwnFluence or kPhotonsForOwnShape. Both 0 where nothing needs pooling.
+    struct PoolingLevels {
+        float fluence = 0.0f;
+        float shape = 0.0f;
+    };
+    PoolingLevels poolingLevels(std::uint64_t budget) const;
+    /// The finest cells' fluence and direct-light slope, filtered over about `level`'s cells
     /// (fluence_denoise.comp); false where the filter would be too narrow to change them.
     bool denoise(float level);
     /// The finest cells' textures for the readers while the cache refines (fluence_finest.comp),
