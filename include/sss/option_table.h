@@ -182,7 +182,9 @@ struct OptionTable<VolumeRenderOptions> {
             "add light scattered more than once from a view-independent photon-traced cache (the physical model)", {},
             "--multiple-scattering-cache"},
         OptionField<O, int>{&O::cacheResolution, "cacheResolution",
-                            "multiple-scattering cache cells along the box's longest side", between(1, 1024),
+                            "multiple-scattering cache cells along the box's longest side (finer: more accurate once refined, "
+                            "worse first frames, 8 times the memory per doubling)",
+                            between(1, 1024),
                             "--cache-resolution", "N"},
         OptionField<O, int>{&O::cachePhotonsPerFrame, "cachePhotonsPerFrame",
                             "photons each render adds while the multiple-scattering cache refines", between(1, 1 << 24),
