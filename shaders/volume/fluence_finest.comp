@@ -1,5 +1,6 @@
-// The multiple-scattering cache's values at its finest cells while it refines
-// (FluenceCache::settle), so that its readers (the view pass, the ray caster's per-sample form)
+// The multiple-scattering cache's values at its finest cells while they hold few photons
+// (FluenceCache::settle: while the cache refines, and on grids finer than its photons once
+// refined), so that its readers (the view pass, the ray caster's per-sample form)
 // read level 0 whatever the photons so far. The fluence and its slope against the direct light
 // are the filtered ones (fluence_denoise.comp). The light's angular shape needs more photons per
 // cell: it is taken from the read level (FluenceCache::poolingLevels' shape level, whose cells hold

@@ -172,8 +172,9 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_onceTimesDirect = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered direct-light moments");
         m_denoised = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered fluence");
         m_denoisedSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered direct-light slope");
-        for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment, &m_directSlope})
+        for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
             t->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+        m_directSlope.setFilter(GL_LINEAR, GL_LINEAR);
         m_cells = cells;
     }
     const std::uint32_t zero = 0;
@@ -365,13 +366,9 @@ void FluenceCache::resolve() {
     m_directSlope.bindImage(6, GL_WRITE_ONLY);
     p.use();
     dispatchOverCells(m_cells);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by the mipmaps too
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by settle's mipmaps too
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
     unbindImages(7);
-    // These textures hold weighted sums (premultiplied by the cell's weight), so a level's box
-    // filter gives its larger cells' weighted means: the light's angular shape while the cache
-    // refines (fluence_finest.comp).
-    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment}) glGenerateTextureMipmap(t->id());
     ++m_revision;
 }
 
@@ -399,6 +396,12 @@ bool FluenceCache::denoise(float level) {
 }
 
 void FluenceCache::settle(float level, bool denoised) {
+    // These textures hold weighted sums (premultiplied by the cell's weight), so a level's box
+    // filter gives its larger cells' weighted means: the angular shape at `level`. Only this pass
+    // reads above level 0.
+    if (level > 0.0f)
+        for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+            glGenerateTextureMipmap(t->id());
     const gl::Program& p = m_finestProgram;
     bindSamplers(p, 0,
                  {{"cacheFluence", &m_fluence},
@@ -440,11 +443,10 @@ bool FluenceCache::viewOutdated(const FluenceViewInputs& in) const {
 
 void FluenceCache::evaluateView(const FluenceViewInputs& in) {
     if (m_cells.x == 0) return;
-    const glm::ivec3 cells = m_cells;
-    if (m_towardsViewer.size() != cells) {
-        m_towardsViewer = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache towards the viewer");
-        m_towardsViewerSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache towards the viewer: slope");
-        m_towardsViewerCap = gl::Texture::create3D(GL_R32F, cells, "fluence cache towards the viewer: cap");
+    if (m_towardsViewer.size() != m_cells) {
+        m_towardsViewer = gl::Texture::create3D(GL_RGBA32F, m_cells, "fluence cache towards the viewer");
+        m_towardsViewerSlope = gl::Texture::create3D(GL_RGBA32F, m_cells, "fluence cache towards the viewer: slope");
+        m_towardsViewerCap = gl::Texture::create3D(GL_R32F, m_cells, "fluence cache towards the viewer: cap");
     }
     const gl::Program& p = m_viewProgram;
     bindSources(p, 0);
@@ -456,7 +458,7 @@ void FluenceCache::evaluateView(const FluenceViewInputs& in) {
     m_towardsViewerSlope.bindImage(1, GL_WRITE_ONLY);
     m_towardsViewerCap.bindImage(2, GL_WRITE_ONLY);
     p.use();
-    dispatchOverCells(cells);
+    dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glUseProgram(0);
     unbindImages(3);

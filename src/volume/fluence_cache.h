@@ -77,10 +77,10 @@ public:
     /// medium, the lights and the light volumes are those of the last restart: only the
     /// scattering changed), it takes each cell's weight and direct-light moments anew.
     void restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameDensityInputs);
-    /// Traces `photons` more photons into the sums and updates the textures to their mean. Until
-    /// the cache holds `budget` photons, its finest cells then hold a filtered fluence and the
-    /// angular shape and direct-light slope of a coarser level (denoise, settle): readers always
-    /// read the finest cells.
+    /// Traces `photons` more photons into the sums and updates the textures to their mean. Where
+    /// the cells hold few photons (before `budget`, or finer grids even at it: poolingLevels),
+    /// the finest cells then hold a filtered fluence and direct-light slope and a coarser level's
+    /// angular shape (denoise, settle): readers always read the finest cells.
     void add(const FluenceCacheInputs& in, int photons, std::uint64_t budget);
 
     /// Whether evaluateView(in) would change the textures it fills: the cache or `in` changed.
@@ -139,8 +139,9 @@ private:
     /// The finest cells' fluence and direct-light slope, filtered over about `level`'s cells
     /// (fluence_denoise.comp); false where the filter would be too narrow to change them.
     bool denoise(float level);
-    /// The finest cells' textures for the readers while the cache refines (fluence_finest.comp),
-    /// with the filtered fluence and slope if `denoised`, the cells' own otherwise.
+    /// The finest cells' textures for the readers where poolingLevels pools (fluence_finest.comp):
+    /// the angular shape of `level`, the filtered fluence and slope if `denoised`, the cells' own
+    /// otherwise. Generates the mipmaps it reads.
     void settle(float level, bool denoised);
 
     VolumeReconstruction m_reconstruction;
@@ -159,7 +160,7 @@ private:
     gl::Buffer m_status;
     // Per cell and premultiplied by its mean weight w (readers divide filtered values by the
     // filtered w; texel centres are the cells' centres), model space, all RGBA32F; these four
-    // mipmapped:
+    // mipmapped (by settle, where it reads a coarser level):
     gl::Texture m_fluence;       // rgb fluence, and w (fluence_resolve.comp)
     gl::Texture m_flux;          // the mean channel's flux vector, and the second moment's yz
     gl::Texture m_fluxLengths;   // each channel's flux length, and the largest direct light of the
