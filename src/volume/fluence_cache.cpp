@@ -168,12 +168,14 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths", m_levels);
         m_secondMoment = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache second moment", m_levels);
         m_directSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache direct-light slope");
-        m_onceMoments = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered moments");
-        m_onceTimesDirect = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered direct-light moments");
+        m_onceMoments = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered moments", m_levels);
+        m_onceTimesDirect =
+            gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered direct-light moments", m_levels);
         m_denoised = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered fluence");
         m_denoisedSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered direct-light slope");
         for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
             t->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+        for (const gl::Texture* t : {&m_onceMoments, &m_onceTimesDirect}) t->setFilter(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST);
         m_directSlope.setFilter(GL_LINEAR, GL_LINEAR);
         m_cells = cells;
     }
@@ -309,8 +311,8 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons, std::uint64_t 
     m_photons += static_cast<std::uint64_t>(slots) * perSlot;
     resolve();
     const PoolingLevels levels = poolingLevels(budget);
-    const bool filtered = denoise(levels.fluence);
-    if (levels.shape > 0.0f || filtered) settle(levels.shape, filtered);
+    const std::optional<int> filteredOn = denoise(levels.fluence);
+    if (levels.shape > 0.0f || filteredOn) settle(levels.shape, filteredOn);
     glUseProgram(0);
     for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
@@ -372,17 +374,23 @@ void FluenceCache::resolve() {
     ++m_revision;
 }
 
-bool FluenceCache::denoise(float level) {
+std::optional<int> FluenceCache::denoise(float level) {
     // A level up has cells 2^level finest cells wide: the filter reaches about as far. Below
     // kLeastSigma a neighbour's weight is under 2 %: the filter would change nothing.
-    const float sigma = std::exp2(level) - 1.0f;
-    if (sigma < kLeastSigma) return false;
-    // Where the photons call for a reach beyond the window's, the range terms widen instead,
-    // fourfold per level (measured at 128 cells: docs/multiple-scattering.md).
-    const float beyondWindow = std::max(0.0f, level - std::log2(1.0f + kWidestSigma));
+    if (std::exp2(level) - 1.0f < kLeastSigma) return std::nullopt;
+    // Where that is wider than the window, the filter pools a coarser level's cells: their
+    // weighted sums are the same estimate pooled (docs/multiple-scattering.md, "Finer cells").
+    const float widestInWindow = std::log2(1.0f + kWidestSigma);
+    const int gridLevel = std::clamp(static_cast<int>(std::ceil(level - widestInWindow)), 0, m_levels - 1);
+    const float sigma = std::exp2(level - static_cast<float>(gridLevel)) - 1.0f;
+    // Beyond the coarsest level's window the range terms widen instead, fourfold per level.
+    const float beyondWindow = std::max(0.0f, level - static_cast<float>(gridLevel) - widestInWindow);
+    if (gridLevel > 0)
+        for (const gl::Texture* t : {&m_fluence, &m_onceMoments, &m_onceTimesDirect}) glGenerateTextureMipmap(t->id());
     const gl::Program& p = m_denoiseProgram;
     bindSamplers(p, 0,
                  {{"cacheFluence", &m_fluence}, {"onceMoments", &m_onceMoments}, {"onceTimesDirect", &m_onceTimesDirect}});
+    p.set("gridLevel", gridLevel);
     p.set("spatialSigma", std::min(sigma, kWidestSigma));
     p.set("rangeWidening", std::exp2(2.0f * beyondWindow));
     p.set("radius", sigma > 2.0f * kLeastSigma ? 2 : 1);
@@ -392,24 +400,25 @@ bool FluenceCache::denoise(float level) {
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     unbindImages(2);
-    return true;
+    return gridLevel;
 }
 
-void FluenceCache::settle(float level, bool denoised) {
+void FluenceCache::settle(float level, std::optional<int> filteredOn) {
     // These textures hold weighted sums (premultiplied by the cell's weight), so a level's box
-    // filter gives its larger cells' weighted means: the angular shape at `level`. Only this pass
-    // reads above level 0.
-    if (level > 0.0f)
-        for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
-            glGenerateTextureMipmap(t->id());
+    // filter gives its larger cells' weighted means: the angular shape at `level`. The fluence's
+    // mipmaps are fresh where the filter ran on a coarser level.
+    if (level > 0.0f) {
+        for (const gl::Texture* t : {&m_flux, &m_fluxLengths, &m_secondMoment}) glGenerateTextureMipmap(t->id());
+        if (filteredOn.value_or(0) == 0) glGenerateTextureMipmap(m_fluence.id());
+    }
     const gl::Program& p = m_finestProgram;
     bindSamplers(p, 0,
                  {{"cacheFluence", &m_fluence},
                   {"cacheFlux", &m_flux},
                   {"cacheFluxLengths", &m_fluxLengths},
                   {"cacheSecondMoment", &m_secondMoment},
-                  {"denoised", denoised ? &m_denoised : &m_fluence},
-                  {"denoisedSlope", denoised ? &m_denoisedSlope : &m_directSlope}});
+                  {"denoised", filteredOn ? &m_denoised : &m_fluence},
+                  {"denoisedSlope", filteredOn ? &m_denoisedSlope : &m_directSlope}});
     p.set("readLevel", level);
     GLuint unit = 0;
     for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})

@@ -137,12 +137,14 @@ private:
     };
     PoolingLevels poolingLevels(std::uint64_t budget) const;
     /// The finest cells' fluence and direct-light slope, filtered over about `level`'s cells
-    /// (fluence_denoise.comp); false where the filter would be too narrow to change them.
-    bool denoise(float level);
+    /// (fluence_denoise.comp): pooling the finest cells or, where its window cannot reach that
+    /// far, a coarser level's. Returns the level pooled, or nothing where the filter would be too
+    /// narrow to change them.
+    std::optional<int> denoise(float level);
     /// The finest cells' textures for the readers where poolingLevels pools (fluence_finest.comp):
-    /// the angular shape of `level`, the filtered fluence and slope if `denoised`, the cells' own
-    /// otherwise. Generates the mipmaps it reads.
-    void settle(float level, bool denoised);
+    /// the angular shape of `level`, the filtered fluence and slope if the filter ran (pooling
+    /// `filteredOn`'s cells), the cells' own otherwise. Generates the mipmaps it reads.
+    void settle(float level, std::optional<int> filteredOn);
 
     VolumeReconstruction m_reconstruction;
     std::map<ProgramVariant, gl::Program> m_photonPrograms;
@@ -160,14 +162,16 @@ private:
     gl::Buffer m_status;
     // Per cell and premultiplied by its mean weight w (readers divide filtered values by the
     // filtered w; texel centres are the cells' centres), model space, all RGBA32F; these four
-    // mipmapped (by settle, where it reads a coarser level):
+    // mipmapped (by settle, where it reads a coarser level, and the fluence by denoise, where it
+    // runs on one):
     gl::Texture m_fluence;       // rgb fluence, and w (fluence_resolve.comp)
     gl::Texture m_flux;          // the mean channel's flux vector, and the second moment's yz
     gl::Texture m_fluxLengths;   // each channel's flux length, and the largest direct light of the
                                  // cell's voxel centres
     gl::Texture m_secondMoment;  // the mean channel's traceless xx - 1/3, yy - 1/3, xy, xz
-    // Single level: the finest cells' slope against the direct light (rgb) and its mean, and the
-    // moments it is solved from (the filter pools them, fluence_denoise.comp).
+    // The finest cells' slope against the direct light (rgb) and its mean (single level), and
+    // the moments it is solved from (the filter pools them, fluence_denoise.comp; their mipmaps
+    // are made by denoise where it runs on a coarser level).
     gl::Texture m_directSlope;
     gl::Texture m_onceMoments, m_onceTimesDirect;
     gl::Texture m_denoised, m_denoisedSlope;  // the finest cells' fluence and slope, filtered (fluence_denoise.comp)
