@@ -183,7 +183,7 @@ struct OptionTable<VolumeRenderOptions> {
             "--multiple-scattering-cache"},
         OptionField<O, int>{&O::cacheResolution, "cacheResolution",
                             "multiple-scattering cache cells along the box's longest side (finer: more accurate once refined, "
-                            "worse first frames, 8 times the memory per doubling)",
+                            "slightly worse first frames, 8 times the memory per doubling)",
                             between(1, 1024),
                             "--cache-resolution", "N"},
         OptionField<O, int>{&O::cachePhotonsPerFrame, "cachePhotonsPerFrame",
