@@ -13,17 +13,19 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 uniform sampler3D cacheFluence;  // w phi (rgb), w: the photons' estimate, mipmapped
-uniform sampler3D cacheFlux;
-uniform sampler3D cacheFluxLengths;
+uniform sampler3D cacheFluxRed;    // and the second moment's yz
+uniform sampler3D cacheFluxGreen;  // and the largest direct light (the finest cell's is kept)
+uniform sampler3D cacheFluxBlue;
 uniform sampler3D cacheSecondMoment;
 uniform sampler3D denoised;       // w phi (rgb), w (fluence_denoise.comp; the cells' own where it did not run)
 uniform sampler3D denoisedSlope;  // w B (rgb), w E
 uniform float readLevel;         // >= 0
 layout(rgba32f, binding = 0) uniform writeonly image3D fluenceAtFinest;
-layout(rgba32f, binding = 1) uniform writeonly image3D fluxAtFinest;
-layout(rgba32f, binding = 2) uniform image3D fluxLengthsAtFinest;
-layout(rgba32f, binding = 3) uniform writeonly image3D secondMomentAtFinest;
-layout(rgba32f, binding = 4) uniform writeonly image3D directSlopeAtFinest;
+layout(rgba32f, binding = 1) uniform writeonly image3D fluxRedAtFinest;
+layout(rgba32f, binding = 2) uniform image3D fluxGreenAtFinest;
+layout(rgba32f, binding = 3) uniform writeonly image3D fluxBlueAtFinest;
+layout(rgba32f, binding = 4) uniform writeonly image3D secondMomentAtFinest;
+layout(rgba32f, binding = 5) uniform writeonly image3D directSlopeAtFinest;
 
 // A texture's weighted value at the read level at cell c (centre tc): the fluence's alpha there
 // is its weight.
@@ -46,17 +48,19 @@ void main() {
     vec4 fluence = atReadLevel(cacheFluence, c, tc);
     float inverseWeight = fluence.a > 0.0 ? 1.0 / fluence.a : 0.0;
     fluence *= inverseWeight;
-    vec4 flux = atReadLevel(cacheFlux, c, tc) * inverseWeight;
-    vec4 lengths = atReadLevel(cacheFluxLengths, c, tc) * inverseWeight;
+    vec4 red = atReadLevel(cacheFluxRed, c, tc) * inverseWeight;
+    vec3 green = atReadLevel(cacheFluxGreen, c, tc).xyz * inverseWeight;
+    vec3 blue = atReadLevel(cacheFluxBlue, c, tc).xyz * inverseWeight;
     vec4 moment = atReadLevel(cacheSecondMoment, c, tc) * inverseWeight;
-    float ownLargest = imageLoad(fluxLengthsAtFinest, c).a;
+    float ownLargest = imageLoad(fluxGreenAtFinest, c).a;
     // The cell's fluence over the read level's: per channel, and for the mean channel.
     vec3 phi = w > 0.0 ? own.rgb / w : vec3(0.0);
     vec3 scale = mix(vec3(0.0), phi / max(fluence.rgb, vec3(1e-30)), greaterThan(fluence.rgb, vec3(0.0)));
     float meanScale = meanChannel(fluence.rgb) > 0.0 ? meanChannel(phi) / meanChannel(fluence.rgb) : 0.0;
     imageStore(fluenceAtFinest, c, vec4(w * phi, w));
-    imageStore(fluxAtFinest, c, w * meanScale * flux);
-    imageStore(fluxLengthsAtFinest, c, vec4(w * scale * lengths.rgb, ownLargest));
+    imageStore(fluxRedAtFinest, c, vec4(w * scale.r * red.xyz, w * meanScale * red.w));
+    imageStore(fluxGreenAtFinest, c, vec4(w * scale.g * green, ownLargest));
+    imageStore(fluxBlueAtFinest, c, vec4(w * scale.b * blue, 0.0));
     imageStore(secondMomentAtFinest, c, w * meanScale * moment);
     imageStore(directSlopeAtFinest, c, texelFetch(denoisedSlope, c, 0));
 }

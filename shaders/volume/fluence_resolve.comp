@@ -1,7 +1,7 @@
 // The multiple-scattering cache's textures from its photon sums (fluence_photons.comp): per cell,
-// the fluence of light scattered at least once (rgb), the flux vector of the mean channel (xyz:
-// the direction the light flows) and each channel's flux length (rgb: how strongly), the mean
-// channel's traceless second moment (xx - 1/3, yy - 1/3, xy, xz; yz in the flux's alpha), all in the
+// the fluence of light scattered at least once (rgb), each channel's flux vector (xyz: where and
+// how strongly that channel's light flows), the mean channel's traceless second moment
+// (xx - 1/3, yy - 1/3, xy, xz; yz in the red flux's alpha), all in the
 // lights' units (colour x intensity), averaged over the cell with the weight s
 // (fluence_density.comp), and premultiplied by the cell's mean weight, which the fluence
 // texture's alpha holds. Readers divide the filtered values by the filtered weight: cells
@@ -14,15 +14,17 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(std430, binding = 2) readonly buffer Sums { uint sums[]; };
 layout(std430, binding = 3) readonly buffer Weights { float cellWeight[]; };  // fluence_density.comp
 layout(rgba32f, binding = 0) uniform writeonly image3D fluence;
-layout(rgba32f, binding = 1) uniform writeonly image3D flux;
-layout(rgba32f, binding = 2) uniform writeonly image3D fluxLengths;
-layout(rgba32f, binding = 3) uniform writeonly image3D secondMoment;
+layout(rgba32f, binding = 1) uniform writeonly image3D fluxRed;    // and the second moment's yz
+layout(rgba32f, binding = 2) uniform writeonly image3D fluxGreen;  // and the largest direct light of
+                                                                   // the cell's voxel centres
+layout(rgba32f, binding = 3) uniform writeonly image3D fluxBlue;
+layout(rgba32f, binding = 4) uniform writeonly image3D secondMoment;
 // The once-scattered fluence's regression on the direct light E: its moments, w phi1 (rgb) and
 // w E, w phi1 E (rgb) and w E^2 (the first frames' filter pools them, fluence_denoise.comp), and
 // the cell's own slope, w B (rgb) and w E.
-layout(rgba32f, binding = 4) uniform writeonly image3D onceMoments;
-layout(rgba32f, binding = 5) uniform writeonly image3D onceTimesDirect;
-layout(rgba32f, binding = 6) uniform writeonly image3D cellSlope;
+layout(rgba32f, binding = 5) uniform writeonly image3D onceMoments;
+layout(rgba32f, binding = 6) uniform writeonly image3D onceTimesDirect;
+layout(rgba32f, binding = 7) uniform writeonly image3D cellSlope;
 layout(std430, binding = 4) readonly buffer DirectMoments { vec4 cellDirect[]; };  // fluence_density.comp
 uniform ivec3 cacheCells;
 uniform float sumsToFluence;  // power per photon / (photons x quanta per unit)
@@ -45,12 +47,13 @@ void main() {
     float scale = sumsToFluence / cellVolume;
     vec3 phi = slotVector(base) * scale;
     vec3 red = slotVector(base + 3u) * scale, green = slotVector(base + 6u) * scale, blue = slotVector(base + 9u) * scale;
-    imageStore(fluence, c, vec4(phi, cellWeight[cellIndex] / cellVolume));
-    vec4 moment = vec4(slotValue(base + 12u), slotValue(base + 13u), slotValue(base + 14u), slotValue(base + 15u)) * scale;
-    imageStore(flux, c, vec4((red + green + blue) / 3.0, slotValue(base + 16u) * scale));
-    imageStore(secondMoment, c, moment);
     float w = cellWeight[cellIndex] / cellVolume;
-    imageStore(fluxLengths, c, vec4(length(red), length(green), length(blue), w * cellDirect[cellIndex].z));
+    imageStore(fluence, c, vec4(phi, w));
+    vec4 moment = vec4(slotValue(base + 12u), slotValue(base + 13u), slotValue(base + 14u), slotValue(base + 15u)) * scale;
+    imageStore(fluxRed, c, vec4(red, slotValue(base + 16u) * scale));
+    imageStore(fluxGreen, c, vec4(green, w * cellDirect[cellIndex].z));
+    imageStore(fluxBlue, c, vec4(blue, 0.0));
+    imageStore(secondMoment, c, moment);
     vec2 moments = cellDirect[cellIndex].xy / cellVolume;  // w E, w E^2 (cell means)
     vec4 once = vec4(slotVector(base + 17u) * scale, moments.x);
     vec4 onceTimesE = vec4(slotVector(base + 20u) * scale, moments.y);

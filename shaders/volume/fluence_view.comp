@@ -1,6 +1,6 @@
 // The multiple-scattering cache's light towards one viewer (FluenceCache::evaluateView): per cell,
 // what the cell scatters towards the eye, as a line in the direct light E that the eye knows at
-// each sample. The ray caster then reads three textures per sample instead of the cache's five,
+// each sample. The ray caster then reads three textures per sample instead of the cache's six,
 // and none of the lobe's arithmetic: it is done here once per cell and camera move, not once per
 // sample and frame. (Where the cells outnumber the pixels on a software rasteriser the ray
 // caster evaluates the same lobe per sample instead: CACHE_PER_SAMPLE.)
@@ -11,8 +11,9 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 uniform sampler3D cacheFluence;       // w phi (rgb), w: every texture is premultiplied by w
-uniform sampler3D cacheFlux;          // w F of the mean channel (xyz), w M_yz
-uniform sampler3D cacheFluxLengths;   // w |F| per channel (rgb), w times the largest E
+uniform sampler3D cacheFluxRed;       // w F of the red channel (xyz), w M_yz
+uniform sampler3D cacheFluxGreen;     // w F of the green channel (xyz), w times the largest E
+uniform sampler3D cacheFluxBlue;      // w F of the blue channel (xyz)
 uniform sampler3D cacheSecondMoment;  // w M_xx, w M_yy, w M_xy, w M_xz (traceless)
 uniform sampler3D cacheDirectSlope;   // w B (rgb), w mean E
 uniform vec4 viewer;                  // model space: the eye (w 1) or the direction towards it (w 0)
@@ -46,7 +47,7 @@ void main() {
     vec3 towards = viewer.w != 0.0 ? viewer.xyz - mix(boxMin, boxMax, tc) : viewer.xyz;
     vec3 v = length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0);
     CacheTowardsViewer light =
-        cacheTowards(v, phaseG, weighted, cacheAt(cacheFlux, c), cacheAt(cacheFluxLengths, c),
+        cacheTowards(v, phaseG, weighted, cacheAt(cacheFluxRed, c), cacheAt(cacheFluxGreen, c), cacheAt(cacheFluxBlue, c),
                      cacheAt(cacheSecondMoment, c), cacheAt(cacheDirectSlope, c));
     imageStore(towardsViewer, c, light.atMean);
     imageStore(towardsViewerSlope, c, light.slope);

@@ -23,7 +23,7 @@
 //   MESH_SHADOWS 0|1       : meshes of a hybrid scene cast shadows into the volume
 //   CLIP 0|1               : clip planes or a crop box cut the volume (volume/clip.glsl)
 //   SCATTERING_CACHE 0|1   : add the multiple-scattering cache's light (physical model)
-//   CACHE_PER_SAMPLE 0|1   : evaluate its lobe per sample from its five textures; 0: read the
+//   CACHE_PER_SAMPLE 0|1   : evaluate its lobe per sample from its six textures; 0: read the
 //                            view pass's three (FluenceCache::evaluateView)
 //   DIAGONAL_GRADIENT_METRIC 0|1: gradientMetric is diagonal (the model transform neither shears
 //                            nor scales unequally along turned axes): |M g|^2 is three products
@@ -239,12 +239,13 @@ LightReach rayLightReaches[MAX_LIGHTS];
 #include "volume/fluence_lobe.glsl"
 uniform float cacheDirectWeight[MAX_LIGHTS];  // volume/direct_light.glsl's weights
 #if CACHE_PER_SAMPLE
-// The cache's five textures (FluenceCache::bindSources) at their finest cells, and the lobe towards
+// The cache's six textures (FluenceCache::bindSources) at their finest cells, and the lobe towards
 // the viewer evaluated at every shaded sample: cheaper than the view pass over every cell where
 // the cells outnumber the pixels (VolumeRenderOptions::cacheViewEvaluation).
 uniform sampler3D cacheFluence;
-uniform sampler3D cacheFlux;
-uniform sampler3D cacheFluxLengths;
+uniform sampler3D cacheFluxRed;
+uniform sampler3D cacheFluxGreen;
+uniform sampler3D cacheFluxBlue;
 uniform sampler3D cacheSecondMoment;
 uniform sampler3D cacheDirectSlope;
 uniform vec4 cacheViewer;  // model space: the eye (w 1) or the direction towards it (w 0)
@@ -254,8 +255,8 @@ CacheTowardsViewer cacheTowardsViewerAt(vec3 p, vec3 tc) {
     if (!(weighted.a > 0.0)) return CacheTowardsViewer(vec4(0.0), vec4(0.0), 0.0);
     vec3 towards = cacheViewer.w != 0.0 ? cacheViewer.xyz - p : cacheViewer.xyz;
     vec3 v = length(towards) > 0.0 ? normalize(towards) : vec3(0.0, 0.0, 1.0);
-    return cacheTowards(v, phaseG, weighted, textureLod(cacheFlux, tc, 0.0),
-                        textureLod(cacheFluxLengths, tc, 0.0), textureLod(cacheSecondMoment, tc, 0.0),
+    return cacheTowards(v, phaseG, weighted, textureLod(cacheFluxRed, tc, 0.0), textureLod(cacheFluxGreen, tc, 0.0),
+                        textureLod(cacheFluxBlue, tc, 0.0), textureLod(cacheSecondMoment, tc, 0.0),
                         textureLod(cacheDirectSlope, tc, 0.0));
 }
 #else

@@ -35,11 +35,11 @@ inline constexpr int kPreintegration = 15;
 // caster, which reads no volume shadows (those units belong to the mesh passes).
 inline constexpr int kStepTransferFunction = 16;
 // The multiple-scattering cache's light towards the viewer (volume/fluence_cache.h), in the ray
-// caster only; or, where it evaluates the cache per sample, the cache's five textures.
+// caster only; or, where it evaluates the cache per sample, the cache's six textures.
 inline constexpr int kCacheTowardsViewer = 17;
 inline constexpr int kCacheTowardsViewerSlope = 18;
 inline constexpr int kCacheTowardsViewerCap = 19;
-inline constexpr int kCacheSources = 17;  // 17..21 (FluenceCache::bindSources)
+inline constexpr int kCacheSources = 17;  // 17..22 (FluenceCache::bindSources)
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

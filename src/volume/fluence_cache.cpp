@@ -164,8 +164,9 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_directMoments = gl::Buffer::create(count * 4 * sizeof(float), nullptr, 0, "fluence-cache direct-light moments");
         m_levels = std::min(kMaxLevels, 1 + static_cast<int>(std::log2(static_cast<float>(glm::compMax(cells)))));
         m_fluence = gl::Texture::create3D(GL_RGBA32F, cells, "fluence cache", m_levels);
-        m_flux = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux", m_levels);
-        m_fluxLengths = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache flux lengths", m_levels);
+        m_fluxRed = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache red flux", m_levels);
+        m_fluxGreen = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache green flux", m_levels);
+        m_fluxBlue = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache blue flux", m_levels);
         m_secondMoment = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache second moment", m_levels);
         m_directSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache direct-light slope");
         m_onceMoments = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered moments", m_levels);
@@ -173,7 +174,7 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
             gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache once-scattered direct-light moments", m_levels);
         m_denoised = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered fluence");
         m_denoisedSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered direct-light slope");
-        for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+        for (const gl::Texture* t : {&m_fluence, &m_fluxRed, &m_fluxGreen, &m_fluxBlue, &m_secondMoment})
             t->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
         for (const gl::Texture* t : {&m_onceMoments, &m_onceTimesDirect}) t->setFilter(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST);
         m_directSlope.setFilter(GL_LINEAR, GL_LINEAR);
@@ -182,7 +183,7 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
     const std::uint32_t zero = 0;
     glClearNamedBufferData(m_sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+    for (const gl::Texture* t : {&m_fluence, &m_fluxRed, &m_fluxGreen, &m_fluxBlue, &m_secondMoment})
         for (int level = 0; level < m_levels; ++level) glClearTexImage(t->id(), level, GL_RGBA, GL_FLOAT, black);
     glClearTexImage(m_directSlope.id(), 0, GL_RGBA, GL_FLOAT, black);
     m_photons = 0;
@@ -360,17 +361,18 @@ void FluenceCache::resolve() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_directMoments.id());
     m_fluence.bindImage(0, GL_WRITE_ONLY);
-    m_flux.bindImage(1, GL_WRITE_ONLY);
-    m_fluxLengths.bindImage(2, GL_WRITE_ONLY);
-    m_secondMoment.bindImage(3, GL_WRITE_ONLY);
-    m_onceMoments.bindImage(4, GL_WRITE_ONLY);
-    m_onceTimesDirect.bindImage(5, GL_WRITE_ONLY);
-    m_directSlope.bindImage(6, GL_WRITE_ONLY);
+    m_fluxRed.bindImage(1, GL_WRITE_ONLY);
+    m_fluxGreen.bindImage(2, GL_WRITE_ONLY);
+    m_fluxBlue.bindImage(3, GL_WRITE_ONLY);
+    m_secondMoment.bindImage(4, GL_WRITE_ONLY);
+    m_onceMoments.bindImage(5, GL_WRITE_ONLY);
+    m_onceTimesDirect.bindImage(6, GL_WRITE_ONLY);
+    m_directSlope.bindImage(7, GL_WRITE_ONLY);
     p.use();
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);  // read by settle's mipmaps too
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
-    unbindImages(7);
+    unbindImages(8);
     ++m_revision;
 }
 
@@ -408,26 +410,28 @@ void FluenceCache::settle(float level, std::optional<int> filteredOn) {
     // filter gives its larger cells' weighted means: the angular shape at `level`. The fluence's
     // mipmaps are fresh where the filter ran on a coarser level.
     if (level > 0.0f) {
-        for (const gl::Texture* t : {&m_flux, &m_fluxLengths, &m_secondMoment}) glGenerateTextureMipmap(t->id());
+        for (const gl::Texture* t : {&m_fluxRed, &m_fluxGreen, &m_fluxBlue, &m_secondMoment})
+            glGenerateTextureMipmap(t->id());
         if (filteredOn.value_or(0) == 0) glGenerateTextureMipmap(m_fluence.id());
     }
     const gl::Program& p = m_finestProgram;
     bindSamplers(p, 0,
                  {{"cacheFluence", &m_fluence},
-                  {"cacheFlux", &m_flux},
-                  {"cacheFluxLengths", &m_fluxLengths},
+                  {"cacheFluxRed", &m_fluxRed},
+                  {"cacheFluxGreen", &m_fluxGreen},
+                  {"cacheFluxBlue", &m_fluxBlue},
                   {"cacheSecondMoment", &m_secondMoment},
                   {"denoised", filteredOn ? &m_denoised : &m_fluence},
                   {"denoisedSlope", filteredOn ? &m_denoisedSlope : &m_directSlope}});
     p.set("readLevel", level);
     GLuint unit = 0;
-    for (const gl::Texture* t : {&m_fluence, &m_flux, &m_fluxLengths, &m_secondMoment})
+    for (const gl::Texture* t : {&m_fluence, &m_fluxRed, &m_fluxGreen, &m_fluxBlue, &m_secondMoment})
         t->bindImage(unit++, GL_READ_WRITE, 0);
     m_directSlope.bindImage(unit, GL_WRITE_ONLY, 0);
     p.use();
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    unbindImages(5);
+    unbindImages(6);
 }
 
 glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model) {
@@ -440,8 +444,9 @@ glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model) {
 void FluenceCache::bindSources(const gl::Program& p, int firstUnit) const {
     bindSamplers(p, firstUnit,
                  {{"cacheFluence", &m_fluence},
-                  {"cacheFlux", &m_flux},
-                  {"cacheFluxLengths", &m_fluxLengths},
+                  {"cacheFluxRed", &m_fluxRed},
+                  {"cacheFluxGreen", &m_fluxGreen},
+                  {"cacheFluxBlue", &m_fluxBlue},
                   {"cacheSecondMoment", &m_secondMoment},
                   {"cacheDirectSlope", &m_directSlope}});
 }

@@ -87,7 +87,7 @@ public:
     bool viewOutdated(const FluenceViewInputs& in) const;
     /// Per cell, what the cache scatters towards the viewer
     /// (shaders/volume/fluence_view.comp): the ray caster reads three textures per sample instead
-    /// of five, and none of the lobe's arithmetic. View-dependent: run once per camera move.
+    /// of six, and none of the lobe's arithmetic. View-dependent: run once per camera move.
     void evaluateView(const FluenceViewInputs& in);
     /// w times the light scattered towards the viewer at the cell's mean direct light (rgb), and
     /// w (RGBA32F).
@@ -96,8 +96,8 @@ public:
     const gl::Texture& towardsViewerSlope() const { return m_towardsViewerSlope; }
     /// w times the largest direct light the slope applies to (R32F).
     const gl::Texture& towardsViewerCap() const { return m_towardsViewerCap; }
-    /// Binds the cache's five textures to units firstUnit..firstUnit + 4 as p's samplers
-    /// cacheFluence, cacheFlux, cacheFluxLengths, cacheSecondMoment and cacheDirectSlope
+    /// Binds the cache's six textures to units firstUnit..firstUnit + 5 as p's samplers
+    /// cacheFluence, cacheFluxRed, cacheFluxGreen, cacheFluxBlue, cacheSecondMoment and cacheDirectSlope
     /// (shaders/volume/fluence_lobe.glsl evaluates them towards a viewer).
     void bindSources(const gl::Program& p, int firstUnit) const;
     /// Photons traced since the last restart (those that missed the box included).
@@ -165,9 +165,10 @@ private:
     // mipmapped (by settle, where it reads a coarser level, and the fluence by denoise, where it
     // runs on one):
     gl::Texture m_fluence;       // rgb fluence, and w (fluence_resolve.comp)
-    gl::Texture m_flux;          // the mean channel's flux vector, and the second moment's yz
-    gl::Texture m_fluxLengths;   // each channel's flux length, and the largest direct light of the
-                                 // cell's voxel centres
+    gl::Texture m_fluxRed;       // the red channel's flux vector, and the second moment's yz
+    gl::Texture m_fluxGreen;     // the green channel's, and the largest direct light of the cell's
+                                 // voxel centres
+    gl::Texture m_fluxBlue;      // the blue channel's
     gl::Texture m_secondMoment;  // the mean channel's traceless xx - 1/3, yy - 1/3, xy, xz
     // The finest cells' slope against the direct light (rgb) and its mean (single level), and
     // the moments it is solved from (the filter pools them, fluence_denoise.comp; their mipmaps

@@ -128,7 +128,7 @@ struct RayCastVariant {
     bool compute = false;
     /// Samples add what they scatter of the multiple-scattering cache.
     bool scatteringCache = false;
-    /// ... evaluated per sample from its five textures (else read from the view pass's three).
+    /// ... evaluated per sample from its six textures (else read from the view pass's three).
     bool cachePerSample = false;
     /// The field between voxel centres (VolumeRenderOptions::reconstruction).
     VolumeReconstruction reconstruction = VolumeReconstruction::Trilinear;
