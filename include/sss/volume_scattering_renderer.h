@@ -263,8 +263,8 @@ struct VolumeRenderOptions {
     bool multipleScatteringCache = false;
     /// Cells of the cache along the box's longest side, the other sides in proportion, at most
     /// one per voxel and at most 32 voxels wide, 1..1024. Measured once refined against the path
-    /// tracer (relRMSE): bonsai 10.8 % at 64 and 8.7 % at 128, engine 21.3 % and 17.9 %; first
-    /// frames after a light change 14.7 and 15.5 %, 27.6 and 29.2 %. Memory: about 385 bytes per
+    /// tracer (relRMSE): bonsai 10.8 % at 64 and 8.6 % at 128, engine 21.4 % and 17.9 %; first
+    /// frames after a light change 14.5 and 15.2 %, 27.6 and 29.2 %. Memory: about 385 bytes per
     /// cell, 100 MiB at 64^3, 800 MiB at 128^3 (default: 64).
     int cacheResolution = 64;
     /// Photons each render() adds while the cache refines, 1..2^24 (default: 65536).
