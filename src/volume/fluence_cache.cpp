@@ -176,7 +176,8 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_denoisedSlope = gl::Texture::create3D(GL_RGBA32F, cells, "fluence-cache filtered direct-light slope");
         for (const gl::Texture* t : {&m_fluence, &m_fluxRed, &m_fluxGreen, &m_fluxBlue, &m_secondMoment})
             t->setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
-        for (const gl::Texture* t : {&m_onceMoments, &m_onceTimesDirect}) t->setFilter(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST);
+        for (const gl::Texture* t : {&m_onceMoments, &m_onceTimesDirect})
+            t->setFilter(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST);  // texelFetch'd, at one level each
         m_directSlope.setFilter(GL_LINEAR, GL_LINEAR);
         m_cells = cells;
     }
@@ -381,7 +382,8 @@ std::optional<int> FluenceCache::denoise(float level) {
     // kLeastSigma a neighbour's weight is under 2 %: the filter would change nothing.
     if (std::exp2(level) - 1.0f < kLeastSigma) return std::nullopt;
     // Where that is wider than the window, the filter pools a coarser level's cells: their
-    // weighted sums are the same estimate pooled (docs/multiple-scattering.md, "Finer cells").
+    // weighted sums are the same estimate pooled (docs/multiple-scattering.md, "Coarser cells
+    // pooled where the window cannot reach").
     const float widestInWindow = std::log2(1.0f + kWidestSigma);
     const int gridLevel = std::clamp(static_cast<int>(std::ceil(level - widestInWindow)), 0, m_levels - 1);
     const float sigma = std::exp2(level - static_cast<float>(gridLevel)) - 1.0f;

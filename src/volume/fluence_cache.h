@@ -172,7 +172,7 @@ private:
     gl::Texture m_secondMoment;  // the mean channel's traceless xx - 1/3, yy - 1/3, xy, xz
     // The finest cells' slope against the direct light (rgb) and its mean (single level), and
     // the moments it is solved from (the filter pools them, fluence_denoise.comp; their mipmaps
-    // are made by denoise where it runs on a coarser level).
+    // are made by denoise where it pools a coarser level).
     gl::Texture m_directSlope;
     gl::Texture m_onceMoments, m_onceTimesDirect;
     gl::Texture m_denoised, m_denoisedSlope;  // the finest cells' fluence and slope, filtered (fluence_denoise.comp)
