@@ -31,6 +31,7 @@
 #include <vector>
 
 using namespace sss;
+using sss::test::channelSums;
 using sss::test::meanRatio;
 using sss::test::orbitCamera;
 
@@ -178,16 +179,6 @@ TEST_CASE("the cache's measured second angular band makes g 0.5 as accurate as g
     CHECK(std::abs(multiplePart[1] - multiplePart[0]) < 0.02);
     gl.requireNoErrors();
 }
-
-namespace {
-// Each channel's sum over the image.
-glm::dvec3 channelSums(const Image& image) {
-    glm::dvec3 sum(0.0);
-    for (int y = 0; y < image.height(); ++y)
-        for (int x = 0; x < image.width(); ++x) sum += glm::dvec3(glm::vec3(image.at(x, y)));
-    return sum;
-}
-}  // namespace
 
 TEST_CASE("each channel's light is scattered towards the eye along that channel's own flow",
           "[gl][volume][scattering-cache]") {

@@ -6,6 +6,8 @@
 #include <sss/transfer_function.h>
 #include <sss/volume.h>
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -49,16 +51,18 @@ inline TransferFunction brightCubeTransferFunction() {
     return TransferFunction({{0.0f, glm::vec3(0.9f), 0.3f}, {1.0f, glm::vec3(0.9f), 0.3f}});
 }
 
+/// Each channel's sum over `image` (rgb).
+inline glm::dvec3 channelSums(const Image& image) {
+    glm::dvec3 sum(0.0);
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) sum += glm::dvec3(glm::vec3(image.at(x, y)));
+    return sum;
+}
+
 /// Sum of `test`'s rgb over the sum of `reference`'s.
 inline double meanRatio(const Image& test, const Image& reference) {
-    double a = 0.0, b = 0.0;
-    for (int y = 0; y < test.height(); ++y)
-        for (int x = 0; x < test.width(); ++x)
-            for (int c = 0; c < 3; ++c) {
-                a += test.at(x, y)[c];
-                b += reference.at(x, y)[c];
-            }
-    return a / b;
+    const glm::dvec3 a = channelSums(test), b = channelSums(reference);
+    return (a.x + a.y + a.z) / (b.x + b.y + b.z);
 }
 
 /// 32^3 uint8: a block (x in [4, 12), y and z in [6, 26)) of 200 and, when `wall`, a wall
