@@ -28,6 +28,8 @@
 //   DIAGONAL_GRADIENT_METRIC 0|1: gradientMetric is diagonal (the model transform neither shears
 //                            nor scales unequally along turned axes): |M g|^2 is three products
 // Both 0 is emission-absorption; both 1 is scattering with gradient specular highlights.
+// (The first lines of the program: an #extension must come before any code.)
+#extension GL_ARB_shader_group_vote : enable
 #include "common/camera.glsl"
 #include "common/lights.glsl"
 #include "common/blinn_phong.glsl"
@@ -535,44 +537,212 @@ int lastStepIn(ivec3 brick, float tFirst) {
 }
 #endif
 
-#if SHADING_SCATTERING && !PREINTEGRATED
+#if SHADING_SCATTERING
 // Scattering shades a sample at several times the cost of taking it (the light volume and the
-// light carried back through the data), and llvmpipe shades in every loop pass whether or not a
-// lane's sample is visible. So an inner loop takes each ray to its next visible sample, and the
-// outer loop shades only those (measured on llvmpipe: the bonsai's fixed frame 18 % faster).
-// Pre-integrated scattering nests its own loop the same way (castRay). Gradient frames, whose
-// shading costs little, were slower nested (benchmarks/README.md, Table 5.4).
-#define VISIBLE_SAMPLE_LOOP 1
+// light carried back through the data), and SIMD hardware shades a group of rays together, in
+// every loop pass where one of them shades (llvmpipe even where none does). So the rays march
+// and shade apart: each queues the samples it must light, and the group shades in rounds, each
+// ray its oldest queued sample. Between rounds every ray marches on until every ray of the group
+// holds a sample (GL_ARB_shader_group_vote), its queue filling meanwhile, so no ray idles in the
+// march while another looks for its next sample. The queue only reorders the work: each ray
+// lights and composites the same samples in the same order, so the image is the same.
+// Measured on llvmpipe (benchmarks/README.md, "Queued shading").
+#define QUEUED_SHADING 1
 #else
-#define VISIBLE_SAMPLE_LOOP 0
+#define QUEUED_SHADING 0
 #endif
 
-#if VISIBLE_SAMPLE_LOOP
-// Sample i's classification, or i = maxSteps and transparent where the ray ends before a
-// visible one; i starts at the first sample to look at.
-vec4 nextVisibleSample(inout int i, float tFirst, vec2 span, vec3 tcOrigin, vec3 tcDirection) {
-    for (; i < maxSteps; ++i) {
-        float t = tFirst + float(i) * stepLength;
-        if (t >= span.y) break;
-        vec3 tc = tcOrigin + t * tcDirection;
-#if EMPTY_SPACE_SKIPPING
-        ivec3 brick = brickAt(tc);
-        if (texelFetch(occupancy, brick, 0).r == 0.0) {
-            i = max(i, lastStepIn(brick, tFirst));  // the loop adds one
-            continue;
-        }
+#if QUEUED_SHADING
+const int kQueuedSamples = 4;  // 8 measured the same
+
+// Whether every ray of this SIMD group still in the loop holds `condition`; without the vote,
+// this ray's own (each ray then stops marching at its first sample to light).
+#ifdef GL_ARB_shader_group_vote
+#define EVERY_RAY(condition) allInvocationsARB(condition)
+#else
+#define EVERY_RAY(condition) (condition)
 #endif
-        vec4 sampled = sampleVolume(tc);
-        vec4 tf = classifyStep(sampled.w);
-        if (tf.a > 0.0) {
+
+// A sample waiting to be lit: at t along the ray, the light it adds weighted by the ray's
+// transmittance when it was taken.
+struct QueuedSample {
+    vec4 colour;  // the TF's colour and opacity; pre-integrated: the segment's, premultiplied
+    float t;
+    float transmittance;
+#if PREINTEGRATED
+    float depth;     // the segment's (Segment)
+    bool opensNext;  // its light is the next segment's front (passLightOn)
+#endif
 #if COMBINED_FETCH
-            shadedDifferences = sampled.xyz;
+    vec3 differences;  // the gradient where it is shaded
 #endif
-            return tf;
-        }
+};
+
+struct SampleQueue {
+    QueuedSample samples[kQueuedSamples];  // newest first
+    int count;
+};
+
+void enqueue(inout SampleQueue queue, QueuedSample s) {
+    for (int k = kQueuedSamples - 1; k > 0; --k) queue.samples[k] = queue.samples[k - 1];
+    queue.samples[0] = s;
+    ++queue.count;
+}
+
+// Constant indices only: an array indexed by a variable lives in memory on llvmpipe (gathers and
+// scatters at every step), one indexed by constants in registers.
+QueuedSample dequeueOldest(inout SampleQueue queue) {
+    --queue.count;
+    QueuedSample oldest = queue.samples[0];
+    for (int k = 1; k < kQueuedSamples; ++k)
+        if (queue.count == k) oldest = queue.samples[k];
+    return oldest;
+}
+
+// The ray's march: its next step index, its opacity so far, and whether it still marches (not
+// past its end, not terminated early).
+struct RayMarch {
+    int i;
+    float alpha;
+    bool marching;
+#if PREINTEGRATED
+    vec4 ahead;              // the next sample taken, one step early
+    Segment aheadSegment;    // the segment that ends there
+    bool frontLit;           // the light at the last sample marched is the next segment's front
+    bool reachedEnd;         // the march left the ray at its end (not by early termination)
+    float tEnd;              // where: the first sample position at or past span.y
+#if COMBINED_FETCH
+    vec3 previousDifferences;  // the gradient at the last sample marched
+#endif
+#endif
+};
+
+void addToOpacity(inout RayMarch m, float a) {
+    m.alpha += (1.0 - m.alpha) * a;
+    if (m.alpha >= earlyTermination) m.marching = false;
+}
+
+#if PREINTEGRATED
+// One step of the march: the segment ending at sample i is queued if it, or the segment after
+// it, holds medium (its light is then either one's end). The next sample is taken one step
+// early, past empty bricks: one fetch and one classification per sample.
+void marchOneStep(inout RayMarch m, inout SampleQueue queue, Ray ray, float tFirst, vec2 span, vec3 tcOrigin,
+                  vec3 tcDirection) {
+    float t = tFirst + float(m.i) * stepLength;
+    if (m.i >= maxSteps || t >= span.y) {
+        m.reachedEnd = m.i < maxSteps;
+        m.tEnd = t;
+        m.marching = false;
+        return;
     }
-    i = maxSteps;
-    return vec4(0.0);
+    float value = m.ahead.w;
+    Segment segment = m.aheadSegment;
+#if COMBINED_FETCH
+    vec3 differences = mix(m.previousDifferences, m.ahead.xyz, segment.depth);
+    m.previousDifferences = m.ahead.xyz;
+#endif
+    // The next sample: one step on, or, where it and this one lie in empty bricks, the last
+    // sample of its brick (which opens the segment to the one after it).
+    int next = m.i + 1;
+    bool nextLands = false;
+#if EMPTY_SPACE_SKIPPING
+    bool emptyHere = inEmptyBrick(tcOrigin + t * tcDirection);
+    ivec3 nextBrick = brickAt(tcOrigin + (tFirst + float(next) * stepLength) * tcDirection);
+    if (emptyHere && texelFetch(occupancy, nextBrick, 0).r == 0.0) {
+        next = max(next, lastStepIn(nextBrick, tFirst));
+        nextLands = true;
+    }
+#endif
+    m.ahead = sampleVolume(tcOrigin + min(tFirst + float(next) * stepLength, span.y) * tcDirection);
+    // A landing sample's segment starts at itself (the skipped ones were clear).
+    m.aheadSegment = classifySegment(nextLands ? m.ahead.w : value, m.ahead.w);
+    m.i = next;
+    bool lightHere = segment.premultiplied.a > 0.0 || (!nextLands && m.aheadSegment.premultiplied.a > 0.0);
+    m.frontLit = lightHere && !nextLands;
+    if (!lightHere) return;
+#if COMBINED_FETCH
+    enqueue(queue, QueuedSample(segment.premultiplied, t, 1.0 - m.alpha, segment.depth, !nextLands, differences));
+#else
+    enqueue(queue, QueuedSample(segment.premultiplied, t, 1.0 - m.alpha, segment.depth, !nextLands));
+#endif
+    addToOpacity(m, segment.premultiplied.a);
+}
+
+// Lights and removes the oldest queued sample: its light as the end of its segment (and the
+// front of the next), and the light its segment adds.
+vec3 shadeOldest(inout SampleQueue queue, Ray ray, vec3 tcOrigin, vec3 tcDirection) {
+    QueuedSample s = dequeueOldest(queue);
+    vec3 end = ray.origin + s.t * ray.direction;
+    evaluateLightAt(end);
+    vec3 added = vec3(0.0);
+    float a = s.colour.a;
+    if (a > 0.0) {
+        segmentOpticalDepth = -log(max(1.0 - a, 1e-7));
+#if COMBINED_FETCH
+        shadedDifferences = s.differences;
+#endif
+        // Shaded where the segment adds its light (compositeSegment).
+        vec3 p = end - (1.0 - s.depth) * stepLength * ray.direction;
+        added = s.transmittance * a * shade(p, toTexture(p), s.colour.rgb / a);
+    }
+    passLightOn(s.opensNext);
+    return added;
+}
+#else
+// One step of the march, queueing the sample if it is visible.
+void marchOneStep(inout RayMarch m, inout SampleQueue queue, Ray ray, float tFirst, vec2 span, vec3 tcOrigin,
+                  vec3 tcDirection) {
+    float t = tFirst + float(m.i) * stepLength;
+    vec3 tc = tcOrigin + t * tcDirection;
+    if (m.i >= maxSteps || t >= span.y) {
+        m.marching = false;
+        return;
+    }
+#if EMPTY_SPACE_SKIPPING
+    ivec3 brick = brickAt(tc);
+    if (texelFetch(occupancy, brick, 0).r == 0.0) {
+        m.i = max(m.i, lastStepIn(brick, tFirst)) + 1;
+        return;
+    }
+#endif
+    vec4 sampled = sampleVolume(tc);
+    vec4 tf = classifyStep(sampled.w);
+    ++m.i;
+    if (!(tf.a > 0.0)) return;
+#if COMBINED_FETCH
+    enqueue(queue, QueuedSample(tf, t, 1.0 - m.alpha, sampled.xyz));
+#else
+    enqueue(queue, QueuedSample(tf, t, 1.0 - m.alpha));
+#endif
+    addToOpacity(m, tf.a);
+}
+
+// Shades and removes the oldest queued sample: the light it adds.
+vec3 shadeOldest(inout SampleQueue queue, Ray ray, vec3 tcOrigin, vec3 tcDirection) {
+    QueuedSample s = dequeueOldest(queue);
+#if COMBINED_FETCH
+    shadedDifferences = s.differences;
+#endif
+    return s.transmittance * s.colour.a *
+           shade(ray.origin + s.t * ray.direction, tcOrigin + s.t * tcDirection, s.colour.rgb);
+}
+#endif
+
+// Rounds: march until every ray of the group holds a queued sample (or its queue is full, or its
+// march has ended), then light each ray's oldest. At most one round per sample.
+vec3 marchAndShade(inout RayMarch march, Ray ray, float tFirst, vec2 span, vec3 tcOrigin, vec3 tcDirection) {
+    SampleQueue queue;
+    queue.count = 0;
+    vec3 color = vec3(0.0);
+    for (int round = 0; round < maxSteps; ++round) {
+        do {
+            if (march.marching && queue.count < kQueuedSamples)
+                marchOneStep(march, queue, ray, tFirst, span, tcOrigin, tcDirection);
+        } while (march.marching && queue.count < kQueuedSamples && !EVERY_RAY(queue.count > 0));
+        if (queue.count == 0) break;
+        color += shadeOldest(queue, ray, tcOrigin, tcDirection);
+    }
+    return color;
 }
 #endif
 
@@ -691,67 +861,28 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #endif
         // Sample i sits at tFirst + i * step: computed from i, not accumulated, so a skip lands
         // on exactly the positions the unskipped loop would reach.
-#if VISIBLE_SAMPLE_LOOP
-        for (int i = firstStep;; ++i) {
-            vec4 tf = nextVisibleSample(i, tFirst, span, tcOrigin, tcDirection);
-            if (i >= maxSteps) break;
-            float t = tFirst + float(i) * stepLength;
-            composite(ray.origin + t * ray.direction, tcOrigin + t * tcDirection, tf.rgb, tf.a, color, alpha);
-            if (alpha >= earlyTermination) break;
-        }
-#elif PREINTEGRATED && SHADING_SCATTERING
-        // Each pass takes the next sample (and its segment) one step early, past empty bricks:
-        // one fetch and one classification per sample. (Taken where the sample is used, after
-        // the skip, llvmpipe paid a second fetch and classification at every sample.) The inner
-        // loop takes each ray to its next sample next to a segment that holds medium; the outer
-        // one lights and composites only those (see VISIBLE_SAMPLE_LOOP).
-        for (int i = firstStep; i < maxSteps; ++i) {
-            bool lightHere = false;
-            Segment segment;
-            vec3 p = vec3(0.0);
-            int next = i + 1;
-            bool nextLands = false;
-            for (; i < maxSteps; ++i) {
-                float t = tFirst + float(i) * stepLength;
-                if (t >= span.y) {
-                    reachedEnd = true;
-                    tEnd = t;
-                    break;
-                }
-                p = ray.origin + t * ray.direction;
-                float value = ahead.w;
-                segment = aheadSegment;
+#if QUEUED_SHADING && PREINTEGRATED
+        RayMarch march;
+        march.i = firstStep;
+        march.alpha = alpha;
+        march.marching = true;  // as the first segment: early termination is tested after a lit sample
+        march.ahead = ahead;
+        march.aheadSegment = aheadSegment;
+        march.frontLit = frontLit;
+        march.reachedEnd = false;
+        march.tEnd = 0.0;
 #if COMBINED_FETCH
-                shadedDifferences = mix(previousDifferences, ahead.xyz, segment.depth);
-                previousDifferences = ahead.xyz;
+        march.previousDifferences = previousDifferences;
 #endif
-                // The next sample: one step on, or, where it and this one lie in empty bricks,
-                // the last sample of its brick (which opens the segment to the one after it).
-                next = i + 1;
-                nextLands = false;
-#if EMPTY_SPACE_SKIPPING
-                bool emptyHere = inEmptyBrick(tcOrigin + t * tcDirection);
-                ivec3 nextBrick = brickAt(tcOrigin + (tFirst + float(next) * stepLength) * tcDirection);
-                if (emptyHere && texelFetch(occupancy, nextBrick, 0).r == 0.0) {
-                    next = max(next, lastStepIn(nextBrick, tFirst));
-                    nextLands = true;
-                }
-#endif
-                ahead = sampleVolume(tcOrigin + min(tFirst + float(next) * stepLength, span.y) * tcDirection);
-                // A landing sample's segment starts at itself (the skipped ones were clear).
-                aheadSegment = classifySegment(nextLands ? ahead.w : value, ahead.w);
-                lightHere = segment.premultiplied.a > 0.0 || (!nextLands && aheadSegment.premultiplied.a > 0.0);
-                if (lightHere) break;
-                passLightOn(false);  // this segment holds nothing to composite
-                i = next - 1;        // the loop adds one
-            }
-            if (!lightHere) break;
-            evaluateLightAt(p);
-            compositeSegment(segment, p, stepLength, ray.direction, color, alpha);
-            passLightOn(!nextLands);
-            i = next - 1;  // the loop adds one
-            if (alpha >= earlyTermination) break;
-        }
+        color += marchAndShade(march, ray, tFirst, span, tcOrigin, tcDirection);
+        alpha = march.alpha;
+        frontLit = march.frontLit;
+        reachedEnd = march.reachedEnd;
+        tEnd = march.tEnd;
+#elif QUEUED_SHADING
+        RayMarch march = RayMarch(firstStep, 0.0, true);
+        color += marchAndShade(march, ray, tFirst, span, tcOrigin, tcDirection);
+        alpha = march.alpha;
 #else
         for (int i = firstStep; i < maxSteps; ++i) {
             float t = tFirst + float(i) * stepLength;
