@@ -394,7 +394,7 @@ vec4 arrivingLight(int i, vec3 p, vec3 tc) {
 // neighbouring rays in step on SIMD hardware.
 vec4 frontLight[MAX_LIGHTS];
 vec4 backLight[MAX_LIGHTS];
-bool frontLit;              // frontLight holds the light at the current segment's start
+bool frontLit;              // frontLight holds the light at the current segment's start (the march's)
 float segmentOpticalDepth;  // the eye ray's across the current segment
 
 void evaluateLightAt(vec3 q) {
@@ -407,10 +407,9 @@ void evaluateFrontLightAt(vec3 q) {
     for (int i = 0; i < LIGHT_COUNT; ++i) frontLight[i] = arrivingLight(i, q, toTexture(q));
 }
 
-// After a sample: its light, if evaluated, is the next segment's front.
-void passLightOn(bool evaluated) {
+// After a sample: its light is the next segment's front.
+void passLightOn() {
     for (int i = 0; i < LIGHT_COUNT; ++i) frontLight[i] = backLight[i];
-    frontLit = evaluated;
 }
 
 float layerMean(float x) {
@@ -570,8 +569,7 @@ struct QueuedSample {
     float t;
     float transmittance;
 #if PREINTEGRATED
-    float depth;     // the segment's (Segment)
-    bool opensNext;  // its light is the next segment's front (passLightOn)
+    float depth;  // the segment's (Segment)
 #endif
 #if COMBINED_FETCH
     vec3 differences;  // the gradient where it is shaded
@@ -667,9 +665,9 @@ void marchOneStep(inout RayMarch m, inout SampleQueue queue, Ray ray, float tFir
     m.frontLit = lightHere && !nextLands;
     if (!lightHere) return;
 #if COMBINED_FETCH
-    enqueue(queue, QueuedSample(segment.premultiplied, t, 1.0 - m.alpha, segment.depth, !nextLands, differences));
+    enqueue(queue, QueuedSample(segment.premultiplied, t, 1.0 - m.alpha, segment.depth, differences));
 #else
-    enqueue(queue, QueuedSample(segment.premultiplied, t, 1.0 - m.alpha, segment.depth, !nextLands));
+    enqueue(queue, QueuedSample(segment.premultiplied, t, 1.0 - m.alpha, segment.depth));
 #endif
     addToOpacity(m, segment.premultiplied.a);
 }
@@ -691,7 +689,7 @@ vec3 shadeOldest(inout SampleQueue queue, Ray ray, vec3 tcOrigin, vec3 tcDirecti
         vec3 p = end - (1.0 - s.depth) * stepLength * ray.direction;
         added = s.transmittance * a * shade(p, toTexture(p), s.colour.rgb / a);
     }
-    passLightOn(s.opensNext);
+    passLightOn();
     return added;
 }
 #else
@@ -853,7 +851,8 @@ vec4 castRay(vec2 fragCoord, vec2 ndc) {
 #endif
         compositeSegment(first, firstPoint, firstEnd - span.x, ray.direction, color, alpha);
 #if SHADING_SCATTERING
-        passLightOn(firstLit);
+        passLightOn();
+        frontLit = firstLit;
 #endif
 #if !SHADING_SCATTERING
         bool segmentOpen = true;
