@@ -44,7 +44,9 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "volume/clip.glsl"
 #include "volume/empty_neighbourhood.glsl"
 
-#if GRID_COLOUR || LAST
+// The levels hold l alone, as does the light volume without the chromaticity (sampled as
+// (1, 1, 1, l): LightVolumePass).
+#if GRID_COLOUR || (LAST && CHROMATICITY)
 layout(rgba16f) uniform writeonly image3D nextLevel;
 #else
 layout(r16f) uniform writeonly image3D nextLevel;
@@ -157,10 +159,8 @@ uniform sampler3D colourGrid;  // the colour grid's last level
 #endif
 
 void store(ivec3 voxel, vec4 light) {
-#if LAST
-#if CHROMATICITY
+#if LAST && CHROMATICITY
     light.rgb = texture(colourGrid, textureCoordinate(boxMin + (vec3(voxel) + 0.5) * voxelSize)).rgb;
-#endif
     imageStore(nextLevel, voxel, light);
 #else
     imageStore(nextLevel, voxel, texelValue(light));

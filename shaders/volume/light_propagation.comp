@@ -78,11 +78,18 @@ layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2DArray previousSlices;
 uniform vec2 slicesTextureSize;  // SLAB 0
 layout(rgba16f) uniform writeonly image2DArray currentSlices;
-layout(rgba16f) uniform writeonly image3D lightVolume;    // (c, l) arriving at each voxel
-layout(rgba16f) uniform writeonly image3D blendedVolume;  // the same from the blended sweep
+// (c, l) arriving at each voxel; without the chromaticity l alone, which LightVolumePass's
+// R16F volume returns as (1, 1, 1, l) when sampled.
+#if CHROMATICITY
+#define LIGHT_VOLUME_FORMAT rgba16f
+#else
+#define LIGHT_VOLUME_FORMAT r16f
+#endif
+layout(LIGHT_VOLUME_FORMAT) uniform writeonly image3D lightVolume;
+layout(LIGHT_VOLUME_FORMAT) uniform writeonly image3D blendedVolume;  // the same from the blended sweep
 // The same from a sweep along x, at (y, z, x): its slices' stores run along this volume's rows
 // (light_volume_blend.comp puts them in place).
-layout(rgba16f) uniform writeonly image3D rowOrderedVolume;
+layout(LIGHT_VOLUME_FORMAT) uniform writeonly image3D rowOrderedVolume;
 uniform vec4 outsideLight;  // the light entering from outside the volume
 
 // Each sweep's frame against the data axes (set on the CPU, so no voxel permutes axes):
@@ -335,6 +342,9 @@ vec4 propagateVoxel(ivec2 uv, VoxelLight ray, vec4 centre, bool store) {
             if (b != axis) owns = owns && (inVoxels[axis] > inVoxels[b] || (inVoxels[axis] == inVoxels[b] && axis < b));
         if (!owns) return light;
     }
+#if !CHROMATICITY
+    arriving = vec4(arriving.a);  // the one channel holds l
+#endif
     if (rowOrdered[sweep] != 0)
         imageStore(rowOrderedVolume, voxel.yzx, arriving);
     else if (blended[sweep] != 0)

@@ -4,9 +4,19 @@
 // rowOrderedVolume, read from there (the same half floats).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-layout(rgba16f) uniform image3D lightVolume;
-layout(rgba16f) uniform readonly image3D blendedVolume;
-layout(rgba16f) uniform readonly image3D rowOrderedVolume;
+// Without the chromaticity the volumes hold l alone (light_propagation.comp), and imageLoad
+// returns (l, 0, 0, 1): the mix below keeps l in the first channel.
+#ifndef CHROMATICITY
+#define CHROMATICITY 1
+#endif
+#if CHROMATICITY
+#define LIGHT_VOLUME_FORMAT rgba16f
+#else
+#define LIGHT_VOLUME_FORMAT r16f
+#endif
+layout(LIGHT_VOLUME_FORMAT) uniform image3D lightVolume;
+layout(LIGHT_VOLUME_FORMAT) uniform readonly image3D blendedVolume;
+layout(LIGHT_VOLUME_FORMAT) uniform readonly image3D rowOrderedVolume;
 uniform ivec3 dims;
 uniform int mainRowOrdered;     // 1: the main sweep's light is in rowOrderedVolume
 uniform int blendedRowOrdered;  // 1: the blended sweep's light is

@@ -316,6 +316,16 @@ float reachShare(int i, vec3 tc, LightReach full, vec3 worldPosition) {
     return clamp(share, 0.0, 1.0);
 }
 
+#if PHYSICAL_MODEL && !PREINTEGRATED
+// The transfer function's opacity alone (its table's alpha, R32F): all the grey light reads of it,
+// and a quarter of the channels to filter.
+uniform sampler2D transferFunctionOpacity;
+
+float classifyOpacity(float value) {
+    return texture(transferFunctionOpacity, vec2(transferFunctionCoordinate(value, transferFunctionEntries), 0.5)).r;
+}
+#endif
+
 // `light` ((c, l) at tc + reach) carried back to tc through the data, in pieces about a voxel
 // long. The physical model's light is grey (it reads l alone): there the pieces' transmittances
 // multiply, and one power corrects their product for the pieces' length instead of one per piece.
@@ -353,10 +363,11 @@ vec4 carriedBack(vec4 light, vec3 tc, vec3 reach, float reachVoxels) {
 #else
     for (int k = pieces - 1; k >= 0; --k) {
         vec3 tcK = tc + reach * ((float(k) + 0.5) / float(pieces));
-        vec4 medium = lightSeesMedium(tcK) ? classify(volumeValue(tcK)) : vec4(0.0);
 #if PHYSICAL_MODEL
-        transmitted *= 1.0 - min(medium.a, 1.0);
+        float opacity = lightSeesMedium(tcK) ? classifyOpacity(volumeValue(tcK)) : 0.0;
+        transmitted *= 1.0 - min(opacity, 1.0);
 #else
+        vec4 medium = lightSeesMedium(tcK) ? classify(volumeValue(tcK)) : vec4(0.0);
         float a = correctOpacity(medium.a, pieceSteps, 1.0);
         light = vec4((1.0 - a) * light.rgb + a * medium.rgb, (1.0 - a) * light.a);
 #endif

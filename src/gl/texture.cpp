@@ -150,4 +150,9 @@ void Texture::setBorderColor(glm::vec4 color) const {
     glTextureParameterfv(id(), GL_TEXTURE_BORDER_COLOR, &color[0]);
 }
 
+void Texture::setSwizzle(GLint r, GLint g, GLint b, GLint a) const {
+    const GLint swizzle[4] = {r, g, b, a};
+    glTextureParameteriv(id(), GL_TEXTURE_SWIZZLE_RGBA, swizzle);
+}
+
 }  // namespace sss::gl

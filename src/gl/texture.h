@@ -35,6 +35,8 @@ public:
     void setWrap(GLenum wrap) const;
     /// Colour returned outside the texture with GL_CLAMP_TO_BORDER.
     void setBorderColor(glm::vec4 color) const;
+    /// What sampling returns per channel (GL_RED .. GL_ALPHA, GL_ZERO, GL_ONE); images ignore it.
+    void setSwizzle(GLint r, GLint g, GLint b, GLint a) const;
     void bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
     /// Binds a mip level (all layers) as image `unit` for imageLoad/imageStore.
     void bindImage(GLuint unit, GLenum access, int level = 0) const {

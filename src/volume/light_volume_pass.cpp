@@ -297,8 +297,14 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
                             const LightVolumeSettings& settings, gl::Texture& output, glm::vec4 outside) {
     const GpuVolume& volume = medium.volume;
     const glm::ivec3 dims = lightVolumeDims(volume.dims, settings.resolutionScale);
-    if (!output || output.size() != dims) {
-        output = gl::Texture::create3D(GL_RGBA16F, dims, m_eyePass ? "eye-pass volume" : "light volume");
+    // The eye pass carries colour whatever the settings say.
+    const bool chromaticity = settings.chromaticity || m_eyePass;
+    const GLenum format = chromaticity ? GL_RGBA16F : GL_R16F;
+    if (!output || output.size() != dims || output.internalFormat() != format) {
+        output = gl::Texture::create3D(format, dims, m_eyePass ? "eye-pass volume" : "light volume");
+        // Without the chromaticity the volume keeps l alone, a quarter of the memory and of the
+        // texels a sample filters; every reader still samples (c, l), with c white.
+        if (!chromaticity) output.setSwizzle(GL_ONE, GL_ONE, GL_ONE, GL_RED);
     }
     // The light in the volume's model space, where the propagation works. The volume holds what
     // the medium lets through from the light's position; a spot light's cone scales the light
@@ -320,8 +326,6 @@ void LightVolumePass::sweep(const LightVolumeMedium& medium, const Light& worldL
         sweeps[0].weight = 1.0f;
     }
     const ChromaticityCone cone = chromaticityCone(settings.anisotropy);
-    // The eye pass carries colour whatever the settings say.
-    const bool chromaticity = settings.chromaticity || m_eyePass;
     const glm::vec3 voxelSize = volume.box.size() / glm::vec3(dims);
     const LookupGeometry lookups{light, volume.box.min + 0.5f * voxelSize, volume.box.max - 0.5f * voxelSize,
                                  chromaticity ? cone.tangent : 0.0f};
@@ -461,9 +465,10 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
     // one light volume per light.
     gl::Texture blended, rowOrdered;
     if (blendedSweep >= 0 && blendedSweep != layout.rowOrderedSweep)
-        blended = gl::Texture::create3D(GL_RGBA16F, dims, "blended light sweep");
+        blended = gl::Texture::create3D(output.internalFormat(), dims, "blended light sweep");
     if (layout.rowOrderedSweep >= 0)
-        rowOrdered = gl::Texture::create3D(GL_RGBA16F, glm::ivec3(dims.y, dims.z, dims.x), "row-ordered light sweep");
+        rowOrdered =
+            gl::Texture::create3D(output.internalFormat(), glm::ivec3(dims.y, dims.z, dims.x), "row-ordered light sweep");
     p.set("previousSlices", 2);
     p.set("currentSlices", 1);
     p.set("blendedVolume", 2);  // image units
@@ -499,9 +504,12 @@ void LightVolumePass::propagate(const gl::Program& p, const SweepLayout& layout,
 
 void LightVolumePass::assemble(const SweepLayout& layout, const gl::Texture& blended, const gl::Texture& rowOrdered,
                                const gl::Texture& output) {
-    if (!m_assembleProgram)
-        m_assembleProgram = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_volume_blend.comp"}});
-    const gl::Program& p = *m_assembleProgram;
+    const bool chromaticity = output.internalFormat() == GL_RGBA16F;
+    std::optional<gl::Program>& linked = m_assemblePrograms[chromaticity ? 1 : 0];
+    if (!linked)
+        linked = gl::Program::link({{GL_COMPUTE_SHADER, "volume/light_volume_blend.comp"}},
+                                   ShaderDefines{{"CHROMATICITY", flag(chromaticity)}});
+    const gl::Program& p = *linked;
     const glm::ivec3 dims = output.size();
     const bool mainRowOrdered = layout.rowOrderedSweep == 0;
     const bool blendedRowOrdered = layout.blendedSweep >= 0 && layout.rowOrderedSweep == layout.blendedSweep;

@@ -1,8 +1,10 @@
 #pragma once
 // The light volume of Ropinski et al. 2010: per light, an RGBA16F 3D texture holding the
 // chromaticity c (rgb) and intensity l (a) of the light arriving at each point, propagated slice
-// by slice from the light (shaders/volume/light_propagation.comp). View-independent: it is
-// rebuilt only when the volume, transfer function, light, model transform or options change.
+// by slice from the light (shaders/volume/light_propagation.comp). Without the chromaticity
+// (the physical model) it holds l alone in R16F, swizzled so that sampling it still returns
+// (1, 1, 1, l). View-independent: it is rebuilt only when the volume, transfer function, light,
+// model transform or options change.
 //
 // Ray doubling (LightPropagation::Doubling, shaders/volume/light_doubling.comp) instead joins
 // ray segments towards the light that double in length per dispatch.
@@ -177,7 +179,7 @@ private:
     /// The propagation program for this pass and `variant`, linked on first use.
     const gl::Program& program(const PropagationVariant& variant);
     std::map<PropagationVariant, gl::Program> m_programs;
-    std::optional<gl::Program> m_assembleProgram;
+    std::array<std::optional<gl::Program>, 2> m_assemblePrograms;  // without, with the chromaticity
     std::map<DoublingVariant, gl::Program> m_doublingPrograms;
     bool m_eyePass = false;
     bool m_softwareDevice = false;  // the device's choice of maxSlicesPerDispatch

@@ -286,6 +286,10 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         p.set("stepTransferFunctionEntries", static_cast<float>(in.stepTransferFunction->size().x));
         in.stepTransferFunction->bind(units::kStepTransferFunction);
     }
+    if (in.transferFunctionOpacity) {
+        p.set("transferFunctionOpacity", units::kTransferFunctionOpacity);
+        in.transferFunctionOpacity->bind(units::kTransferFunctionOpacity);
+    }
 }
 
 }  // namespace sss::detail

@@ -70,6 +70,9 @@ struct RayCastInputs {
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)
+    /// The TF's opacity alone (R32F, as transferFunction's entries): a quarter of the texels'
+    /// channels to filter where the physical model carries light back through the data.
+    const gl::Texture* transferFunctionOpacity = nullptr;
     const glm::mat4& model;
     const std::vector<Light>& lights;
     const VolumeRenderOptions& options;

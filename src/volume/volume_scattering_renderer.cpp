@@ -115,6 +115,7 @@ struct VolumeScatteringRenderer::Impl {
     VolumeRenderOptions options;
     TransferFunction transferFunction;
     gl::Texture transferFunctionTable;
+    gl::Texture transferFunctionOpacity;  // its opacities alone (RayCastInputs)
     std::vector<Light> lights{DirectionalLight{}};
     glm::mat4 model{1.0f};
     VolumeClip clip;
@@ -455,6 +456,13 @@ struct VolumeScatteringRenderer::Impl {
             transferFunctionTable = gl::Texture::create2D(GL_RGBA32F, static_cast<int>(table.size()), 1, "transfer function");
         }
         transferFunctionTable.upload(GL_RGBA, GL_FLOAT, table.data());
+        std::vector<float> opacities(table.size());
+        std::transform(table.begin(), table.end(), opacities.begin(), [](const glm::vec4& entry) { return entry.a; });
+        if (!transferFunctionOpacity || transferFunctionOpacity.size().x != static_cast<int>(table.size())) {
+            transferFunctionOpacity =
+                gl::Texture::create2D(GL_R32F, static_cast<int>(table.size()), 1, "transfer function opacity");
+        }
+        transferFunctionOpacity.upload(GL_RED, GL_FLOAT, opacities.data());
         if (occupancy) occupancy->update(table, volume->valueScaleOffset, options.reconstruction);
         updatePreintegration();
     }
@@ -591,6 +599,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,
+                    .transferFunctionOpacity = &r.transferFunctionOpacity,
                     .model = r.model,
                     .lights = r.lights,
                     .options = r.options,
