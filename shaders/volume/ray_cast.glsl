@@ -179,9 +179,13 @@ struct Segment {
     float depth;  // where the segment adds its light on average, as a fraction from its front
 };
 
-Segment classifySegment(float front, float back) {
+vec2 preintegrationCoordinate(float front, float back) {
     vec2 x = clamp(vec2(front, back) * valueScaleOffset.x + valueScaleOffset.y, 0.0, 1.0);
-    vec2 uv = (x * (preintegrationSize - 1.0) + 0.5) / preintegrationSize;
+    return (x * (preintegrationSize - 1.0) + 0.5) / preintegrationSize;
+}
+
+Segment classifySegment(float front, float back) {
+    vec2 uv = preintegrationCoordinate(front, back);
     vec4 c = texture(preintegrationTable, vec3(uv, 0.0));
     float depth = texture(preintegrationTable, vec3(uv, 1.0)).r;
     return Segment(c, c.a > 0.0 ? clamp(depth / c.a, 0.0, 1.0) : 0.5);
@@ -316,14 +320,17 @@ float reachShare(int i, vec3 tc, LightReach full, vec3 worldPosition) {
     return clamp(share, 0.0, 1.0);
 }
 
-#if PHYSICAL_MODEL && !PREINTEGRATED
-// The transfer function's opacity alone (its table's alpha, R32F): all the grey light reads of it,
-// and a quarter of the channels to filter.
-uniform sampler2D transferFunctionOpacity;
-
+#if PHYSICAL_MODEL
+// The classification's opacity alone (RayCastInputs::opacityTable): all the grey light reads of
+// it, with a quarter of the channels to filter.
+uniform sampler2D opacityTable;
+#if PREINTEGRATED
+float segmentOpacity(float front, float back) { return texture(opacityTable, preintegrationCoordinate(front, back)).r; }
+#else
 float classifyOpacity(float value) {
-    return texture(transferFunctionOpacity, vec2(transferFunctionCoordinate(value, transferFunctionEntries), 0.5)).r;
+    return texture(opacityTable, vec2(transferFunctionCoordinate(value, transferFunctionEntries), 0.5)).r;
 }
+#endif
 #endif
 
 // `light` ((c, l) at tc + reach) carried back to tc through the data, in pieces about a voxel
@@ -347,13 +354,14 @@ vec4 carriedBack(vec4 light, vec3 tc, vec3 reach, float reachVoxels) {
     float far = volumeValue(tc + reach);
     for (int k = pieces - 1; k >= 0; --k) {
         float near = volumeValue(tc + reach * (float(k) / float(pieces)));
+        bool seen = lightSeesMedium(tc + reach * ((float(k) + 0.5) / float(pieces)));
+#if PHYSICAL_MODEL
+        transmitted *= seen ? 1.0 - min(segmentOpacity(far, near), 1.0) : 1.0;
+        far = near;
+#else
         Segment piece = classifySegment(far, near);
         far = near;
         float a = piece.premultiplied.a;
-        bool seen = lightSeesMedium(tc + reach * ((float(k) + 0.5) / float(pieces)));
-#if PHYSICAL_MODEL
-        transmitted *= seen ? 1.0 - min(a, 1.0) : 1.0;
-#else
         if (a <= 0.0 || !seen) continue;
         vec3 colour = piece.premultiplied.rgb / a;
         a = correctOpacity(a, pieceSteps, 1.0);

@@ -40,9 +40,9 @@ inline constexpr int kCacheTowardsViewer = 17;
 inline constexpr int kCacheTowardsViewerSlope = 18;
 inline constexpr int kCacheTowardsViewerCap = 19;
 inline constexpr int kCacheSources = 17;  // 17..22 (FluenceCache::bindSources)
-// The transfer function's opacity alone, which the physical model's light carried back through
-// the data reads (post-classified rays).
-inline constexpr int kTransferFunctionOpacity = 23;
+// The classification's opacity alone, which the physical model's light carried back through the
+// data reads (RayCastInputs::opacityTable).
+inline constexpr int kOpacityTable = 23;
 
 // Light-volume propagation (shaders/volume/light_propagation.comp).
 inline constexpr int kLitColour = 4;

@@ -286,9 +286,9 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
         p.set("stepTransferFunctionEntries", static_cast<float>(in.stepTransferFunction->size().x));
         in.stepTransferFunction->bind(units::kStepTransferFunction);
     }
-    if (in.transferFunctionOpacity) {
-        p.set("transferFunctionOpacity", units::kTransferFunctionOpacity);
-        in.transferFunctionOpacity->bind(units::kTransferFunctionOpacity);
+    if (in.opacityTable) {
+        p.set("opacityTable", units::kOpacityTable);
+        in.opacityTable->bind(units::kOpacityTable);
     }
 }
 

@@ -70,9 +70,10 @@ struct RayCastInputs {
     const gl::Texture* gradientVolume = nullptr;   ///< gradient modes: precomputed gradients, if any
     const gl::Texture* preintegration = nullptr;   ///< the pre-integrated table, if options.preintegration
     const gl::Texture* stepTransferFunction = nullptr;  ///< else the TF corrected for the step (step_classification.h)
-    /// The TF's opacity alone (R32F, as transferFunction's entries): a quarter of the texels'
-    /// channels to filter where the physical model carries light back through the data.
-    const gl::Texture* transferFunctionOpacity = nullptr;
+    /// The opacity alone of the table that classifies: the TF's entries (R32F), or pre-integrated
+    /// the table's layer 0 (R16F, preintegration.h). Where the physical model carries light back
+    /// through the data it reads nothing else of them, with a quarter of the channels to filter.
+    const gl::Texture* opacityTable = nullptr;
     const glm::mat4& model;
     const std::vector<Light>& lights;
     const VolumeRenderOptions& options;

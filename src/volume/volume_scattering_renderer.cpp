@@ -169,6 +169,7 @@ struct VolumeScatteringRenderer::Impl {
     }
     // Pre-integrated classification: the table and the key it was built for.
     gl::Texture preintegrationTable;
+    gl::Texture preintegratedOpacity;  // its layer 0's opacity alone (RayCastInputs::opacityTable)
     std::optional<StepTableKey> preintegrationKey;
 
     // Built with the data and transfer function (and when the step changes), not at the first
@@ -181,11 +182,13 @@ struct VolumeScatteringRenderer::Impl {
         preintegrationKey = key;
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         const int size = detail::preintegrationSize(options.transferFunctionEntries);
-        preintegrationTable = {};  // free the old table before allocating its successor
+        preintegrationTable = {};  // free the old tables before allocating their successors
+        preintegratedOpacity = {};
         try {
-            preintegrationTable = detail::uploadPreintegration(
-                detail::preintegrate(transferFunction.table(options.transferFunctionEntries), size, options.stepSize),
-                size);
+            const std::vector<glm::vec4> table =
+                detail::preintegrate(transferFunction.table(options.transferFunctionEntries), size, options.stepSize);
+            preintegrationTable = detail::uploadPreintegration(table, size);
+            preintegratedOpacity = detail::uploadPreintegratedOpacity(table, size);
         } catch (const Error& e) {
             if (e.kind() != ErrorKind::GpuLimit) throw;
             log(LogLevel::Warning, std::string(e.what()) + "; each sample is classified alone instead (no pre-integration)");
@@ -599,7 +602,7 @@ void VolumeScatteringRenderer::render(const Camera& camera, RenderTarget& target
                     .gradientVolume = gradients ? &*r.gradientVolume : nullptr,
                     .preintegration = preintegrated ? &r.preintegrationTable : nullptr,
                     .stepTransferFunction = preintegrated ? nullptr : &r.stepTransferFunction,
-                    .transferFunctionOpacity = &r.transferFunctionOpacity,
+                    .opacityTable = preintegrated ? &r.preintegratedOpacity : &r.transferFunctionOpacity,
                     .model = r.model,
                     .lights = r.lights,
                     .options = r.options,
