@@ -326,10 +326,6 @@ float reachShare(int i, vec3 tc, LightReach full, vec3 worldPosition) {
 uniform sampler2D opacityTable;
 #if PREINTEGRATED
 float segmentOpacity(float front, float back) { return texture(opacityTable, preintegrationCoordinate(front, back)).r; }
-#else
-float classifyOpacity(float value) {
-    return texture(opacityTable, vec2(transferFunctionCoordinate(value, transferFunctionEntries), 0.5)).r;
-}
 #endif
 #endif
 
@@ -372,7 +368,7 @@ vec4 carriedBack(vec4 light, vec3 tc, vec3 reach, float reachVoxels) {
     for (int k = pieces - 1; k >= 0; --k) {
         vec3 tcK = tc + reach * ((float(k) + 0.5) / float(pieces));
 #if PHYSICAL_MODEL
-        float opacity = lightSeesMedium(tcK) ? classifyOpacity(volumeValue(tcK)) : 0.0;
+        float opacity = lightSeesMedium(tcK) ? classifyOpacity(opacityTable, volumeValue(tcK)) : 0.0;
         transmitted *= 1.0 - min(opacity, 1.0);
 #else
         vec4 medium = lightSeesMedium(tcK) ? classify(volumeValue(tcK)) : vec4(0.0);

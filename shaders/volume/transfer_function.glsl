@@ -20,6 +20,12 @@ vec4 classify(float value) {
     return texture(transferFunction, vec2(transferFunctionCoordinate(value, transferFunctionEntries), 0.5));
 }
 
+// The opacity alone, from a one-channel copy of the table's alpha (R32F): where the light reads
+// nothing else of the transfer function, a quarter of the channels to filter, the same values.
+float classifyOpacity(sampler2D opacities, float value) {
+    return texture(opacities, vec2(transferFunctionCoordinate(value, transferFunctionEntries), 0.5)).r;
+}
+
 // Opacity of a path `pathLength` long when the TF's opacity is defined per `referenceLength`.
 float correctOpacity(float alpha, float pathLength, float referenceLength) {
     return 1.0 - pow(1.0 - min(alpha, 1.0), pathLength / referenceLength);
