@@ -191,6 +191,8 @@ struct VolumeScatteringRenderer::Impl {
             preintegratedOpacity = detail::uploadPreintegratedOpacity(table, size);
         } catch (const Error& e) {
             if (e.kind() != ErrorKind::GpuLimit) throw;
+            preintegrationTable = {};  // both tables or neither
+            preintegratedOpacity = {};
             log(LogLevel::Warning, std::string(e.what()) + "; each sample is classified alone instead (no pre-integration)");
             return;
         }

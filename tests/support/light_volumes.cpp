@@ -60,9 +60,18 @@ LightVolumeReadback propagate(const Volume& volume, const TransferFunction& tf, 
               .clip = clip},
              light, glm::mat4(1.0f), settings, output);
     if (layout) *layout = pass.lastLayout();
-    LightVolumeReadback r{output.size(), std::vector<glm::vec4>(static_cast<size_t>(output.size().x * output.size().y * output.size().z))};
-    glGetTextureImage(output.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(r.texels.size() * sizeof(glm::vec4)),
-                      r.texels.data());
+    const size_t count = static_cast<size_t>(output.size().x * output.size().y * output.size().z);
+    LightVolumeReadback r{output.size(), std::vector<glm::vec4>(count)};
+    if (output.internalFormat() == GL_R16F) {
+        // The intensity alone, which sampling returns as (1, 1, 1, l) (the texture's swizzle;
+        // reading the image back ignores it).
+        std::vector<float> intensity(count);
+        glGetTextureImage(output.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(count * sizeof(float)), intensity.data());
+        for (size_t i = 0; i < count; ++i) r.texels[i] = glm::vec4(1.0f, 1.0f, 1.0f, intensity[i]);
+    } else {
+        glGetTextureImage(output.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(count * sizeof(glm::vec4)),
+                          r.texels.data());
+    }
     return r;
 }
 
