@@ -78,14 +78,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2DArray previousSlices;
 uniform vec2 slicesTextureSize;  // SLAB 0
 layout(rgba16f) uniform writeonly image2DArray currentSlices;
-// (c, l) arriving at each voxel; without the chromaticity l alone, which LightVolumePass's
-// R16F volume returns as (1, 1, 1, l) when sampled.
-#if CHROMATICITY
-#define LIGHT_VOLUME_FORMAT rgba16f
-#else
-#define LIGHT_VOLUME_FORMAT r16f
-#endif
-layout(LIGHT_VOLUME_FORMAT) uniform writeonly image3D lightVolume;
+#include "volume/light_volume_format.glsl"
+layout(LIGHT_VOLUME_FORMAT) uniform writeonly image3D lightVolume;  // (c, l) arriving at each voxel
 layout(LIGHT_VOLUME_FORMAT) uniform writeonly image3D blendedVolume;  // the same from the blended sweep
 // The same from a sweep along x, at (y, z, x): its slices' stores run along this volume's rows
 // (light_volume_blend.comp puts them in place).

@@ -9,11 +9,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #ifndef CHROMATICITY
 #define CHROMATICITY 1
 #endif
-#if CHROMATICITY
-#define LIGHT_VOLUME_FORMAT rgba16f
-#else
-#define LIGHT_VOLUME_FORMAT r16f
-#endif
+#include "volume/light_volume_format.glsl"
 layout(LIGHT_VOLUME_FORMAT) uniform image3D lightVolume;
 layout(LIGHT_VOLUME_FORMAT) uniform readonly image3D blendedVolume;
 layout(LIGHT_VOLUME_FORMAT) uniform readonly image3D rowOrderedVolume;

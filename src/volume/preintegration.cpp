@@ -69,14 +69,4 @@ gl::Texture uploadPreintegration(const std::vector<glm::vec4>& table, int size) 
     return texture;
 }
 
-gl::Texture uploadPreintegratedOpacity(const std::vector<glm::vec4>& table, int size) {
-    std::vector<float> opacities(static_cast<size_t>(size) * static_cast<size_t>(size));
-    std::transform(table.begin(), table.begin() + static_cast<std::ptrdiff_t>(opacities.size()), opacities.begin(),
-                   [](const glm::vec4& texel) { return texel.a; });
-    gl::Texture texture = gl::Texture::create2D(GL_R16F, size, size, "pre-integrated opacity");
-    texture.upload(GL_RED, GL_FLOAT, opacities.data());
-    texture.setFilter(GL_LINEAR, GL_LINEAR);
-    return texture;
-}
-
 }  // namespace sss::detail

@@ -41,7 +41,4 @@ double meanContributionDepth(double tau);
 /// The table as a two-layer RGBA16F array texture (half floats keep 3 digits at every magnitude), linearly filtered, clamped at the edges.
 gl::Texture uploadPreintegration(const std::vector<glm::vec4>& table, int size);
 
-/// Layer 0's opacity alone, as an R16F 2D texture filtered as uploadPreintegration's.
-gl::Texture uploadPreintegratedOpacity(const std::vector<glm::vec4>& table, int size);
-
 }  // namespace sss::detail

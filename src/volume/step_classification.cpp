@@ -38,4 +38,15 @@ gl::Texture uploadStepClassification(const std::vector<glm::vec4>& table) {
     return texture;
 }
 
+gl::Texture uploadOpacities(const std::vector<glm::vec4>& table, glm::ivec2 size, GLenum internalFormat,
+                            std::string_view label) {
+    std::vector<float> opacities(static_cast<size_t>(size.x) * static_cast<size_t>(size.y));
+    std::transform(table.begin(), table.begin() + static_cast<std::ptrdiff_t>(opacities.size()), opacities.begin(),
+                   [](const glm::vec4& texel) { return texel.a; });
+    gl::Texture texture = gl::Texture::create2D(internalFormat, size.x, size.y, label);
+    texture.upload(GL_RED, GL_FLOAT, opacities.data());
+    texture.setFilter(GL_LINEAR, GL_LINEAR);
+    return texture;
+}
+
 }  // namespace sss::detail

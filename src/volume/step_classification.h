@@ -10,7 +10,10 @@
 // 1.7e-2 without the finer grid (tests/gl/test_volume_renderer.cpp).
 #include "gl/texture.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
+
+#include <string_view>
 
 #include <vector>
 
@@ -29,5 +32,11 @@ std::vector<glm::vec4> stepClassification(const std::vector<glm::vec4>& transfer
 
 /// The table as a one-row RGBA32F texture, linearly filtered, clamped at the edges.
 gl::Texture uploadStepClassification(const std::vector<glm::vec4>& table);
+
+/// The opacities (alpha) of the first size.x x size.y texels of a classification table as a
+/// one-channel texture (R32F or R16F), linearly filtered, clamped at the edges: for readers of
+/// the opacity alone, a quarter of the channels to filter.
+gl::Texture uploadOpacities(const std::vector<glm::vec4>& table, glm::ivec2 size, GLenum internalFormat,
+                            std::string_view label);
 
 }  // namespace sss::detail

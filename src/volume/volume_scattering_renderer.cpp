@@ -187,12 +187,12 @@ struct VolumeScatteringRenderer::Impl {
         try {
             const std::vector<glm::vec4> table =
                 detail::preintegrate(transferFunction.table(options.transferFunctionEntries), size, options.stepSize);
-            preintegrationTable = detail::uploadPreintegration(table, size);
-            preintegratedOpacity = detail::uploadPreintegratedOpacity(table, size);
+            gl::Texture built = detail::uploadPreintegration(table, size);
+            // Layer 0's opacities; both tables or neither.
+            preintegratedOpacity = detail::uploadOpacities(table, glm::ivec2(size), GL_R16F, "pre-integrated opacity");
+            preintegrationTable = std::move(built);
         } catch (const Error& e) {
             if (e.kind() != ErrorKind::GpuLimit) throw;
-            preintegrationTable = {};  // both tables or neither
-            preintegratedOpacity = {};
             log(LogLevel::Warning, std::string(e.what()) + "; each sample is classified alone instead (no pre-integration)");
             return;
         }
@@ -461,13 +461,9 @@ struct VolumeScatteringRenderer::Impl {
             transferFunctionTable = gl::Texture::create2D(GL_RGBA32F, static_cast<int>(table.size()), 1, "transfer function");
         }
         transferFunctionTable.upload(GL_RGBA, GL_FLOAT, table.data());
-        std::vector<float> opacities(table.size());
-        std::transform(table.begin(), table.end(), opacities.begin(), [](const glm::vec4& entry) { return entry.a; });
-        if (!transferFunctionOpacity || transferFunctionOpacity.size().x != static_cast<int>(table.size())) {
-            transferFunctionOpacity =
-                gl::Texture::create2D(GL_R32F, static_cast<int>(table.size()), 1, "transfer function opacity");
-        }
-        transferFunctionOpacity.upload(GL_RED, GL_FLOAT, opacities.data());
+        transferFunctionOpacity = {};  // free the old table before allocating its successor
+        transferFunctionOpacity = detail::uploadOpacities(table, glm::ivec2(static_cast<int>(table.size()), 1), GL_R32F,
+                                                          "transfer function opacity");
         if (occupancy) occupancy->update(table, volume->valueScaleOffset, options.reconstruction);
         updatePreintegration();
     }
