@@ -14,7 +14,6 @@
 #include <glm/vec4.hpp>
 
 #include <string_view>
-
 #include <vector>
 
 namespace sss::detail {
