@@ -51,7 +51,6 @@ uniform int lightShadowLayer[MAX_LIGHTS];    // the renderer's index of each lig
 const int kRouletteStartBounce = 3;  // as the path tracer
 const uint kMaxStepsPerPhoton = 1u << 24;
 const int kWalkStepsPerEvent = 16;
-const int kSlotsPerCell = 23;
 
 // std430: 80 bytes.
 struct PhotonState {
@@ -66,7 +65,8 @@ layout(std430, binding = 1) buffer Status {
     uint unfinished;
     uint abandoned;
 } status;
-layout(std430, binding = 2) buffer Sums { uint sums[]; };
+#define SUMS_WRITABLE
+#include "volume/fluence_sums.glsl"
 
 const int kStageDone = 0;
 const int kStageTrack = 1;
@@ -83,13 +83,13 @@ uint photonSteps;
 
 // Adds `quanta` (either sign) to a slot's 64-bit two's-complement sum: rounded stochastically
 // (unbiased), the low word added atomically, and its carry with the high word.
-void addFixed(uint slot, float quanta) {
+void addFixed(SumsSlot slot, float quanta) {
     int v = int(floor(quanta + uniform01()));
     if (v == 0) return;
     uint low = uint(v);
-    uint old = atomicAdd(sums[2u * slot], low);
+    uint old = sumsAdd(slot, 0u, low);
     uint high = (v < 0 ? 0xffffffffu : 0u) + (old + low < old ? 1u : 0u);  // sign extension + carry
-    if (high != 0u) atomicAdd(sums[2u * slot + 1u], high);
+    if (high != 0u) sumsAdd(slot, 1u, high);
 }
 
 // The last deposit's voxel, its sigma_t and its direct light (negative: not read yet). Successive
@@ -111,28 +111,28 @@ void deposit(vec3 p) {
     float weight = lastVoxelExtinction / majorant;
     if (!(weight > 0.0)) return;
     ivec3 c = clamp(ivec3(tc * vec3(cacheCells)), ivec3(0), cacheCells - 1);
-    uint base = uint((c.z * cacheCells.y + c.y) * cacheCells.x + c.x) * uint(kSlotsPerCell);
+    SumsSlot base = sumsOfCell(uint((c.z * cacheCells.y + c.y) * cacheCells.x + c.x));
     vec3 q = throughput * (weight * depositScale);
     for (int channel = 0; channel < 3; ++channel) {
-        addFixed(base + uint(channel), q[channel]);
+        addFixed(nextSlot(base, uint(channel)), q[channel]);
         for (int axis = 0; axis < 3; ++axis)
-            addFixed(base + uint(3 + 3 * channel + axis), q[channel] * walkDirection[axis]);
+            addFixed(nextSlot(base, uint(3 + 3 * channel + axis)), q[channel] * walkDirection[axis]);
     }
     vec3 d = walkDirection;
     float mean = (q.r + q.g + q.b) / 3.0;
-    addFixed(base + 12u, mean * (d.x * d.x - 1.0 / 3.0));
-    addFixed(base + 13u, mean * (d.y * d.y - 1.0 / 3.0));
-    addFixed(base + 14u, mean * d.x * d.y);
-    addFixed(base + 15u, mean * d.x * d.z);
-    addFixed(base + 16u, mean * d.y * d.z);
+    addFixed(nextSlot(base, 12u), mean * (d.x * d.x - 1.0 / 3.0));
+    addFixed(nextSlot(base, 13u), mean * (d.y * d.y - 1.0 / 3.0));
+    addFixed(nextSlot(base, 14u), mean * d.x * d.y);
+    addFixed(nextSlot(base, 15u), mean * d.x * d.z);
+    addFixed(nextSlot(base, 16u), mean * d.y * d.z);
     if (bounce == 1) {
         // Light scattered once, and the same times the direct light at the voxel's centre (the
         // density pass's moments take E there too).
         if (lastVoxelDirect < 0.0) lastVoxelDirect = directLightAtVoxel(voxel, dims);
         float direct = lastVoxelDirect;
         for (int channel = 0; channel < 3; ++channel) {
-            addFixed(base + uint(17 + channel), q[channel]);
-            addFixed(base + uint(20 + channel), q[channel] * direct);
+            addFixed(nextSlot(base, uint(17 + channel)), q[channel]);
+            addFixed(nextSlot(base, uint(20 + channel)), q[channel] * direct);
         }
     }
 }

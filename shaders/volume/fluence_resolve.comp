@@ -11,7 +11,7 @@
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
-layout(std430, binding = 2) readonly buffer Sums { uint sums[]; };
+#include "volume/fluence_sums.glsl"
 layout(std430, binding = 3) readonly buffer Weights { float cellWeight[]; };  // fluence_density.comp
 layout(rgba32f, binding = 0) uniform writeonly image3D fluence;
 layout(rgba32f, binding = 1) uniform writeonly image3D fluxRed;    // and the second moment's yz
@@ -30,33 +30,37 @@ uniform ivec3 cacheCells;
 uniform float sumsToFluence;  // power per photon / (photons x quanta per unit)
 uniform float cellVolume;     // model units^3
 
-const uint kSlotsPerCell = 23u;
-
 // A slot's 64-bit two's-complement sum.
-float slotValue(uint slot) { return float(int(sums[2u * slot + 1u])) * 4294967296.0 + float(sums[2u * slot]); }
+SumsSlot base;  // the cell's first slot
 
-vec3 slotVector(uint slot) { return vec3(slotValue(slot), slotValue(slot + 1u), slotValue(slot + 2u)); }
+// Slot base + k's 64-bit two's-complement sum.
+float slotValue(uint k) {
+    SumsSlot s = nextSlot(base, k);
+    return float(int(sumsWord(s, 1u))) * 4294967296.0 + float(sumsWord(s, 0u));
+}
+
+vec3 slotVector(uint k) { return vec3(slotValue(k), slotValue(k + 1u), slotValue(k + 2u)); }
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(c, cacheCells))) return;
     uint cellIndex = uint((c.z * cacheCells.y + c.y) * cacheCells.x + c.x);
-    uint base = cellIndex * kSlotsPerCell;
+    base = sumsOfCell(cellIndex);
     // The weighted mean fluence is the photons' sum over the cell's weight; times the mean weight,
     // the weight cancels.
     float scale = sumsToFluence / cellVolume;
-    vec3 phi = slotVector(base) * scale;
-    vec3 red = slotVector(base + 3u) * scale, green = slotVector(base + 6u) * scale, blue = slotVector(base + 9u) * scale;
+    vec3 phi = slotVector(0u) * scale;
+    vec3 red = slotVector(3u) * scale, green = slotVector(6u) * scale, blue = slotVector(9u) * scale;
     float w = cellWeight[cellIndex] / cellVolume;
     imageStore(fluence, c, vec4(phi, w));
-    vec4 moment = vec4(slotValue(base + 12u), slotValue(base + 13u), slotValue(base + 14u), slotValue(base + 15u)) * scale;
-    imageStore(fluxRed, c, vec4(red, slotValue(base + 16u) * scale));
+    vec4 moment = vec4(slotValue(12u), slotValue(13u), slotValue(14u), slotValue(15u)) * scale;
+    imageStore(fluxRed, c, vec4(red, slotValue(16u) * scale));
     imageStore(fluxGreen, c, vec4(green, w * cellDirect[cellIndex].z));
     imageStore(fluxBlue, c, vec4(blue, 0.0));
     imageStore(secondMoment, c, moment);
     vec2 moments = cellDirect[cellIndex].xy / cellVolume;  // w E, w E^2 (cell means)
-    vec4 once = vec4(slotVector(base + 17u) * scale, moments.x);
-    vec4 onceTimesE = vec4(slotVector(base + 20u) * scale, moments.y);
+    vec4 once = vec4(slotVector(17u) * scale, moments.x);
+    vec4 onceTimesE = vec4(slotVector(20u) * scale, moments.y);
     imageStore(onceMoments, c, once);
     imageStore(onceTimesDirect, c, onceTimesE);
     imageStore(cellSlope, c, vec4(w * directSlope(w, once, onceTimesE), once.a));

@@ -1,5 +1,6 @@
 #pragma once
 // What the current context's GL device is, for choices made per device.
+#include <cstdint>
 #include <string_view>
 
 namespace sss::gl {
@@ -10,5 +11,14 @@ bool isSoftwareRendererName(std::string_view renderer);
 
 /// isSoftwareRendererName of the current context's GL_RENDERER.
 bool currentDeviceIsSoftware();
+
+/// GL_MAX_SHADER_STORAGE_BLOCK_SIZE of the current context: the most bytes a shader may reach
+/// through one storage-buffer binding (llvmpipe: 128 MiB; past 2 GiB its offsets wrap), or what
+/// setStorageBlockLimitForTesting set.
+std::int64_t storageBlockLimit();
+
+/// Makes storageBlockLimit() return `bytes` (0: the context's value again), so that tests can
+/// reach the paths that split a buffer over several bindings with small data.
+void setStorageBlockLimitForTesting(std::int64_t bytes);
 
 }  // namespace sss::gl

@@ -4,6 +4,7 @@
 #include "gl/device.h"
 #include "lighting/light_uniforms.h"
 #include "lighting/texture_units.h"
+#include "sss/error.h"
 #include "sss/log.h"
 #include "volume/clip_uniforms.h"
 
@@ -24,7 +25,12 @@
 namespace sss::detail {
 
 namespace {
-constexpr int kSlotsPerCell = 23;            // fluence_photons.comp
+constexpr int kSlotsPerCell = 23;            // volume/fluence_sums.glsl
+constexpr std::int64_t kSlotBytes = 8;       // 64-bit fixed point
+// Storage-buffer bindings the sums may be split over (volume/fluence_sums.glsl: 2, 5, 6, 7).
+constexpr int kMaxSumsParts = 4;
+constexpr GLuint kSumsBindings[kMaxSumsParts] = {2, 5, 6, 7};
+constexpr std::int64_t kDirectMomentBytes = 16;  // per cell, m_directMoments
 constexpr std::size_t kPhotonStateBytes = 80;
 constexpr int kMaxPhotonSlots = 1 << 15;     // photons in flight at once (2.5 MiB of state)
 constexpr int kStepsPerDispatch = 1024;      // as the path tracer: under llvmpipe's loop limit
@@ -114,18 +120,32 @@ std::vector<Emitter> emittersOf(const FluenceCacheInputs& in, glm::vec3 centre, 
 }
 }  // namespace
 
-glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution) {
+std::int64_t fluenceCacheCellsPerPart(std::int64_t storageBlockBytes) {
+    // Whole groups of 32 cells: each part then starts 32 x 184 = 23 x 256 bytes after the last,
+    // a multiple of any GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT (at most 256).
+    constexpr std::int64_t kGroup = 32;
+    const std::int64_t wrapSafe = std::min<std::int64_t>(storageBlockBytes, std::int64_t{1} << 31);
+    return std::max<std::int64_t>(kGroup, wrapSafe / (kSlotsPerCell * kSlotBytes) / kGroup * kGroup);
+}
+
+std::int64_t maxFluenceCacheCells(std::int64_t storageBlockBytes) {
+    return std::min(kMaxSumsParts * fluenceCacheCellsPerPart(storageBlockBytes),
+                    std::min<std::int64_t>(storageBlockBytes, std::int64_t{1} << 31) / kDirectMomentBytes);
+}
+
+glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution, std::int64_t maxCells) {
     const float longest = std::max({boxSize.x, boxSize.y, boxSize.z});
-    glm::ivec3 cells;
-    for (int a = 0; a < 3; ++a)
-        cells[a] = std::clamp(static_cast<int>(std::lround(static_cast<float>(resolution) * boxSize[a] / longest)),
-                              (dims[a] + kMaxVoxelsPerCell - 1) / kMaxVoxelsPerCell, dims[a]);
-    return cells;
+    for (;; --resolution) {
+        glm::ivec3 cells;
+        for (int a = 0; a < 3; ++a)
+            cells[a] = std::clamp(static_cast<int>(std::lround(static_cast<float>(resolution) * boxSize[a] / longest)),
+                                  (dims[a] + kMaxVoxelsPerCell - 1) / kMaxVoxelsPerCell, dims[a]);
+        if (resolution <= 1 || std::int64_t{cells.x} * cells.y * cells.z <= maxCells) return cells;
+    }
 }
 
 FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     : m_reconstruction(reconstruction),
-      m_resolveProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_resolve.comp"}})),
       m_denoiseProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_denoise.comp"}})),
       m_finestProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_finest.comp"}})),
       m_viewProgram(gl::Program::link({{GL_COMPUTE_SHADER, "volume/fluence_view.comp"}})) {
@@ -139,7 +159,8 @@ ShaderDefines FluenceCache::defines() const {
             {"DIRECT_LIGHTS", std::to_string(m_variant.directLights)},
             {"MESH_SHADOWS", m_variant.meshShadows ? "1" : "0"},
             {"BRICK_VOXELS", std::to_string(kBrickVoxels)},
-            {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)}};
+            {"CUBIC_RECONSTRUCTION", cubicReconstructionDefine(m_reconstruction)},
+            {"SUMS_PARTS", std::to_string(m_variant.sumsParts)}};
 }
 
 const gl::Program& FluenceCache::photonProgram() {
@@ -150,13 +171,44 @@ const gl::Program& FluenceCache::densityProgram() {
     return gl::linkedOnce(m_densityPrograms, m_variant, "volume/fluence_density.comp", [&] { return defines(); });
 }
 
-FluenceCache::ProgramVariant FluenceCache::variantFor(const FluenceCacheInputs& in) {
-    return {directLightCount(in), castsMeshShadows(in.meshShadows, in.lights.size())};
+FluenceCache::ProgramVariant FluenceCache::variantFor(const FluenceCacheInputs& in) const {
+    return {directLightCount(in), castsMeshShadows(in.meshShadows, in.lights.size()), sumsParts()};
+}
+
+int FluenceCache::sumsParts() const {
+    const std::int64_t cells = std::int64_t{m_cells.x} * m_cells.y * m_cells.z;
+    return static_cast<int>(std::max<std::int64_t>(1, (cells + m_cellsPerPart - 1) / m_cellsPerPart));
+}
+
+const gl::Program& FluenceCache::resolveProgram() {
+    return gl::linkedOnce(m_resolvePrograms, sumsParts(), "volume/fluence_resolve.comp",
+                          [&] { return ShaderDefines{{"SUMS_PARTS", std::to_string(sumsParts())}}; });
+}
+
+void FluenceCache::bindSums() const {
+    const int parts = sumsParts();
+    const std::int64_t partBytes = m_cellsPerPart * kSlotsPerCell * kSlotBytes;
+    for (int k = 0; k < parts; ++k) {
+        const std::int64_t offset = k * partBytes;
+        const std::int64_t bytes = std::min<std::int64_t>(partBytes, static_cast<std::int64_t>(m_sums.size()) - offset);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kSumsBindings[k], m_sums.id(), static_cast<GLintptr>(offset),
+                          static_cast<GLsizeiptr>(bytes));
+    }
+}
+
+void FluenceCache::unbindSums() const {
+    for (int k = 0; k < sumsParts(); ++k) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSumsBindings[k], 0);
 }
 
 void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameDensityInputs) {
-    m_variant = variantFor(in);
     const std::size_t count = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
+    const std::int64_t blockLimit = gl::storageBlockLimit();
+    if (static_cast<std::int64_t>(count) > maxFluenceCacheCells(blockLimit))
+        throw Error(ErrorKind::GpuLimit, "multiple-scattering cache: " + std::to_string(count) +
+                                             " cells exceed the " + std::to_string(maxFluenceCacheCells(blockLimit)) +
+                                             " that GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" + std::to_string(blockLimit) +
+                                             " bytes) allows");
+    m_cellsPerPart = fluenceCacheCellsPerPart(blockLimit);
     if (cells != m_cells) {
         sameDensityInputs = false;
         m_sums = gl::Buffer::create(count * kSlotsPerCell * 2 * sizeof(std::uint32_t), nullptr, 0, "fluence-cache sums");
@@ -181,6 +233,7 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
         m_directSlope.setFilter(GL_LINEAR, GL_LINEAR);
         m_cells = cells;
     }
+    m_variant = variantFor(in);
     const std::uint32_t zero = 0;
     glClearNamedBufferData(m_sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -263,6 +316,7 @@ void FluenceCache::setUniforms(const FluenceCacheInputs& in) {
     p.set("phaseG", in.anisotropy);
     p.set("maxBounces", in.maxBounces);
     p.set("cacheCells", m_cells);
+    p.set("sumsCellsPerPart", static_cast<unsigned>(m_cellsPerPart));
     p.set("depositScale", kQuantaPerUnit);
     const glm::vec3 centre = box.center();
     const float radius = 0.5f * glm::length(box.size());
@@ -307,7 +361,7 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons, std::uint64_t 
     in.majorants.bind(2);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_photonStates.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_status.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_sums.id());
+    bindSums();
     p.use();
     if (m_powerUnit > 0.0f) dispatchPhotons(slots);
     m_photons += static_cast<std::uint64_t>(slots) * perSlot;
@@ -317,6 +371,7 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons, std::uint64_t 
     if (levels.shape > 0.0f || filteredOn) settle(levels.shape, filteredOn);
     glUseProgram(0);
     for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    unbindSums();
 }
 
 void FluenceCache::dispatchPhotons(int invocations) {
@@ -354,11 +409,12 @@ FluenceCache::PoolingLevels FluenceCache::poolingLevels(std::uint64_t budget) co
 }
 
 void FluenceCache::resolve() {
-    const gl::Program& p = m_resolveProgram;
+    const gl::Program& p = resolveProgram();
     p.set("cacheCells", m_cells);
+    p.set("sumsCellsPerPart", static_cast<unsigned>(m_cellsPerPart));
     p.set("sumsToFluence", m_photons > 0 ? m_powerUnit / (static_cast<float>(m_photons) * kQuantaPerUnit) : 0.0f);
     p.set("cellVolume", m_cellVolume);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_sums.id());
+    bindSums();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_directMoments.id());
     m_fluence.bindImage(0, GL_WRITE_ONLY);

@@ -66,8 +66,15 @@ glm::vec4 modelSpaceViewer(const Camera& camera, const glm::mat4& model);
 std::vector<float> directLightWeights(const std::vector<Light>& lights, const glm::mat4& model, const Bounds& box);
 
 /// Cells of the cache along each axis: `resolution` along the box's longest side, the others in
-/// proportion, at most one per voxel and at most 32 voxels wide.
-glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution);
+/// proportion, at most one per voxel and at most 32 voxels wide; the resolution lowered until
+/// they number at most `maxCells`.
+glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution, std::int64_t maxCells);
+
+/// Cells whose photon sums one storage-buffer binding of `storageBlockBytes` holds
+/// (gl::storageBlockLimit), and the most cells a cache can have: its sums split over at most four
+/// bindings, its other per-cell buffers in one (llvmpipe's 128 MiB: 2.9 million, about 143^3).
+std::int64_t fluenceCacheCellsPerPart(std::int64_t storageBlockBytes);
+std::int64_t maxFluenceCacheCells(std::int64_t storageBlockBytes);
 
 class FluenceCache {
 public:
@@ -115,9 +122,16 @@ private:
     struct ProgramVariant {
         int directLights = 0;
         bool meshShadows = false;
+        int sumsParts = 1;  // storage buffers the sums are split over (volume/fluence_sums.glsl)
         auto operator<=>(const ProgramVariant&) const = default;
     };
-    static ProgramVariant variantFor(const FluenceCacheInputs& in);
+    ProgramVariant variantFor(const FluenceCacheInputs& in) const;
+    /// Storage-buffer bindings the sums of m_cells take, m_cellsPerPart cells each, and their
+    /// binding (fluence_photons.comp and fluence_resolve.comp read them so).
+    int sumsParts() const;
+    void bindSums() const;
+    void unbindSums() const;
+    const gl::Program& resolveProgram();
     /// The photon and density programs for m_variant, linked on first use.
     const gl::Program& photonProgram();
     const gl::Program& densityProgram();
@@ -150,11 +164,12 @@ private:
     std::map<ProgramVariant, gl::Program> m_photonPrograms;
     std::map<ProgramVariant, gl::Program> m_densityPrograms;
     ProgramVariant m_variant;     // of the current inputs
-    gl::Program m_resolveProgram;
+    std::map<int, gl::Program> m_resolvePrograms;  // per sumsParts()
     gl::Program m_denoiseProgram;
     gl::Program m_finestProgram;
     gl::Program m_viewProgram;
     glm::ivec3 m_cells{0};
+    std::int64_t m_cellsPerPart = 1;  // fluenceCacheCellsPerPart of the device's storage-block limit
     gl::Buffer m_sums;            // 23 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
     gl::Buffer m_directMoments;   // per cell, the integrals of s E and s E^2, the largest E (fluence_density.comp)

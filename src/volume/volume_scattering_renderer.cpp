@@ -30,6 +30,7 @@
 #include <tuple>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -253,8 +254,31 @@ struct VolumeScatteringRenderer::Impl {
     // until it holds options.cachePhotons.
     std::optional<detail::FluenceCache> fluenceCache;
     std::optional<FluenceCacheKey> fluenceKey;
+    // The cache's cells at options.cacheResolution, fewer where its buffers would not fit the
+    // device's storage-buffer bindings (warned once per volume and resolution).
+    std::optional<std::pair<std::uint64_t, int>> cacheCellsWarned;
+    glm::ivec3 fluenceCacheCells() {
+        const std::int64_t blockLimit = gl::storageBlockLimit();
+        const glm::ivec3 cells = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution,
+                                                           detail::maxFluenceCacheCells(blockLimit));
+        const glm::ivec3 asked = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution,
+                                                           std::numeric_limits<std::int64_t>::max());
+        const auto warnKey = std::make_pair(volumeGeneration, options.cacheResolution);
+        const auto text = [](glm::ivec3 c) {
+            return std::to_string(c.x) + " x " + std::to_string(c.y) + " x " + std::to_string(c.z);
+        };
+        if (cells != asked && cacheCellsWarned != warnKey) {
+            log(LogLevel::Warning, "VolumeRenderOptions: cacheResolution " + std::to_string(options.cacheResolution) +
+                                       " needs " + text(asked) + " cells, more than the " +
+                                       std::to_string(detail::maxFluenceCacheCells(blockLimit)) +
+                                       " this device's storage buffers hold (GL_MAX_SHADER_STORAGE_BLOCK_SIZE " +
+                                       std::to_string(blockLimit) + " bytes); the cache uses " + text(cells));
+            cacheCellsWarned = warnKey;
+        }
+        return cells;
+    }
     void updateFluenceCache() {
-        const glm::ivec3 cells = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution);
+        const glm::ivec3 cells = fluenceCacheCells();
         FluenceCacheKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
                             model, options.anisotropy, options.maxBounces, clip, cells, options.reconstruction,
                             lightVolumeScaleInUse, detail::meshShadowRevision(meshShadows, lights.size())};
@@ -295,7 +319,7 @@ struct VolumeScatteringRenderer::Impl {
     // cache refines) and the target's pixels.
     bool cachePerSample(const RenderTarget& target) {
         if (!detail::usesScatteringCache(options)) return false;
-        const glm::dvec3 cells(detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution));
+        const glm::dvec3 cells(fluenceCacheCells());
         return detail::cacheEvaluatedPerSample(options.cacheViewEvaluation, softwareDevice(), cells.x * cells.y * cells.z,
                                                static_cast<double>(target.width()) * target.height());
     }

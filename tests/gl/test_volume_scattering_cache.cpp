@@ -8,6 +8,7 @@
 #include "support/scenes.h"
 
 #include "gl/device.h"
+#include "volume/fluence_cache.h"
 
 #include <catch2/catch.hpp>
 #include <sss/error.h>
@@ -21,6 +22,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -607,6 +609,54 @@ TEST_CASE("the multiple-scattering cache's sums do not depend on how photons are
     const Image whole = b.frame(blobsCamera());
     REQUIRE(a.renderer.cachedPhotons() == b.renderer.cachedPhotons());
     CHECK(computeErrorMetrics(split, whole).maxAbsError == 0.0);
+    gl.requireNoErrors();
+}
+
+// Restores the device's storage-block limit when a test ends, however it ends.
+struct StorageBlockLimit {
+    explicit StorageBlockLimit(std::int64_t bytes) { gl::setStorageBlockLimitForTesting(bytes); }
+    ~StorageBlockLimit() { gl::setStorageBlockLimitForTesting(0); }
+};
+
+constexpr std::int64_t kSumsBytesPerCell = 23 * 8;  // volume/fluence_sums.glsl
+
+TEST_CASE("the cache's sums split over several storage buffers give the same cache",
+          "[gl][volume][scattering-cache]") {
+    // Past GL_MAX_SHADER_STORAGE_BLOCK_SIZE one binding cannot reach all the sums (llvmpipe: 128
+    // MiB, about 90^3 cells; its offsets wrap past 2 GiB, as a 256^3 cache's did), so they are
+    // bound as up to four ranges of one buffer. 24^3 cells of 4096 per part: four parts.
+    test::GlTestScope gl;
+    const Image whole = Scene(cached(1 << 15, 24), blobs(), blobsTf()).frame(blobsCamera());
+    StorageBlockLimit limit(4096 * kSumsBytesPerCell);
+    REQUIRE(detail::fluenceCacheCellsPerPart(gl::storageBlockLimit()) == 4096);
+    Scene split(cached(1 << 15, 24), blobs(), blobsTf());
+    const Image parts = split.frame(blobsCamera());
+    CHECK(channelSums(whole).x > 0.0);
+    CHECK(computeErrorMetrics(parts, whole).maxAbsError == 0.0);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a cache whose sums exceed four storage buffers gets fewer cells and a warning",
+          "[gl][volume][scattering-cache][errors]") {
+    test::GlTestScope gl;
+    StorageBlockLimit limit(2048 * kSumsBytesPerCell);  // at most 4 x 2048 cells: 24^3 does not fit
+    std::vector<std::string> warnings;
+    setLogHandler([&](LogLevel level, std::string_view m) {
+        if (level == LogLevel::Warning) warnings.emplace_back(m);
+    });
+    Scene reduced(cached(1 << 15, 24), blobs(), blobsTf());
+    const Image first = reduced.frame(blobsCamera(30.0f));
+    reduced.frame(blobsCamera(40.0f));
+    setLogHandler({});
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0].find("cacheResolution 24") != std::string::npos);
+    CHECK(warnings[0].find("24 x 24 x 24") != std::string::npos);
+    CHECK(warnings[0].find("20 x 20 x 20") != std::string::npos);
+    CHECK(warnings[0].find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE") != std::string::npos);
+    // The fewer cells still light the blobs as 20 cells asked for directly.
+    gl::setStorageBlockLimitForTesting(0);
+    const Image asked = Scene(cached(1 << 15, 20), blobs(), blobsTf()).frame(blobsCamera(30.0f));
+    CHECK(computeErrorMetrics(first, asked).maxAbsError == 0.0);
     gl.requireNoErrors();
 }
 
