@@ -265,7 +265,10 @@ struct VolumeRenderOptions {
     /// one per voxel and at most 32 voxels wide, 1..1024. Measured once refined against the path
     /// tracer (relRMSE): bonsai 10.8 % at 64 and 8.6 % at 128, engine 21.4 % and 17.9 %; first
     /// frames after a light change 14.5 and 15.2 %, 27.6 and 29.2 %. Memory: about 385 bytes per
-    /// cell, 100 MiB at 64^3, 800 MiB at 128^3 (default: 64).
+    /// cell, 100 MiB at 64^3, 800 MiB at 128^3. The photon sums, 184 bytes per cell, take at
+    /// most four storage-buffer bindings of GL_MAX_SHADER_STORAGE_BLOCK_SIZE each: where more
+    /// cells are asked (llvmpipe: more than 142^3) the resolution is lowered, with a warning
+    /// (default: 64).
     int cacheResolution = 64;
     /// Photons each render() adds while the cache refines, 1..2^24 (default: 65536).
     int cachePhotonsPerFrame = 1 << 16;
