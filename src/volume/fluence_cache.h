@@ -72,7 +72,7 @@ glm::ivec3 fluenceCacheCells(glm::ivec3 dims, glm::vec3 boxSize, int resolution,
 
 /// Cells whose photon sums one storage-buffer binding of `storageBlockBytes` holds
 /// (gl::storageBlockLimit), and the most cells a cache can have: its sums split over at most four
-/// bindings, its other per-cell buffers in one (llvmpipe's 128 MiB: 2.9 million, about 143^3).
+/// bindings, its other per-cell buffers in one (llvmpipe's 128 MiB: 2.9 million, 142^3).
 std::int64_t fluenceCacheCellsPerPart(std::int64_t storageBlockBytes);
 std::int64_t maxFluenceCacheCells(std::int64_t storageBlockBytes);
 

@@ -257,8 +257,10 @@ struct VolumeScatteringRenderer::Impl {
     // The cache's cells at options.cacheResolution, fewer where its buffers would not fit the
     // device's storage-buffer bindings (warned once per volume and resolution).
     std::optional<std::pair<std::uint64_t, int>> cacheCellsWarned;
+    std::optional<std::int64_t> storageBlockBytes;  // asked of the context once
     glm::ivec3 fluenceCacheCells() {
-        const std::int64_t blockLimit = gl::storageBlockLimit();
+        if (!storageBlockBytes) storageBlockBytes = gl::storageBlockLimit();
+        const std::int64_t blockLimit = *storageBlockBytes;
         const glm::ivec3 cells = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution,
                                                            detail::maxFluenceCacheCells(blockLimit));
         const glm::ivec3 asked = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution,
