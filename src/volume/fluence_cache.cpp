@@ -152,6 +152,8 @@ FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     const std::uint32_t zero[2] = {0, 0};
     m_status = gl::Buffer::create(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "fluence-cache status");
     m_resumable = gl::currentDeviceIsSoftware();
+    m_storageBlockBytes = gl::storageBlockLimit();
+    m_cellsPerPart = fluenceCacheCellsPerPart(m_storageBlockBytes);
 }
 
 ShaderDefines FluenceCache::defines() const {
@@ -202,13 +204,11 @@ void FluenceCache::unbindSums() const {
 
 void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool sameDensityInputs) {
     const std::size_t count = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
-    const std::int64_t blockLimit = gl::storageBlockLimit();
-    if (static_cast<std::int64_t>(count) > maxFluenceCacheCells(blockLimit))
-        throw Error(ErrorKind::GpuLimit, "multiple-scattering cache: " + std::to_string(count) +
-                                             " cells exceed the " + std::to_string(maxFluenceCacheCells(blockLimit)) +
-                                             " that GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" + std::to_string(blockLimit) +
-                                             " bytes) allows");
-    m_cellsPerPart = fluenceCacheCellsPerPart(blockLimit);
+    if (static_cast<std::int64_t>(count) > maxFluenceCacheCells(m_storageBlockBytes))
+        throw Error(ErrorKind::GpuLimit, "multiple-scattering cache: " + std::to_string(count) + " cells exceed the " +
+                                             std::to_string(maxFluenceCacheCells(m_storageBlockBytes)) +
+                                             " that GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
+                                             std::to_string(m_storageBlockBytes) + " bytes) allows");
     if (cells != m_cells) {
         sameDensityInputs = false;
         m_sums = gl::Buffer::create(count * kSlotsPerCell * 2 * sizeof(std::uint32_t), nullptr, 0, "fluence-cache sums");

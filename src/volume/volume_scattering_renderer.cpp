@@ -260,21 +260,21 @@ struct VolumeScatteringRenderer::Impl {
     std::optional<std::int64_t> storageBlockBytes;  // asked of the context once
     glm::ivec3 fluenceCacheCells() {
         if (!storageBlockBytes) storageBlockBytes = gl::storageBlockLimit();
-        const std::int64_t blockLimit = *storageBlockBytes;
-        const glm::ivec3 cells = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution,
-                                                           detail::maxFluenceCacheCells(blockLimit));
         const glm::ivec3 asked = detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution,
                                                            std::numeric_limits<std::int64_t>::max());
+        const std::int64_t maxCells = detail::maxFluenceCacheCells(*storageBlockBytes);
+        if (std::int64_t{asked.x} * asked.y * asked.z <= maxCells) return asked;
+        const glm::ivec3 cells =
+            detail::fluenceCacheCells(volume->dims, volume->box.size(), options.cacheResolution, maxCells);
         const auto warnKey = std::make_pair(volumeGeneration, options.cacheResolution);
-        const auto text = [](glm::ivec3 c) {
-            return std::to_string(c.x) + " x " + std::to_string(c.y) + " x " + std::to_string(c.z);
-        };
-        if (cells != asked && cacheCellsWarned != warnKey) {
+        if (cacheCellsWarned != warnKey) {
+            const auto text = [](glm::ivec3 c) {
+                return std::to_string(c.x) + " x " + std::to_string(c.y) + " x " + std::to_string(c.z);
+            };
             log(LogLevel::Warning, "VolumeRenderOptions: cacheResolution " + std::to_string(options.cacheResolution) +
-                                       " needs " + text(asked) + " cells, more than the " +
-                                       std::to_string(detail::maxFluenceCacheCells(blockLimit)) +
+                                       " needs " + text(asked) + " cells, more than the " + std::to_string(maxCells) +
                                        " this device's storage buffers hold (GL_MAX_SHADER_STORAGE_BLOCK_SIZE " +
-                                       std::to_string(blockLimit) + " bytes); the cache uses " + text(cells));
+                                       std::to_string(*storageBlockBytes) + " bytes); the cache uses " + text(cells));
             cacheCellsWarned = warnKey;
         }
         return cells;
