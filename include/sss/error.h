@@ -13,7 +13,9 @@
 ///  - ErrorKind::GpuLimit: the scene does not fit the GPU: a texture larger than the
 ///    implementation allows (GL_MAX_3D_TEXTURE_SIZE, ...), more memory than the driver has free or
 ///    than the budget set with setGpuMemoryBudget() (include/sss/gpu_memory.h), or
-///    GL_OUT_OF_MEMORY. The message names the object, the size asked and the limit.
+///    GL_OUT_OF_MEMORY, or a buffer that shaders would reach through one storage-buffer binding
+///    larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE (a mesh of millions of vertices on a device
+///    that allows 128 MiB). The message names the object, the size asked and the limit.
 ///  - ErrorKind::Unsupported: this build of libsss leaves out what is asked, such as a file
 ///    format whose reader was not built (SSS_WITH_VTK=OFF, ...). The message names the format
 ///    and the build option.

@@ -3,6 +3,7 @@
 #include "gl/object.h"
 
 #include <cstddef>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -22,12 +23,17 @@ public:
     static Buffer create(std::size_t bytes, const void* data, GLbitfield flags, std::string_view label);
     void upload(std::size_t offset, std::size_t bytes, const void* data) const;
     std::size_t size() const { return m_size; }
+    /// Binds the whole buffer to a shader-storage binding point. Throws Error(GpuLimit) naming the
+    /// buffer where it is larger than one storage block may be (gl::storageBlockLimit()): a shader
+    /// would read and write past what the device promises, a wrong picture with no GL error.
+    void bindStorage(GLuint binding) const;
 
 private:
-    Buffer(GLuint id, std::size_t size, MemoryReservation memory)
-        : Object(id), m_size(size), m_memory(std::move(memory)) {}
+    Buffer(GLuint id, std::size_t size, MemoryReservation memory, std::string_view label)
+        : Object(id), m_size(size), m_memory(std::move(memory)), m_label(label) {}
     std::size_t m_size = 0;
     MemoryReservation m_memory;
+    std::string m_label;
 };
 
 }  // namespace sss::gl

@@ -59,8 +59,8 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     in.lightBuffer.normals().bind(units::kPassInputs + 3);
     setLightUniforms(p, in.lights);
     setSurfaceShadowUniforms(p, in.shadows, in.lights.size());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.vertexRadiosity.id());
-    if (vertexEffective) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.vertexEffective->id());
+    in.vertexRadiosity.bindStorage(0);
+    if (vertexEffective) in.vertexEffective->bindStorage(1);
     if (s.nearFieldCache) {
         s.nearFieldCache->bind(p, /*withRadiosity=*/s.material == nullptr);
         in.mesh.drawCornersOpaque(p);

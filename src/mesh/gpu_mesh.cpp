@@ -57,8 +57,8 @@ void GpuMesh::drawOpaque(const gl::Program& program) const {
 
 void GpuMesh::drawCornersOpaque(const gl::Program& program) const {
     setOpaqueState(program);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, vertices.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, indices.id());
+    vertices.bindStorage(2);
+    indices.bindStorage(3);
     noAttributes.bind();
     glDrawArrays(GL_TRIANGLES, 0, indexCount);
     glBindVertexArray(0);

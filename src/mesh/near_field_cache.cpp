@@ -94,12 +94,12 @@ void NearFieldCache::evaluate(const NearFieldCacheInputs& in) {
         m_rings = storage(rings.size() * sizeof(glm::vec4), rings.data(), "near field (rings)");
         m_ringTables = std::move(rings);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.mesh.vertices.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, in.mesh.indices.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_pointTriangles.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_triangles.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_values.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m_rings.id());
+    in.mesh.vertices.bindStorage(0);
+    in.mesh.indices.bindStorage(1);
+    m_pointTriangles.bindStorage(2);
+    m_triangles.bindStorage(3);
+    m_values.bindStorage(4);
+    m_rings.bindStorage(5);
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_pointCount + 63) / 64), 1, 1);
     // The combine reads the points as a buffer texture, addRadiosity as storage.
@@ -118,9 +118,9 @@ void NearFieldCache::addRadiosity(const GpuMesh& mesh, const gl::Buffer& vertexR
     const gl::Program& p = *m_radiosityProgram;
     p.set("pointCount", static_cast<int>(m_pointCount));
     p.set("texelsPerPoint", m_texelsPerPoint);
-    const GLuint buffers[] = {mesh.indices.id(), m_pointTriangles.id(), m_triangles.id(), vertexRadiosity.id(),
-                              m_values.id(),     m_withRadiosity.id()};
-    for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers[b]);
+    const gl::Buffer* buffers[] = {&mesh.indices, &m_pointTriangles, &m_triangles, &vertexRadiosity,
+                                   &m_values,     &m_withRadiosity};
+    for (GLuint b = 0; b < 6; ++b) buffers[b]->bindStorage(b);
     p.use();
     glDispatchCompute(static_cast<GLuint>((m_pointCount + 63) / 64), 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -132,7 +132,7 @@ void NearFieldCache::bind(const gl::Program& program, bool withRadiosity) const 
     program.set("nearFieldPoints", units::kNearFieldPoints);
     program.set("nearFieldTexelsPerPoint", m_texelsPerPoint);
     (withRadiosity ? m_withRadiosityView : m_valuesView).bind(units::kNearFieldPoints);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_triangles.id());
+    m_triangles.bindStorage(4);
 }
 
 }  // namespace sss::detail

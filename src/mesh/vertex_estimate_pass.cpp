@@ -44,10 +44,10 @@ void VertexEstimatePass::accumulate(const GpuMesh& mesh, const glm::mat4& model,
         program.set("vertexCount", static_cast<int>(m_vertexCount));
         program.set("model", model);
         program.set("normalMatrix", glm::mat3(glm::transpose(glm::inverse(model))));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mesh.vertices.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_sums.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_radiosity.id());
-        if (in.material) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_effective.id());
+        mesh.vertices.bindStorage(0);
+        m_sums.bindStorage(1);
+        m_radiosity.bindStorage(2);
+        if (in.material) m_effective.bindStorage(3);
         program.use();
         glDispatchCompute(static_cast<GLuint>((m_vertexCount + 63) / 64), 1, 1);
         // The combine pass reads the radiosity as vertex-shader storage.

@@ -72,8 +72,8 @@ void VertexRadiosityPass::run(const GpuMesh& mesh, const ScatteringCameras& came
     const auto groups = static_cast<GLuint>((m_vertexCount + 63) / 64);
     setMapLookupUniforms(m_resolve, cameras, maps, settings);
     m_resolve.set("vertexCount", static_cast<int>(m_vertexCount));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mesh.vertices.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_radiosity.id());
+    mesh.vertices.bindStorage(0);
+    m_radiosity.bindStorage(1);
     m_resolve.use();
     glDispatchCompute(groups, 1, 1);
     glUseProgram(0);
@@ -87,10 +87,10 @@ void VertexRadiosityPass::fill() {
     const auto groups = static_cast<GLuint>((m_vertexCount + 63) / 64);
     const std::uint32_t zero = 0;
     glClearNamedBufferData(m_filled.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_radiosity.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_neighbourStart.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_neighbours.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_filled.id());
+    m_radiosity.bindStorage(0);
+    m_neighbourStart.bindStorage(1);
+    m_neighbours.bindStorage(2);
+    m_filled.bindStorage(3);
     m_fill.set("vertexCount", static_cast<int>(m_vertexCount));
     m_fill.use();
     for (int round = 1; round <= kFillRounds; ++round) {

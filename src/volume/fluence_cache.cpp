@@ -258,8 +258,8 @@ void FluenceCache::computeWeights(const FluenceCacheInputs& in) {
     in.volume.texture.bind(0);
     in.transferFunction.bind(1);
     in.majorants.bind(2);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_directMoments.id());
+    m_weights.bindStorage(3);
+    m_directMoments.bindStorage(4);
     p.use();
     dispatchOverCells(m_cells);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -359,8 +359,8 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons, std::uint64_t 
     in.volume.texture.bind(0);
     in.transferFunction.bind(1);
     in.majorants.bind(2);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_photonStates.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_status.id());
+    m_photonStates.bindStorage(0);
+    m_status.bindStorage(1);
     bindSums();
     p.use();
     if (m_powerUnit > 0.0f) dispatchPhotons(slots);
@@ -415,8 +415,8 @@ void FluenceCache::resolve() {
     p.set("sumsToFluence", m_photons > 0 ? m_powerUnit / (static_cast<float>(m_photons) * kQuantaPerUnit) : 0.0f);
     p.set("cellVolume", m_cellVolume);
     bindSums();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_directMoments.id());
+    m_weights.bindStorage(3);
+    m_directMoments.bindStorage(4);
     m_fluence.bindImage(0, GL_WRITE_ONLY);
     m_fluxRed.bindImage(1, GL_WRITE_ONLY);
     m_fluxGreen.bindImage(2, GL_WRITE_ONLY);

@@ -163,8 +163,8 @@ void PathTracePass::accumulate(const PathTraceInputs& in, const gl::Texture& sum
     in.sceneDepth.bind(2);
     in.majorants.bind(3);
     sums.bindImage(0, GL_READ_WRITE);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_paths.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_status.id());
+    m_paths.bindStorage(0);
+    m_status.bindStorage(1);
     p.use();
     collectStatus();
     const std::uint32_t zero[2] = {0, 0};

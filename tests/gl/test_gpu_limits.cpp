@@ -10,11 +10,17 @@
 #include <sss/gpu_memory.h>
 #include <sss/image_compare.h>
 #include <sss/log.h>
+#include <sss/materials.h>
+#include <sss/mesh_scattering_renderer.h>
 #include <sss/procedural.h>
 #include <sss/render_target.h>
 #include <sss/volume_scattering_renderer.h>
 
+#include "gl/buffer.h"
+#include "gl/device.h"
 #include "gl/texture.h"
+
+#include <glm/mat4x4.hpp>
 
 #include <string>
 #include <vector>
@@ -28,6 +34,12 @@ namespace {
 struct BudgetScope {
     explicit BudgetScope(std::uint64_t bytes) { setGpuMemoryBudget(bytes); }
     ~BudgetScope() { setGpuMemoryBudget(0); }
+};
+
+// Restores the device's storage-block limit however the test ends.
+struct StorageBlockLimit {
+    explicit StorageBlockLimit(std::int64_t bytes) { gl::setStorageBlockLimitForTesting(bytes); }
+    ~StorageBlockLimit() { gl::setStorageBlockLimitForTesting(0); }
 };
 
 struct LogCapture {
@@ -179,5 +191,48 @@ TEST_CASE("a gradient volume that does not fit falls back to on-the-fly gradient
     REQUIRE(log.warnings.size() == 1u);
     CHECK_THAT(log.warnings[0], Contains("gradient volume") && Contains("computed on the fly"));
     CHECK(computeErrorMetrics(fallback, expected).relRmse == 0.0);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a buffer larger than one storage block is an error naming it, not a wrong picture", "[gl][limits]") {
+    // Past GL_MAX_SHADER_STORAGE_BLOCK_SIZE a shader's reads and writes through the binding are
+    // undefined (llvmpipe: 128 MiB, its offsets wrap past 2 GiB) and GL reports nothing.
+    test::GlTestScope gl;
+    const gl::Buffer buffer = gl::Buffer::create(8192, nullptr, 0, "test storage");
+    {
+        StorageBlockLimit limit(4096);
+        REQUIRE_SSS_ERROR(buffer.bindStorage(0), ErrorKind::GpuLimit,
+                          Contains("test storage") && Contains("8 kiB") && Contains("4 kiB") &&
+                              Contains("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"));
+    }
+    buffer.bindStorage(0);  // within the device's own limit
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    gl.requireNoErrors();
+}
+
+TEST_CASE("a mesh whose vertices do not fit one storage block fails to render with the limit named",
+          "[gl][limits][mesh]") {
+    test::GlTestScope gl;
+    const Mesh mesh = makeUvSphere(48, 32);  // about 1500 vertices of 32 bytes: 47 kiB
+    MeshRenderOptions options;
+    options.shading = MeshShading::Scattering;
+    options.combine = MeshCombine::VertexEstimate;
+    MeshScatteringRenderer renderer(options);
+    renderer.setMesh(mesh, glm::mat4(1.0f));
+    renderer.setScatteringMaterial(materialPreset("potato"));
+    renderer.setLights({DirectionalLight{.direction = {-0.6f, -0.5f, -1.0f}}});
+    Camera camera;
+    camera.setDistance(3.2f);
+    RenderTarget target(48, 32);
+    {
+        StorageBlockLimit limit(16 * 1024);
+        target.clear({0, 0, 0, 0});
+        REQUIRE_SSS_ERROR(renderer.render(camera, target), ErrorKind::GpuLimit,
+                          Contains("mesh vertices") && Contains("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"));
+    }
+    // Within the device's limit the same renderer draws the sphere.
+    target.clear({0, 0, 0, 0});
+    renderer.render(camera, target);
+    CHECK(test::channelSums(target.readColor()).x > 0.0);
     gl.requireNoErrors();
 }
