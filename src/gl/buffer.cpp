@@ -14,17 +14,18 @@ Buffer Buffer::create(std::size_t bytes, const void* data, GLbitfield flags, std
     MemoryReservation memory = allocateChecked(label, std::to_string(bytes) + "-byte buffer", bytes, [&] {
         glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
     });
-    Buffer buffer(owner.release(), bytes, std::move(memory), label);
+    // Asked here, not at every bind: a glGet can make a threaded driver wait for its queue.
+    Buffer buffer(owner.release(), bytes, std::move(memory), label, storageBlockLimit());
     buffer.setLabel(label);
     return buffer;
 }
 
 void Buffer::bindStorage(GLuint binding) const {
-    if (const std::int64_t limit = storageBlockLimit(); limit > 0 && m_size > static_cast<std::uint64_t>(limit))
+    if (m_storageLimit > 0 && m_size > static_cast<std::uint64_t>(m_storageLimit))
         throw Error(ErrorKind::GpuLimit, m_label + ": " + formatBytes(m_size) +
                                              " in one shader-storage binding, more than this device's "
                                              "GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
-                                             formatBytes(static_cast<std::uint64_t>(limit)) + ")");
+                                             formatBytes(static_cast<std::uint64_t>(m_storageLimit)) + ")");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id());
 }
 

@@ -3,6 +3,7 @@
 #include "gl/object.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -24,16 +25,18 @@ public:
     void upload(std::size_t offset, std::size_t bytes, const void* data) const;
     std::size_t size() const { return m_size; }
     /// Binds the whole buffer to a shader-storage binding point. Throws Error(GpuLimit) naming the
-    /// buffer where it is larger than one storage block may be (gl::storageBlockLimit()): a shader
-    /// would read and write past what the device promises, a wrong picture with no GL error.
+    /// buffer where it is larger than one storage block may be (gl::storageBlockLimit(), asked when
+    /// the buffer was made): a shader would read and write past what the device promises, a wrong
+    /// picture with no GL error.
     void bindStorage(GLuint binding) const;
 
 private:
-    Buffer(GLuint id, std::size_t size, MemoryReservation memory, std::string_view label)
-        : Object(id), m_size(size), m_memory(std::move(memory)), m_label(label) {}
+    Buffer(GLuint id, std::size_t size, MemoryReservation memory, std::string_view label, std::int64_t storageLimit)
+        : Object(id), m_size(size), m_memory(std::move(memory)), m_label(label), m_storageLimit(storageLimit) {}
     std::size_t m_size = 0;
     MemoryReservation m_memory;
     std::string m_label;
+    std::int64_t m_storageLimit = 0;  // bytes; 0: none known
 };
 
 }  // namespace sss::gl

@@ -56,6 +56,16 @@ constexpr float kWidestSigma = 2.2f;
 
 float largestChannel(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
+// Photons in flight at once: kMaxPhotonSlots, or fewer where their states would not fit one
+// storage block. A power of two, so that a frame's photons (a power of two at the defaults) share
+// the slots evenly and the cache stays the same whatever the slots.
+int photonSlotsWithin(std::int64_t storageBlockBytes) {
+    int slots = kMaxPhotonSlots;
+    const auto bytes = [](int n) { return static_cast<std::int64_t>(n * kPhotonStateBytes); };
+    while (slots > 1 && storageBlockBytes > 0 && bytes(slots) > storageBlockBytes) slots /= 2;
+    return slots;
+}
+
 // One invocation per cell of a grid `cells` wide, in the cache passes' 4^3 workgroups.
 void dispatchOverCells(glm::ivec3 cells) {
     glDispatchCompute(static_cast<GLuint>((cells.x + 3) / 4), static_cast<GLuint>((cells.y + 3) / 4),
@@ -154,6 +164,7 @@ FluenceCache::FluenceCache(VolumeReconstruction reconstruction)
     m_resumable = gl::currentDeviceIsSoftware();
     m_storageBlockBytes = gl::storageBlockLimit();
     m_cellsPerPart = fluenceCacheCellsPerPart(m_storageBlockBytes);
+    m_photonSlots = photonSlotsWithin(m_storageBlockBytes);
 }
 
 ShaderDefines FluenceCache::defines() const {
@@ -346,10 +357,10 @@ void FluenceCache::add(const FluenceCacheInputs& in, int photons, std::uint64_t 
     m_variant = variantFor(in);
     setUniforms(in);
     const gl::Program& p = photonProgram();
-    const int slots = std::min(photons, kMaxPhotonSlots);
+    const int slots = std::min(photons, m_photonSlots);
     const unsigned perSlot = static_cast<unsigned>((photons + slots - 1) / slots);
     if (m_photonStates.size() < static_cast<std::size_t>(slots) * kPhotonStateBytes)
-        m_photonStates = gl::Buffer::create(static_cast<std::size_t>(kMaxPhotonSlots) * kPhotonStateBytes, nullptr, 0,
+        m_photonStates = gl::Buffer::create(static_cast<std::size_t>(m_photonSlots) * kPhotonStateBytes, nullptr, 0,
                                             "fluence-cache photon states");
     p.set("invocations", slots);
     p.set("photonsPerInvocation", perSlot);

@@ -171,6 +171,7 @@ private:
     glm::ivec3 m_cells{0};
     std::int64_t m_storageBlockBytes = 0;  // gl::storageBlockLimit, asked once
     std::int64_t m_cellsPerPart = 1;       // fluenceCacheCellsPerPart of it
+    int m_photonSlots = 1;                 // photons in flight at once, their states within it
     gl::Buffer m_sums;            // 23 slots per cell, 64-bit fixed point (fluence_photons.comp)
     gl::Buffer m_weights;         // per cell, the integral of s over it (fluence_density.comp)
     gl::Buffer m_directMoments;   // per cell, the integrals of s E and s E^2, the largest E (fluence_density.comp)

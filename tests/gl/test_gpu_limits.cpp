@@ -198,14 +198,15 @@ TEST_CASE("a buffer larger than one storage block is an error naming it, not a w
     // Past GL_MAX_SHADER_STORAGE_BLOCK_SIZE a shader's reads and writes through the binding are
     // undefined (llvmpipe: 128 MiB, its offsets wrap past 2 GiB) and GL reports nothing.
     test::GlTestScope gl;
-    const gl::Buffer buffer = gl::Buffer::create(8192, nullptr, 0, "test storage");
     {
         StorageBlockLimit limit(4096);
-        REQUIRE_SSS_ERROR(buffer.bindStorage(0), ErrorKind::GpuLimit,
+        const gl::Buffer large = gl::Buffer::create(8192, nullptr, 0, "test storage");
+        REQUIRE_SSS_ERROR(large.bindStorage(0), ErrorKind::GpuLimit,
                           Contains("test storage") && Contains("8 kiB") && Contains("4 kiB") &&
                               Contains("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"));
+        gl::Buffer::create(4096, nullptr, 0, "test storage at the limit").bindStorage(0);
     }
-    buffer.bindStorage(0);  // within the device's own limit
+    gl::Buffer::create(8192, nullptr, 0, "test storage").bindStorage(0);  // within the device's own limit
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     gl.requireNoErrors();
 }
@@ -213,26 +214,29 @@ TEST_CASE("a buffer larger than one storage block is an error naming it, not a w
 TEST_CASE("a mesh whose vertices do not fit one storage block fails to render with the limit named",
           "[gl][limits][mesh]") {
     test::GlTestScope gl;
-    const Mesh mesh = makeUvSphere(48, 32);  // about 1500 vertices of 32 bytes: 47 kiB
+    const Mesh mesh = makeUvSphere(48, 32);  // 1490 vertices of 32 bytes: 46.6 kiB
     MeshRenderOptions options;
     options.shading = MeshShading::Scattering;
     options.combine = MeshCombine::VertexEstimate;
-    MeshScatteringRenderer renderer(options);
-    renderer.setMesh(mesh, glm::mat4(1.0f));
-    renderer.setScatteringMaterial(materialPreset("potato"));
-    renderer.setLights({DirectionalLight{.direction = {-0.6f, -0.5f, -1.0f}}});
     Camera camera;
     camera.setDistance(3.2f);
     RenderTarget target(48, 32);
+    const auto render = [&] {
+        MeshScatteringRenderer renderer(options);
+        renderer.setMesh(mesh, glm::mat4(1.0f));
+        renderer.setScatteringMaterial(materialPreset("potato"));
+        renderer.setLights({DirectionalLight{.direction = {-0.6f, -0.5f, -1.0f}}});
+        target.clear({0, 0, 0, 0});
+        renderer.render(camera, target);
+    };
     {
         StorageBlockLimit limit(16 * 1024);
-        target.clear({0, 0, 0, 0});
-        REQUIRE_SSS_ERROR(renderer.render(camera, target), ErrorKind::GpuLimit,
-                          Contains("mesh vertices") && Contains("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"));
+        REQUIRE_SSS_ERROR(render(), ErrorKind::GpuLimit,
+                          Contains("mesh vertices: 46.6 kiB") && Contains("(16 kiB)") &&
+                              Contains("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"));
     }
-    // Within the device's limit the same renderer draws the sphere.
-    target.clear({0, 0, 0, 0});
-    renderer.render(camera, target);
+    // Within the device's limit the same scene draws the sphere.
+    render();
     CHECK(test::channelSums(target.readColor()).x > 0.0);
     gl.requireNoErrors();
 }
