@@ -21,4 +21,13 @@ std::int64_t storageBlockLimit();
 /// reach the paths that split a buffer over several bindings with small data.
 void setStorageBlockLimitForTesting(std::int64_t bytes);
 
+/// setStorageBlockLimitForTesting(bytes) for as long as it lives, however the test ends.
+class StorageBlockLimitForTesting {
+public:
+    explicit StorageBlockLimitForTesting(std::int64_t bytes) { setStorageBlockLimitForTesting(bytes); }
+    ~StorageBlockLimitForTesting() { setStorageBlockLimitForTesting(0); }
+    StorageBlockLimitForTesting(const StorageBlockLimitForTesting&) = delete;
+    StorageBlockLimitForTesting& operator=(const StorageBlockLimitForTesting&) = delete;
+};
+
 }  // namespace sss::gl

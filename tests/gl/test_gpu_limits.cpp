@@ -36,12 +36,6 @@ struct BudgetScope {
     ~BudgetScope() { setGpuMemoryBudget(0); }
 };
 
-// Restores the device's storage-block limit however the test ends.
-struct StorageBlockLimit {
-    explicit StorageBlockLimit(std::int64_t bytes) { gl::setStorageBlockLimitForTesting(bytes); }
-    ~StorageBlockLimit() { gl::setStorageBlockLimitForTesting(0); }
-};
-
 struct LogCapture {
     std::vector<std::string> warnings;
     LogCapture() {
@@ -199,7 +193,7 @@ TEST_CASE("a buffer larger than one storage block is an error naming it, not a w
     // undefined (llvmpipe: 128 MiB, its offsets wrap past 2 GiB) and GL reports nothing.
     test::GlTestScope gl;
     {
-        StorageBlockLimit limit(4096);
+        gl::StorageBlockLimitForTesting limit(4096);
         const gl::Buffer large = gl::Buffer::create(8192, nullptr, 0, "test storage");
         REQUIRE_SSS_ERROR(large.bindStorage(0), ErrorKind::GpuLimit,
                           Contains("test storage") && Contains("8 kiB") && Contains("4 kiB") &&
@@ -230,7 +224,7 @@ TEST_CASE("a mesh whose vertices do not fit one storage block fails to render wi
         renderer.render(camera, target);
     };
     {
-        StorageBlockLimit limit(16 * 1024);
+        gl::StorageBlockLimitForTesting limit(16 * 1024);
         REQUIRE_SSS_ERROR(render(), ErrorKind::GpuLimit,
                           Contains("mesh vertices: 46.6 kiB") && Contains("(16 kiB)") &&
                               Contains("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"));

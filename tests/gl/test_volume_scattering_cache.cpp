@@ -612,12 +612,6 @@ TEST_CASE("the multiple-scattering cache's sums do not depend on how photons are
     gl.requireNoErrors();
 }
 
-// Restores the device's storage-block limit when a test ends, however it ends.
-struct StorageBlockLimit {
-    explicit StorageBlockLimit(std::int64_t bytes) { gl::setStorageBlockLimitForTesting(bytes); }
-    ~StorageBlockLimit() { gl::setStorageBlockLimitForTesting(0); }
-};
-
 constexpr std::int64_t kSumsBytesPerCell = 23 * 8;  // volume/fluence_sums.glsl
 
 TEST_CASE("the cache's sums split over several storage buffers give the same cache",
@@ -627,7 +621,7 @@ TEST_CASE("the cache's sums split over several storage buffers give the same cac
     // bound as up to four ranges of one buffer. 24^3 cells of 4096 per part: four parts.
     test::GlTestScope gl;
     const Image whole = Scene(cached(1 << 15, 24), blobs(), blobsTf()).frame(blobsCamera());
-    StorageBlockLimit limit(4096 * kSumsBytesPerCell);
+    gl::StorageBlockLimitForTesting limit(4096 * kSumsBytesPerCell);
     REQUIRE(detail::fluenceCacheCellsPerPart(gl::storageBlockLimit()) == 4096);
     Scene split(cached(1 << 15, 24), blobs(), blobsTf());
     const Image parts = split.frame(blobsCamera());
@@ -639,7 +633,7 @@ TEST_CASE("the cache's sums split over several storage buffers give the same cac
 TEST_CASE("a cache whose sums exceed four storage buffers gets fewer cells and a warning",
           "[gl][volume][scattering-cache][errors]") {
     test::GlTestScope gl;
-    StorageBlockLimit limit(2048 * kSumsBytesPerCell);  // at most 4 x 2048 cells: 24^3 does not fit
+    gl::StorageBlockLimitForTesting limit(2048 * kSumsBytesPerCell);  // at most 4 x 2048 cells: 24^3 does not fit
     std::vector<std::string> warnings;
     setLogHandler([&](LogLevel level, std::string_view m) {
         if (level == LogLevel::Warning) warnings.emplace_back(m);
