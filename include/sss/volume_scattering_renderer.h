@@ -233,7 +233,10 @@ struct VolumeRenderOptions {
     /// next-event estimation with ratio tracking, Russian roulette). Each render() adds
     /// samplesPerFrame paths per pixel to a running mean that the renderer keeps while nothing
     /// changes (camera, target size, lights, transfer function, volume, model transform, these
-    /// options) and restarts otherwise; accumulatedSamples() says how many it holds. Rays go
+    /// options) and restarts otherwise; accumulatedSamples() says how many it holds. A change of
+    /// the lights' colour or intensity alone, alike for every light (one light's, or all scaled
+    /// by one factor per channel), keeps the mean and scales it, unless it lights a channel that
+    /// was dark in every light. Rays go
     /// through pixel centres (as the CPU's); the first frame shows its first samples, noisy.
     /// Meshes of a hybrid scene clip the camera rays and, with HybridOptions::meshShadowsInVolumes,
     /// block the lights' next-event terms where their shadow maps say so (light scattered by the
@@ -254,7 +257,8 @@ struct VolumeRenderOptions {
     /// lights fill it by the path tracer's estimator (delta tracking, HG scattering, Russian
     /// roulette; maxBounces and anisotropy apply), cachePhotonsPerFrame per render()
     /// until it holds cachePhotons; camera moves reuse it, and a change of the lights, transfer
-    /// function, volume, model transform, clip or these options restarts it. In a hybrid scene
+    /// function, volume, model transform, clip or these options restarts it (a change of the
+    /// lights' radiance alone keeps and scales it, as the path tracer's mean). In a hybrid scene
     /// with HybridOptions::meshShadowsInVolumes, a photon stops at a mesh between its light and
     /// its first scattering (the meshes' shadow maps), and a change of those maps restarts it; light
     /// scattered by the medium passes through meshes, as the path tracer's. Its angular model holds for moderate anisotropy: within

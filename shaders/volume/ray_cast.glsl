@@ -243,7 +243,8 @@ LightReach rayLightReaches[MAX_LIGHTS];
 
 #if SCATTERING_CACHE
 #include "volume/fluence_lobe.glsl"
-uniform float cacheDirectWeight[MAX_LIGHTS];  // volume/direct_light.glsl's weights
+uniform float cacheDirectWeight[MAX_LIGHTS];  // volume/direct_light.glsl's weights, for the cache's lights
+uniform vec3 cacheRadianceScale;               // the lights' radiance now over the cache's (per channel)
 #if CACHE_PER_SAMPLE
 // The cache's six textures (FluenceCache::bindSources) at their finest cells, and the lobe towards
 // the viewer evaluated at every shaded sample: cheaper than the view pass over every cell where
@@ -512,7 +513,7 @@ vec3 shade(vec3 p, vec3 tc, vec3 color) {
     }
 #if SHADING_SCATTERING
 #if SCATTERING_CACHE
-    lit += color * cachedInScattering(p, tc, direct);
+    lit += color * cacheRadianceScale * cachedInScattering(p, tc, direct);
 #endif
 #if EYE_PASS
     lit += diffuseStrength * eyePassStrength * color * texture(eyeVolume, tc).rgb;  // the paper's model only

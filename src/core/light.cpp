@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -62,6 +63,38 @@ void validateLight(const Light& light, std::string_view what) {
             fail(what, "SpotLight", "falloff", "must be in [0, 1], got " + text(s.falloff));
         checkColor(what, "SpotLight", s.color, s.intensity);
     }
+}
+
+std::vector<Light> detail::withUnitRadiance(std::vector<Light> lights) {
+    for (Light& light : lights)
+        std::visit(
+            [](auto& l) {
+                l.color = glm::vec3(1.0f);
+                l.intensity = 1.0f;
+            },
+            light);
+    return lights;
+}
+
+std::optional<glm::vec3> detail::commonRadianceScale(const std::vector<Light>& before, const std::vector<Light>& now) {
+    if (before.size() != now.size() || withUnitRadiance(before) != withUnitRadiance(now)) return std::nullopt;
+    // Each channel's factor from the light brightest in it before; every light must agree.
+    glm::vec3 scale(0.0f), brightest(0.0f);
+    for (size_t i = 0; i < before.size(); ++i) {
+        const glm::vec3 was = lightRadiance(before[i]), is = lightRadiance(now[i]);
+        for (int c = 0; c < 3; ++c)
+            if (was[c] > brightest[c]) {
+                brightest[c] = was[c];
+                scale[c] = is[c] / was[c];
+            }
+    }
+    constexpr float kTolerance = 1e-5f;  // relative: float noise in a colour picked again
+    for (size_t i = 0; i < before.size(); ++i) {
+        const glm::vec3 expected = scale * lightRadiance(before[i]), is = lightRadiance(now[i]);
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(is[c] - expected[c]) > kTolerance * std::max(is[c], expected[c])) return std::nullopt;
+    }
+    return scale;
 }
 
 glm::vec2 detail::spotConeCosines(const SpotLight& light) {

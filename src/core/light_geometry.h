@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <variant>
+#include <vector>
 
 namespace sss::detail {
 
@@ -21,6 +22,17 @@ inline std::optional<glm::vec3> lightPosition(const Light& light) {
 inline glm::vec3 lightRadiance(const Light& light) {
     return std::visit([](const auto& l) { return l.color * l.intensity; }, light);
 }
+
+/// The lights with colour and intensity 1: what light travels where, without how much of it.
+/// Light volumes, photon paths and shadow maps depend on no more (the eye multiplies by the
+/// radiance), so they are keyed on this.
+std::vector<Light> withUnitRadiance(std::vector<Light> lights);
+
+/// The per-channel factor f with lightRadiance(now[i]) = f * lightRadiance(before[i]) for every
+/// light, the lights otherwise the same: one intensity or colour change of a single light, or
+/// all lights scaled alike. None where the lights differ otherwise, or where a channel that was
+/// dark in every light now shines (nothing was traced for it).
+std::optional<glm::vec3> commonRadianceScale(const std::vector<Light>& before, const std::vector<Light>& now);
 
 /// (cos outer, cos inner): the cosines of the half-angles spotConeFactor() blends between, as
 /// it computes them, so the GPU twin in shaders/common/spot_cone.glsl gets the same numbers.

@@ -1,5 +1,6 @@
 #include "sss/hybrid_compositor.h"
 
+#include "core/light_geometry.h"
 #include "gl/framebuffer.h"
 #include "gl/program.h"
 #include "mesh/renderer_access.h"
@@ -178,11 +179,12 @@ void HybridCompositor::clear() {
 
 void HybridCompositor::setLights(std::vector<Light> lights) {
     detail::validateLights(lights, "HybridCompositor::setLights");
+    // The shadow maps see where the lights are, not how bright they are.
+    if (detail::withUnitRadiance(lights) != detail::withUnitRadiance(m_impl->lights)) ++m_impl->sceneRevision;
     m_impl->lights = std::move(lights);
     for (auto& m : m_impl->meshes) m->setLights(m_impl->lights);
     for (auto& v : m_impl->volumes) v->setLights(m_impl->lights);
     for (auto& w : m_impl->walls) w->setLights(m_impl->lights);
-    ++m_impl->sceneRevision;
 }
 
 const std::vector<Light>& HybridCompositor::lights() const { return m_impl->lights; }

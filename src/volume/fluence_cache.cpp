@@ -220,6 +220,7 @@ void FluenceCache::restart(const FluenceCacheInputs& in, glm::ivec3 cells, bool 
                                              std::to_string(maxFluenceCacheCells(m_storageBlockBytes)) +
                                              " that GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
                                              std::to_string(m_storageBlockBytes) + " bytes) allows");
+    m_lights = in.lights;
     if (cells != m_cells) {
         sameDensityInputs = false;
         m_sums = gl::Buffer::create(count * kSlotsPerCell * 2 * sizeof(std::uint32_t), nullptr, 0, "fluence-cache sums");

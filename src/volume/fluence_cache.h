@@ -107,6 +107,10 @@ public:
     /// cacheFluence, cacheFluxRed, cacheFluxGreen, cacheFluxBlue, cacheSecondMoment and cacheDirectSlope
     /// (shaders/volume/fluence_lobe.glsl evaluates them towards a viewer).
     void bindSources(const gl::Program& p, int firstUnit) const;
+    /// The lights of the last restart, at the radiance its photons carry. Where the lights now
+    /// differ from them by a common factor per channel (detail::commonRadianceScale), the cache
+    /// stays: it goes on tracing for these lights, and the ray caster scales what it reads.
+    const std::vector<Light>& lights() const { return m_lights; }
     /// Photons traced since the last restart (those that missed the box included).
     std::uint64_t photons() const { return m_photons; }
     glm::ivec3 cells() const { return m_cells; }
@@ -169,6 +173,7 @@ private:
     gl::Program m_finestProgram;
     gl::Program m_viewProgram;
     glm::ivec3 m_cells{0};
+    std::vector<Light> m_lights;
     std::int64_t m_storageBlockBytes = 0;  // gl::storageBlockLimit, asked once
     std::int64_t m_cellsPerPart = 1;       // fluenceCacheCellsPerPart of it
     int m_photonSlots = 1;                 // photons in flight at once, their states within it

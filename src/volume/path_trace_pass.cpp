@@ -212,8 +212,9 @@ void PathTracePass::dispatchBands(const gl::Program& p, glm::ivec2 size, int ban
     if (m_resumable) reportAbandoned(status[1]);
 }
 
-void PathTracePass::composite(const gl::Texture& sums, int samples) const {
+void PathTracePass::composite(const gl::Texture& sums, int samples, glm::vec3 radianceScale) const {
     m_resolve.set("accumulation", 0);
+    m_resolve.set("radianceScale", radianceScale);
     m_resolve.set("inverseSamples", samples > 0 ? 1.0f / static_cast<float>(samples) : 0.0f);
     sums.bind(0);
     // Premultiplied "over": the volume's colour in front of what the target already holds.

@@ -88,8 +88,9 @@ public:
     /// is given up only after 2^24 steps (a degenerate ray); that is logged as a warning and
     /// counted in abandonedPaths() (a frame later without resuming).
     void accumulate(const PathTraceInputs& in, const gl::Texture& sums);
-    /// Draws sums / samples with premultiplied "over" into the bound target.
-    void composite(const gl::Texture& sums, int samples) const;
+    /// Draws sums / samples with premultiplied "over" into the bound target, the radiance scaled
+    /// per channel (lights whose radiance changed alike since the paths were traced).
+    void composite(const gl::Texture& sums, int samples, glm::vec3 radianceScale = glm::vec3(1.0f)) const;
 
     /// Dispatches the last accumulate() took.
     int lastDispatches() const { return m_lastDispatches; }

@@ -2,6 +2,7 @@
 
 #include "volume/clip_uniforms.h"
 #include "volume/composite_over.h"
+#include "core/light_geometry.h"
 #include "volume/fluence_cache.h"
 #include "volume/gradient_volume_pass.h"
 #include "lighting/texture_units.h"
@@ -257,8 +258,11 @@ void RayCastPass::bindInputs(const RayCastInputs& in) const {
                 in.cache->towardsViewerSlope().bind(units::kCacheTowardsViewerSlope);
                 in.cache->towardsViewerCap().bind(units::kCacheTowardsViewerCap);
             }
-            const std::vector<float> weights = directLightWeights(in.lights, model, in.volume.box);
+            // The direct light the cache regresses on is weighted as its photons were, and a
+            // change of radiance alone that the cache kept scales what it holds.
+            const std::vector<float> weights = directLightWeights(in.cache->lights(), model, in.volume.box);
             for (size_t i = 0; i < weights.size(); ++i) p.set("cacheDirectWeight[" + std::to_string(i) + "]", weights[i]);
+            p.set("cacheRadianceScale", commonRadianceScale(in.cache->lights(), in.lights).value_or(glm::vec3(1.0f)));
         }
         // Reads the light volume this many texels towards the light and carries the light back
         // through the data (shaders/volume/ray_cast.glsl, shade()).

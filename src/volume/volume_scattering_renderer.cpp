@@ -2,6 +2,7 @@
 
 #include "util/format.h"
 
+#include "core/light_geometry.h"
 #include "gl/texture.h"
 #include "lighting/light_uniforms.h"
 #include "lighting/texture_units.h"
@@ -86,6 +87,13 @@ struct FluenceCacheKey {
     std::uint64_t meshShadows = 0;  // detail::meshShadowRevision: the meshes block the lights
     bool operator==(const FluenceCacheKey&) const = default;
 };
+
+// What the cache's cells' weights and direct-light moments depend on: all but the scattering (and
+// the lights' radiance, which FluenceCache::lights() holds).
+auto densityInputsOf(const FluenceCacheKey& k) {
+    return std::tie(k.volumeGeneration, k.transferFunctionRevision, k.transferFunctionEntries, k.lights, k.model,
+                    k.clip, k.cells, k.reconstruction, k.lightVolumeScale, k.meshShadows);
+}
 
 }  // namespace
 
@@ -232,13 +240,15 @@ struct VolumeScatteringRenderer::Impl {
             return false;
         }
     }
-    std::optional<std::tuple<LightVolumeInputs, float, glm::vec3, float, float, VolumeClip, std::uint64_t>> eyeInputs;
+    std::optional<std::tuple<LightVolumeInputs, std::vector<Light>, float, glm::vec3, float, float, VolumeClip, std::uint64_t>>
+        eyeInputs;
     const detail::MeshShadowMaps* meshShadows = nullptr;    // set by HybridCompositor
     // Multiple scattering: the path tracer, its running sums and what they were built from.
     std::optional<detail::PathTracePass> pathTrace;
     gl::Texture pathSums;                                   // RGBA32F sums of (radiance, hit)
     int pathSamples = 0;                                    // paths per pixel in pathSums
     std::optional<PathTraceInputsKey> pathKey;
+    std::vector<Light> pathLights;                          // the radiance pathSums were traced with
     gl::Texture majorants;                                  // per brick, for the current TF
     std::optional<std::tuple<std::uint64_t, std::uint64_t, int, VolumeReconstruction>> majorantKey;
 
@@ -281,41 +291,44 @@ struct VolumeScatteringRenderer::Impl {
     }
     void updateFluenceCache() {
         const glm::ivec3 cells = fluenceCacheCells();
-        FluenceCacheKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
-                            model, options.anisotropy, options.maxBounces, clip, cells, options.reconstruction,
-                            lightVolumeScaleInUse, detail::meshShadowRevision(meshShadows, lights.size())};
+        // Keyed on where the lights' light goes, not on how much of it: a change of radiance that
+        // scales every light alike keeps the cache, and the ray caster scales what it reads.
+        FluenceCacheKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
+                            detail::withUnitRadiance(lights), model, options.anisotropy, options.maxBounces, clip, cells,
+                            options.reconstruction, lightVolumeScaleInUse,
+                            detail::meshShadowRevision(meshShadows, lights.size())};
+        const bool restart = fluenceKey != key || !detail::commonRadianceScale(fluenceCache->lights(), lights);
         const auto photons = static_cast<std::uint64_t>(options.cachePhotons);
-        if (fluenceKey == key && fluenceCache->photons() >= photons) return;  // refined: nothing to trace
+        if (!restart && fluenceCache->photons() >= photons) return;  // refined: nothing to trace
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         updateMajorants();
+        // The density pass's direct-light moments are weighted by the lights' radiance.
+        const bool sameDensityInputs = fluenceKey && densityInputsOf(*fluenceKey) == densityInputsOf(key) &&
+                                       fluenceCache->lights() == lights;
         if (!fluenceCache || fluenceCache->reconstruction() != options.reconstruction) {
             fluenceCache.emplace(options.reconstruction);
             fluenceKey.reset();
         }
+        // Photons added to a kept cache carry the radiance of its restart, as those before them.
+        const std::vector<Light> traced = restart ? lights : fluenceCache->lights();
         const detail::FluenceCacheInputs inputs{.volume = *volume,
                                                 .transferFunction = transferFunctionTable,
                                                 .majorants = majorants,
                                                 .model = model,
-                                                .lights = lights,
+                                                .lights = traced,
                                                 .anisotropy = options.anisotropy,
                                                 .maxBounces = options.maxBounces,
                                                 .clip = clipOrNull(),
                                                 .lightVolumes = &shownLightVolumes(),
                                                 .meshShadows = meshShadows};
-        if (fluenceKey != key) {
-            // The cells' weights and direct-light moments depend on all but the scattering.
-            const auto densityInputs = [](const FluenceCacheKey& k) {
-                return std::tie(k.volumeGeneration, k.transferFunctionRevision, k.transferFunctionEntries, k.lights,
-                                k.model, k.clip, k.cells, k.reconstruction, k.lightVolumeScale, k.meshShadows);
-            };
-            fluenceCache->restart(inputs, cells, fluenceKey && densityInputs(*fluenceKey) == densityInputs(key));
+        if (restart) {
+            fluenceCache->restart(inputs, cells, sameDensityInputs);
             fluenceKey = std::move(key);
         }
         const std::uint64_t left = photons - std::min(photons, fluenceCache->photons());
         fluenceCache->add(inputs, static_cast<int>(std::min<std::uint64_t>(left, options.cachePhotonsPerFrame)), photons);
         passTimer.end("scattering-cache", mark, passTiming());
     }
-
     // Whether the ray caster evaluates the cache's light towards the viewer per sample: decided
     // on the cache's finest cells (not the level read, which would switch the program while the
     // cache refines) and the target's pixels.
@@ -338,17 +351,20 @@ struct VolumeScatteringRenderer::Impl {
     void renderPathTraced(const Camera& camera, RenderTarget& target) {
         const detail::PassTimer::Mark mark = passTimer.begin(passTiming());
         updateMajorants();
-        PathTraceInputsKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries, lights,
-                               model, camera.view(), camera.projection(target.aspect()),
-                               glm::ivec2(target.width(), target.height()), options.anisotropy, options.maxBounces,
-                               clip, options.reconstruction, detail::meshShadowRevision(meshShadows, lights.size())};
-        if (pathKey != key) {
+        // As the cache: a change of radiance that scales every light alike keeps the paths traced.
+        PathTraceInputsKey key{volumeGeneration, transferFunction.revision(), options.transferFunctionEntries,
+                               detail::withUnitRadiance(lights), model, camera.view(),
+                               camera.projection(target.aspect()), glm::ivec2(target.width(), target.height()),
+                               options.anisotropy, options.maxBounces, clip, options.reconstruction,
+                               detail::meshShadowRevision(meshShadows, lights.size())};
+        if (pathKey != key || !detail::commonRadianceScale(pathLights, lights)) {
             if (!pathSums || pathSums.size() != glm::ivec3(key.size, 1))
                 pathSums = gl::Texture::create2D(GL_RGBA32F, key.size.x, key.size.y, "path-tracer sums");
             const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
             glClearTexImage(pathSums.id(), 0, GL_RGBA, GL_FLOAT, zero);
             pathSamples = 0;
             pathKey = std::move(key);
+            pathLights = lights;
         }
         if (!pathTrace || pathTrace->reconstruction() != options.reconstruction)
             pathTrace.emplace(detail::PathTraceBounds{}, options.reconstruction);
@@ -358,7 +374,7 @@ struct VolumeScatteringRenderer::Impl {
                                .majorants = majorants,
                                .sceneDepth = sceneDepth,
                                .model = model,
-                               .lights = lights,
+                               .lights = pathLights,
                                .options = options,
                                .camera = camera,
                                .aspect = target.aspect(),
@@ -368,7 +384,7 @@ struct VolumeScatteringRenderer::Impl {
                               pathSums);
         pathSamples += options.samplesPerFrame;
         target.bindForDrawing();
-        pathTrace->composite(pathSums, pathSamples);
+        pathTrace->composite(pathSums, pathSamples, *detail::commonRadianceScale(pathLights, lights));
         passTimer.end("path-trace", mark, passTiming());
     }
     gl::Texture sceneDepth;                      // copy of the target's depth, sampled by rays
@@ -391,7 +407,7 @@ struct VolumeScatteringRenderer::Impl {
         const LightVolumeInputs inputs{volumeGeneration,
                                        transferFunction.revision(),
                                        options.transferFunctionEntries,
-                                       lights,
+                                       detail::withUnitRadiance(lights),  // the eye scales by the radiance
                                        model,
                                        {.resolutionScale = options.lightVolumeScale,
                                         .anisotropy = options.anisotropy,
@@ -456,7 +472,7 @@ struct VolumeScatteringRenderer::Impl {
     }
 
     void updateEyePass(const Camera& camera) {
-        const auto inputs = std::make_tuple(*lightVolumeInputs, lightVolumeScaleInUse, camera.forward(),
+        const auto inputs = std::make_tuple(*lightVolumeInputs, lights, lightVolumeScaleInUse, camera.forward(),
                                             options.ambient + options.emission, options.diffuse, clip,
                                             detail::meshShadowRevision(meshShadows, lights.size()));
         if (eyeInputs == inputs) return;

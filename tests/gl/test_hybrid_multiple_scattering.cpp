@@ -180,6 +180,12 @@ TEST_CASE("in a hybrid scene the cache is kept for camera moves and restarted wh
     CHECK(volume.cachedPhotons() == budget);
     CHECK(volume.stats().runs("scattering-cache") == traced);
 
+    // A brighter light casts the same shadows: the maps and the cache stay.
+    s->setLights({DirectionalLight{.direction = {0.0f, -1.0f, 0.0f}, .intensity = 20.0f}});  // kLights, twice as bright
+    s->render(moved, target);
+    CHECK(volume.cachedPhotons() == budget);
+    CHECK(volume.stats().runs("scattering-cache") == traced);
+
     // The slab's shadow moves with it: the photons start again.
     s->setMeshTransform(0, glm::translate(glm::mat4(1.0f), {-0.6f, 0.8f, 0.0f}));
     s->render(moved, target);

@@ -1,8 +1,9 @@
 // The GPU volume path tracer (VolumeRenderOptions::multipleScattering): it converges to the CPU
 // path tracer's multiple-scattering image (sss/volume_path_tracer.h), its error falls
 // monotonically as samples accumulate, one bounce is the CPU's single scattering, the running
-// mean restarts when the scene or the camera changes, paths carried over many dispatches lose
-// nothing, and an 8-bit volume's field is reconstructed as the CPU's. Small images: llvmpipe.
+// mean restarts when the scene or the camera changes (a change of radiance alone scales it),
+// paths carried over many dispatches lose nothing, and an 8-bit volume's field is reconstructed
+// as the CPU's. Small images: llvmpipe.
 #include "support/gl_test.h"
 #include "support/scenes.h"
 
@@ -233,6 +234,31 @@ TEST_CASE("the GPU path tracer's running mean restarts when the camera or the sc
     CHECK(computeErrorMetrics(afterMove, freshFrame).maxAbsError == 0.0);
     scene.frame(moved);
     CHECK(scene.renderer.accumulatedSamples() == 4);
+
+    // The lights' radiance alone, changed alike for all of them, scales the mean and keeps it:
+    // exactly a fresh renderer's mean scaled per channel.
+    const glm::vec3 orange(2.0f, 1.0f, 0.5f);
+    DirectionalLight light = std::get<DirectionalLight>(kLights.front());
+    light.color *= orange;
+    scene.renderer.setLights({light});
+    const Image orangeMean = scene.frame(moved);
+    CHECK(scene.renderer.accumulatedSamples() == 6);
+    Scene white(pathTraced(2));
+    for (int i = 0; i < 2; ++i) white.frame(moved);
+    Image expected = white.frame(moved);
+    for (int y = 0; y < expected.height(); ++y)
+        for (int x = 0; x < expected.width(); ++x) expected.at(x, y) *= glm::vec4(orange, 1.0f);
+    CHECK(computeErrorMetrics(orangeMean, expected).relRmse < 1e-6);
+    // A channel lit that was dark in the paths traced restarts it.
+    light.color = {1.0f, 1.0f, 0.0f};
+    light.direction.x += 0.5f;
+    scene.renderer.setLights({light});
+    scene.frame(moved);
+    CHECK(scene.renderer.accumulatedSamples() == 2);
+    light.color = glm::vec3(1.0f);
+    scene.renderer.setLights({light});
+    scene.frame(moved);
+    CHECK(scene.renderer.accumulatedSamples() == 2);
 
     // Lights, transfer function, model transform and options each restart it; samplesPerFrame,
     // which does not change the mean, does not.

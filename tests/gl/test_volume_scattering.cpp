@@ -516,6 +516,45 @@ TEST_CASE("camera-only changes never recompute the light volume", "[gl][volume][
     gl.requireNoErrors();
 }
 
+TEST_CASE("a light's colour or intensity alone keeps the light volume, and the picture is a fresh renderer's",
+          "[gl][volume][scattering][caching]") {
+    // The light volumes hold where the light goes (what the medium lets through of a unit light);
+    // the ray caster multiplies by the radiance. The paper model's eye pass does use it, and runs.
+    test::GlTestScope gl;
+    const Volume volume = makeBlobsVolume(24);
+    const TransferFunction tf = TransferFunction::preset("bucky");
+    const Camera camera = orbitCamera(volume.worldBounds(), 20, 15);
+    const DirectionalLight white{.direction = {-1.0f, -0.5f, -0.5f}};
+    const DirectionalLight orange{.direction = white.direction, .color = {1.0f, 0.6f, 0.3f}, .intensity = 2.5f};
+    for (const VolumeRenderOptions& options :
+         {VolumeRenderOptions{.shading = VolumeShading::Scattering, .model = VolumeModel::Physical},
+          VolumeRenderOptions{.shading = VolumeShading::Scattering, .eyePass = true}}) {
+        INFO((options.eyePass ? "the paper model with its eye pass" : "the physical model"));
+        auto make = [&](const DirectionalLight& light) {
+            auto r = std::make_unique<VolumeScatteringRenderer>(options);
+            r->setVolume(volume);
+            r->setTransferFunction(tf);
+            r->setLights({light});
+            return r;
+        };
+        auto render = [&](VolumeScatteringRenderer& r) {
+            RenderTarget target(48, 27);
+            target.clear(kBackground);
+            r.render(camera, target);
+            return target.readColor();
+        };
+        auto renderer = make(white);
+        render(*renderer);
+        renderer->setLights({orange});
+        const Image recoloured = render(*renderer);
+        CHECK(renderer->stats().runs("light-volume") == 1);
+        CHECK(renderer->stats().runs("eye-pass") == (options.eyePass ? 2u : 0u));
+        auto fresh = make(orange);
+        CHECK(computeErrorMetrics(recoloured, render(*fresh)).maxAbsError == 0.0);
+    }
+    gl.requireNoErrors();
+}
+
 TEST_CASE("scattering bucky-like volume matches the golden image", "[gl][volume][scattering][golden]") {
     test::GlTestScope gl;
     const Volume volume = makeBuckyLikeVolume(32);
