@@ -329,6 +329,7 @@ struct VolumeScatteringRenderer::Impl {
         fluenceCache->add(inputs, static_cast<int>(std::min<std::uint64_t>(left, options.cachePhotonsPerFrame)), photons);
         passTimer.end("scattering-cache", mark, passTiming());
     }
+
     // Whether the ray caster evaluates the cache's light towards the viewer per sample: decided
     // on the cache's finest cells (not the level read, which would switch the program while the
     // cache refines) and the target's pixels.
