@@ -11,7 +11,9 @@
 ///      3. combine: each visible point averages the maps that see it, times exit Fresnel.
 ///    Passes 1-2 rerun only when what they depend on changes (mesh, transform, lights,
 ///    material, options); while the scene is static, further map frames are accumulated until
-///    `accumulationFrames`. A camera change reruns only the combine pass.
+///    `accumulationFrames`. A camera change reruns only the combine pass, and so does a change
+///    of the lights' colour or intensity alone, alike for every light (one light's, or all
+///    scaled by one factor per channel): the combine scales what the maps hold.
 
 #include "sss/api.h"
 #include "sss/bssrdf.h"

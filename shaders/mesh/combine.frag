@@ -60,6 +60,7 @@ uniform float eta;
 uniform float specularStrength;
 uniform float shininess;
 uniform vec3 environment;    // a uniform environment's radiance times the total diffuse reflectance
+uniform vec3 accumulatedRadianceScale;  // the lights' radiance now over the maps' and points' (per channel)
 uniform DirpoleParams dipole;  // single scattering (dipole.singleScattering = 0: none)
 
 // A compile-time constant: skipped behind a uniform instead, the per-pixel near field's code
@@ -156,14 +157,14 @@ void main() {
     float exitT = dirpoleFresnelT(eta, dot(wo, nWorld));
     // The maps hold the integral of T_in S_d E over the lit surface (S_d is per steradian), so the
     // radiance leaving towards the eye is that times the exit transmittance.
-    vec3 color = exitT * radiosity + environment * referenceScale;
+    vec3 color = exitT * accumulatedRadianceScale * radiosity + environment * referenceScale;
     // One pass over the lights for the per-pixel terms: each light's direction, radiance and
     // shadows are found once.
     bool single = profile.singleScattering > 0.0, specular = specularStrength > 0.0;
 #if NEAR_FIELD == 2
     PointBlend points = pointsAround();
     vec4 nearTexel = blendedPointTexel(points, 0);
-    color += exitT * nearFieldScale * nearTexel.rgb;
+    color += exitT * nearFieldScale * accumulatedRadianceScale * nearTexel.rgb;
 #endif
     if (single || specular || PER_PIXEL_NEAR_FIELD) {
         for (int i = 0; i < lightCount; ++i) {

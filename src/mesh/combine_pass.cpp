@@ -47,6 +47,7 @@ void CombinePass::run(const CombineInputs& in, const CombineSettings& s) const {
     p.set("specularStrength", s.specularStrength);
     p.set("shininess", s.shininess);
     p.set("environment", s.environment);
+    p.set("accumulatedRadianceScale", in.accumulatedRadianceScale);
     setDipoleUniforms(p, "dipole", s.dipole);
     setNearFieldUniforms(p, s.nearField);
     if (s.material) s.material->bind(p, s.millimetresPerUnit);

@@ -52,6 +52,9 @@ struct CombineInputs {
     const SurfaceShadows* shadows = nullptr;  ///< hybrid scenes (specular and single scattering)
     /// A textured vertex estimate's factor per vertex (VertexEstimatePass::effective), or none.
     const gl::Buffer* vertexEffective = nullptr;
+    /// The lights' radiance now over that the radiosity and the near field's points were
+    /// accumulated with, per channel (the per-pixel terms read `lights` directly).
+    glm::vec3 accumulatedRadianceScale{1.0f};
 };
 
 class CombinePass {

@@ -2,6 +2,7 @@
 
 #include "util/format.h"
 
+#include "core/light_geometry.h"
 #include "lighting/light_uniforms.h"
 #include "frame/pass_timer.h"
 #include "mesh/blinn_phong_pass.h"
@@ -120,6 +121,10 @@ struct MeshScatteringRenderer::Impl {
     detail::ScatteringCameras cameras;
     std::optional<LightBufferInputs> lightBufferInputs;
     std::optional<ScatteringMapInputs> scatteringMapInputs;
+    // The lights at the radiance the maps (or the vertex estimate) and the near field's points were
+    // accumulated with: a change of radiance alone, alike for every light, keeps them, and the
+    // combine scales what they hold (detail::commonRadianceScale).
+    std::vector<Light> mapLights;
     std::optional<detail::SurfaceShadows> shadows;  // set by HybridCompositor
     // Derived when ProfileInputs change (the profile's plane integrals are too slow for every frame).
     DipoleConstants dipole;
@@ -238,7 +243,8 @@ struct MeshScatteringRenderer::Impl {
     }
 
     ScatteringMapInputs currentMapInputs() const {
-        return {{meshGeneration, model, lights, options.lightMapResolution, texturedGpu ? materialGeneration : 0},
+        return {{meshGeneration, model, detail::withUnitRadiance(lights), options.lightMapResolution,
+                 texturedGpu ? materialGeneration : 0},
                 materialGeneration,
                 options.cameras,
                 options.samples,
@@ -259,8 +265,11 @@ struct MeshScatteringRenderer::Impl {
         return scatteringMaps ? scatteringMaps->frames() : -1;
     }
 
+    bool mapsHoldLights() const { return detail::commonRadianceScale(mapLights, lights).has_value(); }
+
     bool mapsConverged() const {
-        return scatteringMapInputs == currentMapInputs() && radiosityFrames() >= options.accumulationFrames;
+        return scatteringMapInputs == currentMapInputs() && mapsHoldLights() &&
+               radiosityFrames() >= options.accumulationFrames;
     }
 
     bool usesNearFieldCache() const {
@@ -270,7 +279,7 @@ struct MeshScatteringRenderer::Impl {
     void evaluateNearFieldCache() {
         const float texel = lightBuffer->texelWorld(*mesh, model);
         const float spacing = options.nearFieldSpacing * texel / std::max(detail::largestScale(model), 1e-30f);
-        nearFieldCache->evaluate({*mesh, model, lights, *lightBuffer, shadows ? &*shadows : nullptr, nearField,
+        nearFieldCache->evaluate({*mesh, model, mapLights, *lightBuffer, shadows ? &*shadows : nullptr, nearField,
                                   static_cast<float>(profileMaterial().eta), spacing});
     }
 
@@ -284,7 +293,8 @@ struct MeshScatteringRenderer::Impl {
             });
             lightBufferInputs = inputs.lightBuffer;
         }
-        if (scatteringMapInputs != inputs) {
+        if (scatteringMapInputs != inputs || !mapsHoldLights()) {
+            mapLights = lights;
             if (inputs.vertexEstimate) {
                 if (!vertexEstimate) vertexEstimate.emplace(adjacency.vertexCount());
                 vertexEstimate->reset();
@@ -302,7 +312,7 @@ struct MeshScatteringRenderer::Impl {
         }
         if (radiosityFrames() >= options.accumulationFrames) return;
         sampling.samplesPerLight = std::max(1, options.samples / std::max<int>(1, static_cast<int>(lights.size())));
-        const detail::RadiosityEstimateInputs estimate{lights,
+        const detail::RadiosityEstimateInputs estimate{mapLights,
                                                        lightBuffer->viewProjections(),
                                                        lightBuffer->positions(),
                                                        lightBuffer->normals(),
@@ -445,7 +455,8 @@ void MeshScatteringRenderer::render(const Camera& camera, RenderTarget& target) 
         r.combine->run({*r.mesh, r.model, r.cameras, vertexEstimate ? nullptr : &*r.scatteringMaps,
                         vertexEstimate ? r.vertexEstimate->radiosity() : r.vertexRadiosity->radiosity(), r.lights,
                         camera, target.aspect(), *r.lightBuffer, r.shadows ? &*r.shadows : nullptr,
-                        vertexEstimate ? r.vertexEstimate->effective() : nullptr},
+                        vertexEstimate ? r.vertexEstimate->effective() : nullptr,
+                        *detail::commonRadianceScale(r.mapLights, r.lights)},
                        settings);
     });
 }

@@ -341,6 +341,13 @@ TEST_CASE("a camera-only change in a hybrid scene reruns neither scattering maps
     CHECK(volume.stats().runs("light-volume") == lightVolumes);
     CHECK(scene.stats().runs("mesh-shadow-maps") == shadowMaps);
     CHECK(mesh.stats().runs("combine") >= 3);
+    // A brighter light of another colour, in the same place, redraws nothing but the pictures.
+    scene.setLights({PointLight{.position = {0, 1.5f, 0.5f}, .color = {1.0f, 0.8f, 0.6f}, .intensity = 6.0f}});
+    scene.render(camera, target);
+    CHECK(mesh.stats().runs("scattering-maps") == maps);
+    CHECK(mesh.stats().runs("light-buffer") == buffers);
+    CHECK(volume.stats().runs("light-volume") == lightVolumes);
+    CHECK(scene.stats().runs("mesh-shadow-maps") == shadowMaps);
     // Moving the mesh redraws its shadow maps and its own passes; the light volume is the
     // volume's own and stays.
     scene.setMeshTransform(0, glm::translate(glm::mat4(1.0f), {0.1f, 0, 0}));
