@@ -236,8 +236,8 @@ struct VolumeRenderOptions {
     /// options) and restarts otherwise; accumulatedSamples() says how many it holds. A change of
     /// the lights' colour or intensity alone, alike for every light (one light's, or all scaled
     /// by one factor per channel), keeps the mean and scales it, unless it lights a channel that
-    /// was dark in every light. Rays go
-    /// through pixel centres (as the CPU's); the first frame shows its first samples, noisy.
+    /// was dark in every light. Rays go through pixel centres (as the CPU's); the first frame
+    /// shows its first samples, noisy.
     /// Meshes of a hybrid scene clip the camera rays and, with HybridOptions::meshShadowsInVolumes,
     /// block the lights' next-event terms where their shadow maps say so (light scattered by the
     /// medium passes through them); a change of those maps restarts the mean (default: off).
