@@ -4,6 +4,7 @@
 #include "sss/bssrdf.h"
 
 #include "sss/error.h"
+#include "util/format.h"
 
 #include "mesh/profile_calibration_table.inc"
 #include "mesh/profile_transmission_table.inc"
@@ -17,30 +18,18 @@
 #include <limits>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <string>
 
 namespace sss {
 namespace {
 
-std::string str(const glm::dvec3& v) {
-    std::ostringstream s;
-    s.precision(9);
-    s << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-    return s.str();
-}
+using detail::formatNumber;
+using detail::formatVec;
 
 bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 [[noreturn]] void fail(const std::string& field, const std::string& rule, const std::string& got) {
     throw Error(ErrorKind::InvalidArgument, "ScatteringMaterial", field, "must be " + rule + ", got " + got);
-}
-
-std::string num(double v) {
-    std::ostringstream s;
-    s.precision(9);
-    s << v;
-    return s.str();
 }
 
 // C_phi(eta) = (1 - 2 C_1) / 4.
@@ -50,17 +39,17 @@ double cPhiOf(double eta) { return 0.25 * (1.0 - fresnelMoment2C1(eta)); }
 
 void ScatteringMaterial::validate() const {
     if (!isFinite(sigmaA) || sigmaA.x < 0.0 || sigmaA.y < 0.0 || sigmaA.z < 0.0)
-        fail("sigmaA", "finite and >= 0 in every channel", str(sigmaA));
+        fail("sigmaA", "finite and >= 0 in every channel", formatVec(sigmaA));
     if (!isFinite(sigmaS) || sigmaS.x < 0.0 || sigmaS.y < 0.0 || sigmaS.z < 0.0)
-        fail("sigmaS", "finite and >= 0 in every channel", str(sigmaS));
-    if (!std::isfinite(g) || g <= -1.0 || g >= 1.0) fail("g", "in (-1, 1)", num(g));
+        fail("sigmaS", "finite and >= 0 in every channel", formatVec(sigmaS));
+    if (!std::isfinite(g) || g <= -1.0 || g >= 1.0) fail("g", "in (-1, 1)", formatNumber(g));
     // Outside [0.4, 2.5] the Fresnel-moment fits turn C_phi(eta) or C_phi(1/eta) negative.
-    if (!std::isfinite(eta) || eta < 0.4 || eta > 2.5) fail("eta", "in [0.4, 2.5]", num(eta));
+    if (!std::isfinite(eta) || eta < 0.4 || eta > 2.5) fail("eta", "in [0.4, 2.5]", formatNumber(eta));
     const glm::dvec3 sigmaTPrime = sigmaA + sigmaS * (1.0 - g);
     if (sigmaTPrime.x <= 0.0 || sigmaTPrime.y <= 0.0 || sigmaTPrime.z <= 0.0)
         throw Error(ErrorKind::InvalidArgument,
                     "ScatteringMaterial::sigmaA + sigmaS * (1 - g) must be > 0 in every channel (\"" + name +
-                        "\" does not attenuate light), got " + str(sigmaTPrime));
+                        "\" does not attenuate light), got " + formatVec(sigmaTPrime));
 }
 
 double fresnelMoment2C1(double eta) {
@@ -125,9 +114,9 @@ double interpolateCalibration(const double (&etas)[E], const double (&ss)[S], co
 void checkReducedAlbedoAndEta(const char* where, double reducedAlbedo, double eta) {
     if (!std::isfinite(reducedAlbedo) || reducedAlbedo < 0.0 || reducedAlbedo > 1.0)
         throw Error(ErrorKind::InvalidArgument,
-                    std::string(where) + ": reduced albedo must be in [0, 1], got " + num(reducedAlbedo));
+                    std::string(where) + ": reduced albedo must be in [0, 1], got " + formatNumber(reducedAlbedo));
     if (!std::isfinite(eta))
-        throw Error(ErrorKind::InvalidArgument, std::string(where) + ": eta must be finite, got " + num(eta));
+        throw Error(ErrorKind::InvalidArgument, std::string(where) + ": eta must be finite, got " + formatNumber(eta));
 }
 
 }  // namespace
@@ -136,7 +125,7 @@ double profileCalibrationScale(double reducedAlbedo, double eta, double cosIncid
     checkReducedAlbedoAndEta("profileCalibrationScale", reducedAlbedo, eta);
     if (!std::isfinite(cosIncidence))
         throw Error(ErrorKind::InvalidArgument,
-                    "profileCalibrationScale: cosIncidence must be finite, got " + num(cosIncidence));
+                    "profileCalibrationScale: cosIncidence must be finite, got " + formatNumber(cosIncidence));
     // Entry cosines mu = 1 - 0.19 k; linear between them.
     return interpolateCalibration(calibration::kEta, calibration::kS, calibration::kScale, eta, reducedAlbedo,
                                   (1.0 - cosIncidence) / 0.19, false);
@@ -146,7 +135,7 @@ double profileTransmissionScale(double reducedAlbedo, double eta, double optical
     checkReducedAlbedoAndEta("profileTransmissionScale", reducedAlbedo, eta);
     if (std::isnan(opticalThickness) || opticalThickness <= 0.0)
         throw Error(ErrorKind::InvalidArgument,
-                    "profileTransmissionScale: optical thickness must be > 0, got " + num(opticalThickness));
+                    "profileTransmissionScale: optical thickness must be > 0, got " + formatNumber(opticalThickness));
     // Thicknesses 0.25 * 2^k; log-linear along them too (the factor spans orders of magnitude).
     return interpolateCalibration(transmission_calibration::kEta, transmission_calibration::kS,
                                   transmission_calibration::kScale, eta, reducedAlbedo,
@@ -158,7 +147,8 @@ DipoleConstants deriveDipoleConstants(const ScatteringMaterial& material, double
     material.validate();
     if (!std::isfinite(millimetresPerUnit) || millimetresPerUnit <= 0.0)
         throw Error(ErrorKind::InvalidArgument,
-                    "deriveDipoleConstants: millimetresPerUnit must be finite and > 0, got " + num(millimetresPerUnit));
+                    "deriveDipoleConstants: millimetresPerUnit must be finite and > 0, got " +
+                    formatNumber(millimetresPerUnit));
     DipoleConstants c;
     c.millimetresPerUnit = millimetresPerUnit;
     // sigma per mm -> per unit; every length below then comes out in units.
@@ -212,9 +202,11 @@ glm::dvec3 dipoleDiffuseReflectance(const DipoleConstants& c) {
 
 glm::dvec3 dipolePlaneIntegral(const DipoleConstants& c, double cosIncidence, double maxRadius) {
     if (!(cosIncidence > 0.0) || cosIncidence > 1.0)
-        throw Error(ErrorKind::InvalidArgument, "dipolePlaneIntegral: cosIncidence must be in (0, 1], got " + num(cosIncidence));
+        throw Error(ErrorKind::InvalidArgument, "dipolePlaneIntegral: cosIncidence must be in (0, 1], got " +
+                                                formatNumber(cosIncidence));
     if (!(maxRadius > 0.0))
-        throw Error(ErrorKind::InvalidArgument, "dipolePlaneIntegral: maxRadius must be > 0, got " + num(maxRadius));
+        throw Error(ErrorKind::InvalidArgument, "dipolePlaneIntegral: maxRadius must be > 0, got " +
+                                                formatNumber(maxRadius));
     // The kernel lives between a small fraction of the shortest mean free path and many
     // transport lengths of the longest; sigma_tr = 0 (no absorption) has no finite tail, so the
     // grid stops at 1e4 reduced mean free paths there.
@@ -247,7 +239,7 @@ glm::dvec3 dipolePlaneIntegral(const DipoleConstants& c, double cosIncidence, do
 glm::dvec3 dipoleSlabTransmissionIntegral(const DipoleConstants& c, double thickness) {
     if (!std::isfinite(thickness) || thickness <= 0.0)
         throw Error(ErrorKind::InvalidArgument,
-                    "dipoleSlabTransmissionIntegral: thickness must be finite and > 0, got " + num(thickness));
+                    "dipoleSlabTransmissionIntegral: thickness must be finite and > 0, got " + formatNumber(thickness));
     // Lateral offsets from a small fraction of the thickness out to many transport lengths (the
     // kernel falls off as exp(-sigma_tr sqrt(rho^2 + d^2))).
     double longest = 0.0;
@@ -320,7 +312,8 @@ glm::dvec3 profileSlabRadiance(const DipoleConstants& c, double cosIncidence, co
 glm::dvec3 profileSlabConeRadiance(const DipoleConstants& c, double cosIncidence, double coneHalfAngleDeg) {
     if (!(coneHalfAngleDeg > 0.0) || coneHalfAngleDeg > 90.0)
         throw Error(ErrorKind::InvalidArgument,
-                    "profileSlabConeRadiance: coneHalfAngleDeg must be in (0, 90], got " + num(coneHalfAngleDeg));
+                    "profileSlabConeRadiance: coneHalfAngleDeg must be in (0, 90], got " +
+                    formatNumber(coneHalfAngleDeg));
     const glm::dvec3 n{0.0, 0.0, 1.0};
     const double sinI = std::sqrt(std::max(0.0, 1.0 - cosIncidence * cosIncidence));
     const glm::dvec3 wi{sinI, 0.0, cosIncidence};

@@ -6,8 +6,10 @@
 #include "reference/cpu_lights.h"
 #include "util/parallel.h"
 #include "reference/walk_sampling.h"
+#include "reference/world_mesh.h"
 
 #include "sss/error.h"
+#include "util/format.h"
 
 #include <glm/common.hpp>
 #include <glm/ext/vector_int3.hpp>
@@ -22,13 +24,14 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <variant>
 #include <vector>
 
 namespace sss {
 namespace {
+
+using detail::formatNumber;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kRouletteWeight = 0.25;  // path weight below which Russian roulette starts
@@ -41,26 +44,19 @@ constexpr double kExactRing = 3.0;  // cells this close (in cells) to the surfac
     throw Error(ErrorKind::InvalidArgument, "renderMeshRandomWalk: " + message);
 }
 
-template <typename T>
-std::string num(T v) {
-    std::ostringstream s;
-    s.precision(9);
-    s << v;
-    return s.str();
-}
-
 void validateOptions(const MeshRandomWalkOptions& o) {
     if (o.pathsPerPixel < 1)
-        invalid("MeshRandomWalkOptions::pathsPerPixel must be >= 1, got " + num(o.pathsPerPixel));
-    if (o.threads < 0) invalid("MeshRandomWalkOptions::threads must be >= 0, got " + num(o.threads));
-    if (o.maxEvents < 1) invalid("MeshRandomWalkOptions::maxEvents must be >= 1, got " + num(o.maxEvents));
+        invalid("MeshRandomWalkOptions::pathsPerPixel must be >= 1, got " + formatNumber(o.pathsPerPixel));
+    if (o.threads < 0) invalid("MeshRandomWalkOptions::threads must be >= 0, got " + formatNumber(o.threads));
+    if (o.maxEvents < 1) invalid("MeshRandomWalkOptions::maxEvents must be >= 1, got " + formatNumber(o.maxEvents));
     if (!std::isfinite(o.millimetresPerUnit) || o.millimetresPerUnit <= 0.0)
-        invalid("MeshRandomWalkOptions::millimetresPerUnit must be finite and > 0, got " + num(o.millimetresPerUnit));
+        invalid("MeshRandomWalkOptions::millimetresPerUnit must be finite and > 0, got " +
+                formatNumber(o.millimetresPerUnit));
     if (!std::isfinite(o.background.x) || !std::isfinite(o.background.y) || !std::isfinite(o.background.z))
         invalid("MeshRandomWalkOptions::background must be finite");
     if (o.distanceGridCells < 0 || o.distanceGridCells > kMaxGridCells)
-        invalid("MeshRandomWalkOptions::distanceGridCells must be in [0, " + num(kMaxGridCells) + "], got " +
-                num(o.distanceGridCells));
+        invalid("MeshRandomWalkOptions::distanceGridCells must be in [0, " + formatNumber(kMaxGridCells) + "], got " +
+                formatNumber(o.distanceGridCells));
 }
 
 // A light reduced to what the estimator needs.
@@ -370,30 +366,10 @@ public:
              const std::vector<Light>& lights, const Camera& camera, int width, int height,
              const MeshRandomWalkOptions& options)
         : m_options(options), m_width(width), m_height(height), m_g(material.g), m_eta(material.eta) {
-        const glm::dmat4 m(model);
-        const glm::dmat3 m3(m);
-        for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r)
-                if (!std::isfinite(m[c][r])) invalid("the model matrix must be finite");
-        const double det = glm::determinant(m3);
-        if (!std::isfinite(det) || std::abs(det) < 1e-300) invalid("the model matrix must not be singular");
-        const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(m3));
-
-        std::vector<glm::dvec3> positions(mesh.vertexCount());
-        std::vector<glm::dvec3> normals(mesh.vertexCount());
-        m_lo = glm::dvec3(kInf);
-        m_hi = glm::dvec3(-kInf);
-        for (size_t i = 0; i < mesh.vertexCount(); ++i) {
-            positions[i] = glm::dvec3(m * glm::dvec4(glm::dvec3(mesh.positions()[i]), 1.0));
-            normals[i] = normalMatrix * glm::dvec3(mesh.normals()[i]);
-            m_lo = glm::min(m_lo, positions[i]);
-            m_hi = glm::max(m_hi, positions[i]);
-        }
-        const double sceneSize = glm::length(m_hi - m_lo);
-        if (!std::isfinite(sceneSize)) invalid("the model matrix makes mesh positions non-finite");
-        m_offset = 1e-7 * sceneSize;
-        m_lo -= glm::dvec3(4.0 * m_offset);
-        m_hi += glm::dvec3(4.0 * m_offset);
+        detail::WorldMesh world = detail::toWorldMesh(mesh, model, "renderMeshRandomWalk");
+        m_offset = 1e-7 * world.sceneSize;
+        m_lo = world.lo - glm::dvec3(4.0 * m_offset);
+        m_hi = world.hi + glm::dvec3(4.0 * m_offset);
 
         for (int c = 0; c < 3; ++c) {
             m_channels[c].index = c;
@@ -404,25 +380,24 @@ public:
         m_lights = detail::prepareCpuLights(lights, "renderMeshRandomWalk");
 
         const auto& idx = mesh.indices();
-        const double side = det < 0.0 ? -1.0 : 1.0;
         m_tris.resize(mesh.triangleCount());
         double area = 0.0;
         for (size_t t = 0; t < m_tris.size(); ++t) {
             TriInfo& tri = m_tris[t];
-            tri.p0 = positions[idx[3 * t]];
-            tri.p1 = positions[idx[3 * t + 1]];
-            tri.p2 = positions[idx[3 * t + 2]];
-            tri.n0 = normals[idx[3 * t]];
-            tri.n1 = normals[idx[3 * t + 1]];
-            tri.n2 = normals[idx[3 * t + 2]];
+            tri.p0 = world.positions[idx[3 * t]];
+            tri.p1 = world.positions[idx[3 * t + 1]];
+            tri.p2 = world.positions[idx[3 * t + 2]];
+            tri.n0 = world.normals[idx[3 * t]];
+            tri.n1 = world.normals[idx[3 * t + 1]];
+            tri.n2 = world.normals[idx[3 * t + 2]];
             const glm::dvec3 cr = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
             const double len = glm::length(cr);
             area += 0.5 * len;
-            tri.ng = len > 0.0 ? side * cr / len : glm::dvec3(0.0);
+            tri.ng = len > 0.0 ? world.side * cr / len : glm::dvec3(0.0);
         }
         if (!(area > 0.0)) invalid("the mesh \"" + mesh.name() + "\" has zero surface area");
 
-        m_bvh.emplace(std::move(positions), std::vector<uint32_t>(idx.begin(), idx.end()));
+        m_bvh.emplace(std::move(world.positions), std::vector<uint32_t>(idx.begin(), idx.end()));
         if (options.distanceGridCells > 0)
             m_grid = DistanceGrid(m_tris, m_lo, m_hi, options.distanceGridCells, options.threads);
         m_neeRoulette = options.neeRoulette && !m_grid.empty();

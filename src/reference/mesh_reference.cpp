@@ -5,9 +5,11 @@
 #include "mesh/reflectance_table.h"
 #include "reference/bvh.h"
 #include "reference/cpu_lights.h"
+#include "reference/world_mesh.h"
 #include "util/parallel.h"
 #include "sss/error.h"
 #include "sss/materials.h"
+#include "util/format.h"
 
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
@@ -26,7 +28,6 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <unordered_map>
@@ -34,6 +35,8 @@
 
 namespace sss {
 namespace {
+
+using detail::formatNumber;
 
 constexpr double kUniformShare = 0.1;  // share of the uniform-area component of every pdf
 constexpr int kMaxSubdivision = 32;    // sub-triangles per edge of a triangle near x_o
@@ -44,28 +47,22 @@ constexpr int kCheckInterval = 16;  // samples between convergence tests
     throw Error(ErrorKind::InvalidArgument, "renderMeshReference: " + message);
 }
 
-template <typename T>
-std::string num(T v) {
-    std::ostringstream s;
-    s.precision(9);
-    s << v;
-    return s.str();
-}
-
 void validateOptions(const MeshReferenceOptions& o) {
     if (!std::isfinite(o.targetRelativeError) || o.targetRelativeError < 0.0 || o.targetRelativeError >= 1.0)
-        invalid("MeshReferenceOptions::targetRelativeError must be in [0, 1), got " + num(o.targetRelativeError));
+        invalid("MeshReferenceOptions::targetRelativeError must be in [0, 1), got " +
+                formatNumber(o.targetRelativeError));
     if (!std::isfinite(o.absoluteError) || o.absoluteError < 0.0)
-        invalid("MeshReferenceOptions::absoluteError must be finite and >= 0, got " + num(o.absoluteError));
-    if (o.minSamples < 2) invalid("MeshReferenceOptions::minSamples must be >= 2, got " + num(o.minSamples));
+        invalid("MeshReferenceOptions::absoluteError must be finite and >= 0, got " + formatNumber(o.absoluteError));
+    if (o.minSamples < 2) invalid("MeshReferenceOptions::minSamples must be >= 2, got " + formatNumber(o.minSamples));
     if (o.maxSamples < o.minSamples)
-        invalid("MeshReferenceOptions::maxSamples must be >= minSamples (" + num(o.minSamples) + "), got " +
-                num(o.maxSamples));
+        invalid("MeshReferenceOptions::maxSamples must be >= minSamples (" + formatNumber(o.minSamples) + "), got " +
+                formatNumber(o.maxSamples));
     if (!std::isfinite(o.background.x) || !std::isfinite(o.background.y) || !std::isfinite(o.background.z))
         invalid("MeshReferenceOptions::background must be finite");
     if (!std::isfinite(o.millimetresPerUnit) || o.millimetresPerUnit <= 0.0)
-        invalid("MeshReferenceOptions::millimetresPerUnit must be finite and > 0, got " + num(o.millimetresPerUnit));
-    if (o.threads < 0) invalid("MeshReferenceOptions::threads must be >= 0, got " + num(o.threads));
+        invalid("MeshReferenceOptions::millimetresPerUnit must be finite and > 0, got " +
+                formatNumber(o.millimetresPerUnit));
+    if (o.threads < 0) invalid("MeshReferenceOptions::threads must be >= 0, got " + formatNumber(o.threads));
 }
 
 // splitmix64: a small, well-mixed generator; one independent stream per pixel.
@@ -255,26 +252,8 @@ public:
              const std::vector<Light>& lights, const Camera& camera, int width, int height,
              const MeshReferenceOptions& options, std::optional<TexturedSurface> textured = std::nullopt)
         : m_options(options), m_width(width), m_height(height), m_textured(std::move(textured)) {
-        const glm::dmat4 m(model);
-        const glm::dmat3 m3(m);
-        for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r)
-                if (!std::isfinite(m[c][r])) invalid("the model matrix must be finite");
-        const double det = glm::determinant(m3);
-        if (!std::isfinite(det) || std::abs(det) < 1e-300) invalid("the model matrix must not be singular");
-        const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(m3));
-
-        std::vector<glm::dvec3> positions(mesh.vertexCount());
-        std::vector<glm::dvec3> normals(mesh.vertexCount());
-        glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-        for (size_t i = 0; i < mesh.vertexCount(); ++i) {
-            positions[i] = glm::dvec3(m * glm::dvec4(glm::dvec3(mesh.positions()[i]), 1.0));
-            normals[i] = normalMatrix * glm::dvec3(mesh.normals()[i]);
-            lo = glm::min(lo, positions[i]);
-            hi = glm::max(hi, positions[i]);
-        }
-        m_sceneSize = glm::length(hi - lo);
-        if (!std::isfinite(m_sceneSize)) invalid("the model matrix makes mesh positions non-finite");
+        detail::WorldMesh world = detail::toWorldMesh(mesh, model, "renderMeshReference");
+        m_sceneSize = world.sceneSize;
         m_offset = 1e-7 * m_sceneSize;
 
         m_constants = deriveDipoleConstants(material, options.millimetresPerUnit, options.profile);
@@ -282,18 +261,18 @@ public:
         m_lights = detail::prepareCpuLights(lights, "renderMeshReference");
 
         const auto& idx = mesh.indices();
-        const double side = det < 0.0 ? -1.0 : 1.0;
         m_tris.resize(mesh.triangleCount());
         m_totalArea = 0.0;
         for (size_t t = 0; t < m_tris.size(); ++t) {
             TriInfo& tri = m_tris[t];
-            const glm::dvec3 &a = positions[idx[3 * t]], &b = positions[idx[3 * t + 1]], &c = positions[idx[3 * t + 2]];
+            const std::vector<glm::dvec3>& p = world.positions;
+            const glm::dvec3 &a = p[idx[3 * t]], &b = p[idx[3 * t + 1]], &c = p[idx[3 * t + 2]];
             tri.p0 = a;
             tri.e1 = b - a;
             tri.e2 = c - a;
-            tri.n0 = normals[idx[3 * t]];
-            tri.n1 = normals[idx[3 * t + 1]];
-            tri.n2 = normals[idx[3 * t + 2]];
+            tri.n0 = world.normals[idx[3 * t]];
+            tri.n1 = world.normals[idx[3 * t + 1]];
+            tri.n2 = world.normals[idx[3 * t + 2]];
             if (!mesh.texcoords().empty()) {
                 tri.uv0 = glm::dvec2(mesh.texcoords()[idx[3 * t]]);
                 tri.uv1 = glm::dvec2(mesh.texcoords()[idx[3 * t + 1]]);
@@ -302,7 +281,7 @@ public:
             const glm::dvec3 cr = glm::cross(tri.e1, tri.e2);
             const double len = glm::length(cr);
             tri.area = 0.5 * len;
-            tri.ng = len > 0.0 ? side * cr / len : glm::dvec3(0.0);
+            tri.ng = len > 0.0 ? world.side * cr / len : glm::dvec3(0.0);
             tri.centroid = (a + b + c) / 3.0;
             tri.radius = std::max({glm::distance(a, tri.centroid), glm::distance(b, tri.centroid),
                                    glm::distance(c, tri.centroid)});
@@ -311,7 +290,7 @@ public:
         }
         if (!(m_totalArea > 0.0)) invalid("the mesh \"" + mesh.name() + "\" has zero surface area");
 
-        m_bvh.emplace(std::move(positions), std::vector<uint32_t>(idx.begin(), idx.end()));
+        m_bvh.emplace(std::move(world.positions), std::vector<uint32_t>(idx.begin(), idx.end()));
         for (TriInfo& tri : m_tris) tri.light = lightFactor(tri);
         m_kernel.emplace(m_constants, m_sceneSize);
         for (int s = 1; s <= kMaxSubdivision; ++s) m_cells.push_back(subdivisionCells(s));

@@ -6,6 +6,7 @@
 #include "reference/walk_sampling.h"
 
 #include "sss/error.h"
+#include "util/format.h"
 
 #include <algorithm>
 #include <atomic>
@@ -15,7 +16,6 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,15 +23,9 @@
 namespace sss {
 namespace {
 
-constexpr std::int64_t kChunkPaths = 16384;  // paths per random stream (fixed: determinism)
+using detail::formatNumber;
 
-template <typename T>
-std::string num(T v) {
-    std::ostringstream s;
-    s.precision(9);
-    s << v;
-    return s.str();
-}
+constexpr std::int64_t kChunkPaths = 16384;  // paths per random stream (fixed: determinism)
 
 [[noreturn]] void invalid(const std::string& where, const std::string& message) {
     throw Error(ErrorKind::InvalidArgument, where + ": " + message);
@@ -39,24 +33,27 @@ std::string num(T v) {
 
 void validateOptions(const SlabRandomWalkOptions& o) {
     const std::string w = "simulateSlab";
-    if (o.paths < 1) invalid(w, "SlabRandomWalkOptions::paths must be >= 1, got " + num(o.paths));
-    if (o.threads < 0) invalid(w, "SlabRandomWalkOptions::threads must be >= 0, got " + num(o.threads));
-    if (o.maxEvents < 1) invalid(w, "SlabRandomWalkOptions::maxEvents must be >= 1, got " + num(o.maxEvents));
+    if (o.paths < 1) invalid(w, "SlabRandomWalkOptions::paths must be >= 1, got " + formatNumber(o.paths));
+    if (o.threads < 0) invalid(w, "SlabRandomWalkOptions::threads must be >= 0, got " + formatNumber(o.threads));
+    if (o.maxEvents < 1) invalid(w, "SlabRandomWalkOptions::maxEvents must be >= 1, got " + formatNumber(o.maxEvents));
     if (!std::isfinite(o.coneHalfAngleDeg) || o.coneHalfAngleDeg <= 0.0 || o.coneHalfAngleDeg > 90.0)
-        invalid(w, "SlabRandomWalkOptions::coneHalfAngleDeg must be in (0, 90], got " + num(o.coneHalfAngleDeg));
+        invalid(w, "SlabRandomWalkOptions::coneHalfAngleDeg must be in (0, 90], got " +
+                   formatNumber(o.coneHalfAngleDeg));
     if (o.angleBins < 1 || o.angleBins > 100000)
-        invalid(w, "SlabRandomWalkOptions::angleBins must be in [1, 100000], got " + num(o.angleBins));
+        invalid(w, "SlabRandomWalkOptions::angleBins must be in [1, 100000], got " + formatNumber(o.angleBins));
     if (!std::isfinite(o.profileMaxRadius) || o.profileMaxRadius <= 0.0)
-        invalid(w, "SlabRandomWalkOptions::profileMaxRadius must be finite and > 0, got " + num(o.profileMaxRadius));
+        invalid(w, "SlabRandomWalkOptions::profileMaxRadius must be finite and > 0, got " +
+                   formatNumber(o.profileMaxRadius));
     if (o.profileBins < 1 || o.profileBins > 1000000)
-        invalid(w, "SlabRandomWalkOptions::profileBins must be in [1, 1000000], got " + num(o.profileBins));
+        invalid(w, "SlabRandomWalkOptions::profileBins must be in [1, 1000000], got " + formatNumber(o.profileBins));
     if (std::isnan(o.thickness) || o.thickness <= 0.0)
-        invalid(w, "SlabRandomWalkOptions::thickness must be > 0 (infinity: a half-space), got " + num(o.thickness));
+        invalid(w, "SlabRandomWalkOptions::thickness must be > 0 (infinity: a half-space), got " +
+                   formatNumber(o.thickness));
 }
 
 void validateIncidence(const std::string& where, double incidenceDeg) {
     if (!std::isfinite(incidenceDeg) || incidenceDeg < 0.0 || incidenceDeg >= 90.0)
-        invalid(where, "incidenceDeg must be in [0, 90), got " + num(incidenceDeg));
+        invalid(where, "incidenceDeg must be in [0, 90), got " + formatNumber(incidenceDeg));
 }
 
 double radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
@@ -353,15 +350,16 @@ void validateSplitOptions(const SplitSlabOptions& o) {
     const auto bad = [](const char* field, const std::string& reason) {
         throw Error(ErrorKind::InvalidArgument, "SplitSlabOptions", field, reason, "simulateSplitSlab");
     };
-    if (o.paths < 1) bad("paths", "must be >= 1, got " + num(o.paths));
-    if (o.threads < 0) bad("threads", "must be >= 0, got " + num(o.threads));
-    if (o.maxEvents < 1) bad("maxEvents", "must be >= 1, got " + num(o.maxEvents));
+    if (o.paths < 1) bad("paths", "must be >= 1, got " + formatNumber(o.paths));
+    if (o.threads < 0) bad("threads", "must be >= 0, got " + formatNumber(o.threads));
+    if (o.maxEvents < 1) bad("maxEvents", "must be >= 1, got " + formatNumber(o.maxEvents));
     if (!std::isfinite(o.entryHalfWidth) || o.entryHalfWidth <= 0.0)
-        bad("entryHalfWidth", "must be finite and > 0, got " + num(o.entryHalfWidth));
+        bad("entryHalfWidth", "must be finite and > 0, got " + formatNumber(o.entryHalfWidth));
     if (!std::isfinite(o.tallyHalfWidth) || o.tallyHalfWidth <= 0.0 || o.tallyHalfWidth > o.entryHalfWidth)
-        bad("tallyHalfWidth", "must be finite, > 0 and <= entryHalfWidth (" + num(o.entryHalfWidth) + "), got " +
-                                  num(o.tallyHalfWidth));
-    if (o.bins < 1 || o.bins > 1000000) bad("bins", "must be in [1, 1000000], got " + num(o.bins));
+        bad("tallyHalfWidth", "must be finite, > 0 and <= entryHalfWidth (" +
+            formatNumber(o.entryHalfWidth) + "), got " +
+                                  formatNumber(o.tallyHalfWidth));
+    if (o.bins < 1 || o.bins > 1000000) bad("bins", "must be in [1, 1000000], got " + formatNumber(o.bins));
 }
 
 // Validates one of the two materials; the message says which.
@@ -469,8 +467,8 @@ SplitSlabResult simulateSplitSlab(const ScatteringMaterial& left, const Scatteri
     validateSide(right, "right");
     if (left.eta != right.eta)
         invalid("simulateSplitSlab", "the two materials must have the same eta (the interface x = 0 is index-matched), "
-                                     "got left \"" + left.name + "\" eta " + num(left.eta) + " and right \"" +
-                                     right.name + "\" eta " + num(right.eta));
+                                     "got left \"" + left.name + "\" eta " + formatNumber(left.eta) + " and right \"" +
+                                     right.name + "\" eta " + formatNumber(right.eta));
     validateSplitOptions(options);
 
     SplitSlabResult result;
@@ -590,7 +588,7 @@ void sqrtEdgeRule(double a, double b, Quadrature& q) {
 
 void checkAlbedo(const std::string& where, double albedo) {
     if (!std::isfinite(albedo) || albedo < 0.0 || albedo > 1.0)
-        invalid(where, "albedo must be in [0, 1], got " + num(albedo));
+        invalid(where, "albedo must be in [0, 1], got " + formatNumber(albedo));
 }
 
 // Solves A x = b in place (Gaussian elimination with partial pivoting); A is n x n row-major.
@@ -674,7 +672,8 @@ private:
 
 double chandrasekharH(double albedo, double mu) {
     checkAlbedo("chandrasekharH", albedo);
-    if (!std::isfinite(mu) || mu < 0.0 || mu > 1.0) invalid("chandrasekharH", "mu must be in [0, 1], got " + num(mu));
+    if (!std::isfinite(mu) || mu < 0.0 || mu > 1.0) invalid("chandrasekharH", "mu must be in [0, 1], got " +
+                                                            formatNumber(mu));
     return HFunction(albedo)(mu);
 }
 
@@ -682,10 +681,11 @@ HalfSpaceReflectance isotropicHalfSpaceReflectance(double albedo, double eta, do
                                                    double coneHalfAngleDeg) {
     const std::string where = "isotropicHalfSpaceReflectance";
     checkAlbedo(where, albedo);
-    if (!std::isfinite(eta) || eta < 0.4 || eta > 2.5) invalid(where, "eta must be in [0.4, 2.5], got " + num(eta));
+    if (!std::isfinite(eta) || eta < 0.4 || eta > 2.5) invalid(where, "eta must be in [0.4, 2.5], got " +
+                                                                      formatNumber(eta));
     validateIncidence(where, incidenceDeg);
     if (!std::isfinite(coneHalfAngleDeg) || coneHalfAngleDeg <= 0.0 || coneHalfAngleDeg > 90.0)
-        invalid(where, "coneHalfAngleDeg must be in (0, 90], got " + num(coneHalfAngleDeg));
+        invalid(where, "coneHalfAngleDeg must be in (0, 90], got " + formatNumber(coneHalfAngleDeg));
 
     HalfSpaceReflectance out;
     const double pi = std::numbers::pi;

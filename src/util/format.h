@@ -14,6 +14,9 @@ SSS_API std::string formatNumber(float value);
 SSS_API std::string formatNumber(long long value);
 inline std::string formatNumber(int value) { return formatNumber(static_cast<long long>(value)); }
 inline std::string formatNumber(unsigned value) { return formatNumber(static_cast<long long>(value)); }
+inline std::string formatNumber(long value) { return formatNumber(static_cast<long long>(value)); }
+inline std::string formatNumber(unsigned long long value) { return std::to_string(value); }
+inline std::string formatNumber(unsigned long value) { return std::to_string(value); }
 SSS_API std::string formatVec(glm::vec3 v);
 SSS_API std::string formatVec(glm::dvec3 v);
 SSS_API std::string formatVec(glm::dvec4 v);
