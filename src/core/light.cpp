@@ -76,6 +76,13 @@ std::vector<Light> detail::withUnitRadiance(std::vector<Light> lights) {
     return lights;
 }
 
+std::vector<Light> detail::asLightVolumeLights(std::vector<Light> lights) {
+    lights = withUnitRadiance(std::move(lights));
+    for (Light& light : lights)
+        if (const auto* spot = std::get_if<SpotLight>(&light)) light = PointLight{.position = spot->position};
+    return lights;
+}
+
 std::optional<glm::vec3> detail::commonRadianceScale(const std::vector<Light>& before, const std::vector<Light>& now) {
     if (before.size() != now.size() || withUnitRadiance(before) != withUnitRadiance(now)) return std::nullopt;
     // Each channel's factor from the light brightest in it before; every light must agree.

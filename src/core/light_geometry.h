@@ -28,6 +28,10 @@ inline glm::vec3 lightRadiance(const Light& light) {
 /// radiance), so they are keyed on this.
 std::vector<Light> withUnitRadiance(std::vector<Light> lights);
 
+/// The lights as a light volume holds them: unit radiance, and each spot light as a point light
+/// at its position (the eye applies the cone). A spot aimed or widened keeps its light volume.
+std::vector<Light> asLightVolumeLights(std::vector<Light> lights);
+
 /// The per-channel factor f with lightRadiance(now[i]) = f * lightRadiance(before[i]) for every
 /// light, the lights otherwise the same: one intensity or colour change of a single light, or
 /// all lights scaled alike. None where the lights differ otherwise, or where a channel that was

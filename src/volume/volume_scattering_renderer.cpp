@@ -408,7 +408,7 @@ struct VolumeScatteringRenderer::Impl {
         const LightVolumeInputs inputs{volumeGeneration,
                                        transferFunction.revision(),
                                        options.transferFunctionEntries,
-                                       detail::withUnitRadiance(lights),  // the eye scales by the radiance
+                                       detail::asLightVolumeLights(lights),  // the eye applies the radiance and a spot's cone
                                        model,
                                        {.resolutionScale = options.lightVolumeScale,
                                         .anisotropy = options.anisotropy,

@@ -74,3 +74,24 @@ TEST_CASE("lights with unit radiance keep where their light goes", "[lights]") {
     CHECK(s.position == spot.position);
     CHECK(s.direction == spot.direction);
 }
+
+TEST_CASE("a light volume's lights: unit radiance, a spot light as a point light where it stands", "[lights]") {
+    SpotLight spot;
+    spot.position = {1.0f, 2.0f, 3.0f};
+    spot.color = {0.2f, 0.4f, 0.6f};
+    spot.intensity = 7.0f;
+    const DirectionalLight sun{.direction = {0.0f, -1.0f, 0.5f}, .color = {1.0f, 0.5f, 0.25f}, .intensity = 3.0f};
+    const std::vector<Light> swept = detail::asLightVolumeLights({spot, sun});
+    REQUIRE(swept.size() == 2);
+    CHECK(swept[0] == Light{PointLight{.position = spot.position}});
+    CHECK(swept[1] == Light{DirectionalLight{.direction = sun.direction}});
+    // Aimed elsewhere or narrowed, the spot keeps its light volume's lights; moved, it does not.
+    SpotLight aimed = spot;
+    aimed.direction = {1.0f, 0.0f, 0.0f};
+    aimed.coneAngle = 5.0f;
+    aimed.falloff = 0.0f;
+    CHECK(detail::asLightVolumeLights({aimed}) == detail::asLightVolumeLights({spot}));
+    SpotLight moved = spot;
+    moved.position.y += 0.25f;
+    CHECK(detail::asLightVolumeLights({moved}) != detail::asLightVolumeLights({spot}));
+}

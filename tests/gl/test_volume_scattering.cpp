@@ -555,6 +555,50 @@ TEST_CASE("a light's colour or intensity alone keeps the light volume, and the p
     gl.requireNoErrors();
 }
 
+TEST_CASE("a spot light aimed or widened keeps its light volume, and the picture is a fresh renderer's",
+          "[gl][volume][scattering][caching]") {
+    // A light volume holds what the medium lets through from the light's position; the ray caster
+    // applies a spot's cone. Both models, the paper model without its eye pass (which uses the cone).
+    test::GlTestScope gl;
+    const Volume volume = makeBlobsVolume(24);
+    const Bounds box = volume.worldBounds();
+    const Camera camera = orbitCamera(box, 20, 15);
+    const glm::vec3 position = box.center() + glm::vec3(1.5f, 1.0f, 0.8f) * box.size();
+    const SpotLight wide{.position = position, .direction = box.center() - position, .coneAngle = 40.0f, .intensity = 60.0f};
+    SpotLight aimed = wide;
+    aimed.direction = box.min - position;  // the cone's edge now across the volume
+    aimed.coneAngle = 12.0f;
+    aimed.falloff = 0.5f;
+    for (const VolumeModel model : {VolumeModel::Physical, VolumeModel::Paper}) {
+        INFO((model == VolumeModel::Physical ? "the physical model" : "the paper model"));
+        const VolumeRenderOptions options{.shading = VolumeShading::Scattering, .model = model};
+        auto make = [&](const SpotLight& light) {
+            auto r = std::make_unique<VolumeScatteringRenderer>(options);
+            r->setVolume(volume);
+            r->setTransferFunction(TransferFunction::preset("bucky"));
+            r->setLights({light});
+            return r;
+        };
+        auto render = [&](VolumeScatteringRenderer& r) {
+            RenderTarget target(48, 27);
+            target.clear(kBackground);
+            r.render(camera, target);
+            return target.readColor();
+        };
+        auto renderer = make(wide);
+        const Image before = render(*renderer);
+        renderer->setLights({aimed});
+        const Image after = render(*renderer);
+        CHECK(renderer->stats().runs("light-volume") == 1);
+        CHECK(computeErrorMetrics(after, render(*make(aimed))).maxAbsError == 0.0);
+        CHECK(computeErrorMetrics(after, before).maxAbsError > 0.05f);  // the cone did change the picture
+        renderer->setLights({PointLight{.position = position + glm::vec3(0.0f, 0.1f, 0.0f) * box.size()}});
+        render(*renderer);
+        CHECK(renderer->stats().runs("light-volume") == 2);  // moved: propagated again
+    }
+    gl.requireNoErrors();
+}
+
 TEST_CASE("scattering bucky-like volume matches the golden image", "[gl][volume][scattering][golden]") {
     test::GlTestScope gl;
     const Volume volume = makeBuckyLikeVolume(32);
