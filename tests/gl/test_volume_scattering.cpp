@@ -51,6 +51,23 @@ Image renderScattering(const Volume& volume, const TransferFunction& tf, const s
     return target.readColor();
 }
 
+// A renderer of `volume` lit by `light`, kept for the caching tests' changes, and its 48 x 27 frame.
+std::unique_ptr<VolumeScatteringRenderer> makeLitRenderer(const VolumeRenderOptions& options, const Volume& volume,
+                                                          const TransferFunction& tf, const Light& light) {
+    auto renderer = std::make_unique<VolumeScatteringRenderer>(options);
+    renderer->setVolume(volume);
+    renderer->setTransferFunction(tf);
+    renderer->setLights({light});
+    return renderer;
+}
+
+Image renderSmall(VolumeScatteringRenderer& renderer, const Camera& camera) {
+    RenderTarget target(48, 27);
+    target.clear(kBackground);
+    renderer.render(camera, target);
+    return target.readColor();
+}
+
 }  // namespace
 
 TEST_CASE("a transparent transfer function leaves the light unattenuated and the image empty",
@@ -530,19 +547,8 @@ TEST_CASE("a light's colour or intensity alone keeps the light volume, and the p
          {VolumeRenderOptions{.shading = VolumeShading::Scattering, .model = VolumeModel::Physical},
           VolumeRenderOptions{.shading = VolumeShading::Scattering, .eyePass = true}}) {
         INFO((options.eyePass ? "the paper model with its eye pass" : "the physical model"));
-        auto make = [&](const DirectionalLight& light) {
-            auto r = std::make_unique<VolumeScatteringRenderer>(options);
-            r->setVolume(volume);
-            r->setTransferFunction(tf);
-            r->setLights({light});
-            return r;
-        };
-        auto render = [&](VolumeScatteringRenderer& r) {
-            RenderTarget target(48, 27);
-            target.clear(kBackground);
-            r.render(camera, target);
-            return target.readColor();
-        };
+        auto make = [&](const Light& light) { return makeLitRenderer(options, volume, tf, light); };
+        auto render = [&](VolumeScatteringRenderer& r) { return renderSmall(r, camera); };
         auto renderer = make(white);
         render(*renderer);
         renderer->setLights({orange});
@@ -561,10 +567,12 @@ TEST_CASE("a spot light aimed or widened keeps its light volume, and the picture
     // applies a spot's cone. Both models, the paper model without its eye pass (which uses the cone).
     test::GlTestScope gl;
     const Volume volume = makeBlobsVolume(24);
+    const TransferFunction tf = TransferFunction::preset("bucky");
     const Bounds box = volume.worldBounds();
     const Camera camera = orbitCamera(box, 20, 15);
     const glm::vec3 position = box.center() + glm::vec3(1.5f, 1.0f, 0.8f) * box.size();
-    const SpotLight wide{.position = position, .direction = box.center() - position, .coneAngle = 40.0f, .intensity = 60.0f};
+    const SpotLight wide{
+        .position = position, .direction = box.center() - position, .coneAngle = 40.0f, .intensity = 60.0f};
     SpotLight aimed = wide;
     aimed.direction = box.min - position;  // the cone's edge now across the volume
     aimed.coneAngle = 12.0f;
@@ -572,19 +580,8 @@ TEST_CASE("a spot light aimed or widened keeps its light volume, and the picture
     for (const VolumeModel model : {VolumeModel::Physical, VolumeModel::Paper}) {
         INFO((model == VolumeModel::Physical ? "the physical model" : "the paper model"));
         const VolumeRenderOptions options{.shading = VolumeShading::Scattering, .model = model};
-        auto make = [&](const SpotLight& light) {
-            auto r = std::make_unique<VolumeScatteringRenderer>(options);
-            r->setVolume(volume);
-            r->setTransferFunction(TransferFunction::preset("bucky"));
-            r->setLights({light});
-            return r;
-        };
-        auto render = [&](VolumeScatteringRenderer& r) {
-            RenderTarget target(48, 27);
-            target.clear(kBackground);
-            r.render(camera, target);
-            return target.readColor();
-        };
+        auto make = [&](const Light& light) { return makeLitRenderer(options, volume, tf, light); };
+        auto render = [&](VolumeScatteringRenderer& r) { return renderSmall(r, camera); };
         auto renderer = make(wide);
         const Image before = render(*renderer);
         renderer->setLights({aimed});
