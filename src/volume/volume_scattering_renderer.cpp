@@ -443,7 +443,7 @@ struct VolumeScatteringRenderer::Impl {
                                           .occupiedNeighbourhoods =
                                               options.emptySpaceSkipping ? &occupancy->occupiedNeighbourhoods() : nullptr,
                                           .clip = lightClip()},
-                                         lights[i], model, settings, built[i]);
+                                         inputs.lights[i], model, settings, built[i]);  // what they are keyed on
                     dispatches += static_cast<std::uint64_t>(lightVolumePass->lastLayout().dispatches());
                 }
                 break;
