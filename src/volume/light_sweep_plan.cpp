@@ -27,6 +27,10 @@ std::array<std::pair<float, int>, 3> rankAxes(glm::vec3 magnitude) {
 
 }  // namespace
 
+float secondSweepWeight(float share) {
+    return 0.5f * std::clamp((share - kSweepBlendStart) / (0.5f - kSweepBlendStart), 0.0f, 1.0f);
+}
+
 float chromaticityConeAngle(float g) {
     constexpr float maxAngle = 60.0f * kPi / 180.0f;
     if (g <= 1e-3f) return maxAngle;  // isotropic or backward: widest blur
@@ -53,9 +57,9 @@ std::vector<LightSweep> planLightSweeps(const Light& light, const Bounds& box, g
         const auto ranked = rankAxes(glm::abs(d) / glm::length(d));
         const float w1 = ranked[0].first - ranked[2].first, w2 = ranked[1].first - ranked[2].first;
         const float sum = w1 + w2;
-        std::vector<LightSweep> sweeps{{ranked[0].second, d[ranked[0].second] < 0, sum > 0 ? w1 / sum : 0.5f}};
-        if (sum <= 0 || w2 > 0)
-            sweeps.push_back({ranked[1].second, d[ranked[1].second] < 0, sum > 0 ? w2 / sum : 0.5f});
+        const float second = secondSweepWeight(sum > 0 ? w2 / sum : 0.5f);
+        std::vector<LightSweep> sweeps{{ranked[0].second, d[ranked[0].second] < 0, 1.0f - second}};
+        if (second > 0) sweeps.push_back({ranked[1].second, d[ranked[1].second] < 0, second});
         return sweeps;
     }
     // Point or spot light: how far outside the box it is along each axis, in half-extents.

@@ -21,6 +21,15 @@ struct LightSweep {
     bool pyramid = false;   ///< owns only the voxels whose dominant light axis is its own
 };
 
+/// A directional light is swept along the axis it travels most along, in voxels. Near the
+/// diagonal where that axis changes, a second sweep along the next axis is blended in, so the light
+/// volume stays continuous as the light turns. `share` is the second axis's excess over the third
+/// relative to both, (a2 - a3) / (a1 + a2 - 2 a3), 0.5 on the diagonal; the second sweep's weight
+/// rises from 0 at kSweepBlendStart to 0.5 there. Below it one sweep is as accurate and takes half
+/// the time (docs/light-volume-sweep.md, "One sweep away from a diagonal").
+inline constexpr float kSweepBlendStart = 0.42f;
+SSS_API float secondSweepWeight(float share);
+
 /// The sweeps for `light` (already in the volume's model space) over a volume of `box` whose
 /// light volume has `dims` voxels.
 SSS_API std::vector<LightSweep> planLightSweeps(const Light& modelSpaceLight, const Bounds& box, glm::ivec3 dims);

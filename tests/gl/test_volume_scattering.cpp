@@ -226,14 +226,12 @@ TEST_CASE("any number of slices per dispatch gives the same light volume", "[gl]
             if (softwareDevice) CHECK(fromOne.y == 0.0f);
             else CHECK(fromOne.y <= kHardwareRounding);
             CHECK(fromOne.x <= (v.chromaticity ? 1.2e-2f : 0.0f));  // llvmpipe: 8.3e-3 at most
-            // The slanted light and the point light outside run several slices per dispatch. The
-            // nearly axial light's blended sweep shifts 20 texels per slice and the light inside
-            // has six unbounded sweeps: both fall back to one slice per dispatch.
-            const bool fallsBack = &c == &cases[1] || &c == &cases[2];
+            // The directional lights and the point light outside run several slices per dispatch.
+            // The light inside has six unbounded sweeps: it falls back to one slice per dispatch.
+            const bool fallsBack = &c == &cases[2];
             CHECK((fallsBack ? slicesUsed == 1 : slicesUsed >= 2));
             // Software rasterisers propagate a directional light's voxels in columns that share
-            // their lookups' rows (COLUMN_VOXELS), which the comparison with the slabs covers; the
-            // nearly axial light's lookups reach past the slices' padding, so it takes one voxel.
+            // their lookups' rows (COLUMN_VOXELS), which the comparison with the slabs covers.
             const bool columns = softwareDevice && std::holds_alternative<DirectionalLight>(c.light) && !fallsBack;
             CHECK((oneLayout.columnVoxels > 1) == columns);
         }
@@ -257,8 +255,8 @@ TEST_CASE("sweeps in turn and row-ordered x sweeps give the same light volume", 
         int sweeps;
         int rowOrderedSweep;  // when asked for
     };
-    const Case cases[] = {{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 2, 0},
-                          {DirectionalLight{.direction = {-0.6f, -0.7f, -0.4f}}, 2, 1},
+    const Case cases[] = {{DirectionalLight{.direction = {0.8f, -0.7f, 0.35f}}, 2, 0},
+                          {DirectionalLight{.direction = {-0.65f, -0.7f, -0.4f}}, 2, 1},
                           {DirectionalLight{.direction = {-1.0f, 0.3f, 0.3f}}, 1, 0},
                           {kSweepCases[2].light, 6, -1}};
     for (const bool chromaticity : {true, false}) {
@@ -296,7 +294,7 @@ TEST_CASE("sweeps in turn and row-ordered x sweeps give the same light volume", 
     }
     // Sweeps along y and z alone stay together.
     detail::LightVolumePass::SweepLayout layout;
-    propagate(volume, tf, DirectionalLight{.direction = {0.1f, -0.7f, 0.5f}}, {}, {}, &layout);
+    propagate(volume, tf, DirectionalLight{.direction = {0.1f, -0.7f, 0.6f}}, {}, {}, &layout);
     CHECK(layout.sweeps == 2);
     CHECK(!layout.sweepsInTurn);
     CHECK(layout.rowOrderedSweep < 0);
@@ -388,8 +386,11 @@ TEST_CASE("an opaque slab casts a hard shadow exactly where the geometry puts it
     SECTION("oblique light: the shadow edge stays sharp far behind the wall") {
         // Half a texel of sideways shift per slice. Bilinear lookups blurred the edge by a
         // variance of f (1 - f) = 1/4 texel^2 per slice: 10-90 % widths of 2.9, 3.5, 4.0 and 4.6
-        // voxels 4, 8, 12 and 16 voxels behind the wall (measured). The clamped Catmull-Rom
-        // lookup measured 1.94, 2.20, 2.46 and 2.63; the bounds are 13 % above that.
+        // voxels 4, 8, 12 and 16 voxels behind the wall (measured, with the y sweep blended in).
+        // The clamped Catmull-Rom lookup measured 1.94, 2.20, 2.46 and 2.63 with the blend, and
+        // 2.51, 2.86, 3.07 and 3.22 swept along x alone, as this light is since 2026-12-01 (the y
+        // sweep shifts a whole 2 texels per slice and sharpened the blend); the bounds are 13 %
+        // above that.
         const LightVolumeReadback lv = propagate(volume, stepTf(1.0f), DirectionalLight{.direction = {1, 0.5f, 0}});
         const auto crossing = [&](int x, float level) {
             for (int y = 1; y < n; ++y) {
@@ -398,7 +399,7 @@ TEST_CASE("an opaque slab casts a hard shadow exactly where the geometry puts it
             }
             return -100.0f;
         };
-        const std::pair<int, float> bounds[] = {{13, 2.2f}, {17, 2.5f}, {21, 2.8f}, {25, 3.0f}};  // x, width
+        const std::pair<int, float> bounds[] = {{13, 2.85f}, {17, 3.25f}, {21, 3.5f}, {25, 3.65f}};  // x, width
         for (const auto& [x, bound] : bounds) {
             const float width = crossing(x, 0.9f) - crossing(x, 0.1f);
             INFO("x " << x << ": 10-90 % width " << width << " voxels");
@@ -826,7 +827,7 @@ TEST_CASE("a light volume without the blended sweep: the same along an axis, clo
     CHECK(a.texels == b.texels);
     // Oblique: one sweep instead of two; the intensity within a measured bound of the blend
     // (relRMSE 0.0061, largest difference 0.10 at a blob's shadow edge).
-    const DirectionalLight oblique{.direction = {-0.45f, -0.7f, -0.55f}};
+    const DirectionalLight oblique{.direction = {-0.4f, -0.7f, -0.65f}};
     const LightVolumeReadback c = propagate(volume, tf, oblique, blended, {}, &layout);
     CHECK(layout.sweeps == 2);
     const LightVolumeReadback d = propagate(volume, tf, oblique, single, {}, &layout);

@@ -258,11 +258,14 @@ TEST_CASE("the cache's once-scattered light follows the direct light within its 
     const double error = computeErrorMetrics(image, block.truth.image).relRmse;
     INFO("multiple-scattering part against the truth's " << multiplePart << ", relRMSE " << error << " (truth's noise "
                                                          << block.truth.relativeRmseEstimate << ")");
-    // Measured on llvmpipe: 1.011, relRMSE 16.8 %. The cell's mean alone: 0.546 (29.4 %); the
-    // direct light extrapolated without the cap at twice the cell's largest: 1.288 (32.1 %); capped
-    // at the cell's largest: 0.733 (19.8 %).
-    CHECK(multiplePart == Approx(1.0).margin(0.1));
-    CHECK(error < 0.2);
+    // Measured on llvmpipe: 0.887, relRMSE 12.9 %. With the light volume's second sweep blended
+    // in (under this light until 2026-12-01; the direct light inside the cells differs, what the
+    // eye sees of it does not): 1.009, 17.0 %. The cell's mean alone: 0.546 (29.4 %); the direct
+    // light extrapolated without the cap at twice the cell's largest: 1.288 (32.1 %); capped at
+    // the cell's largest: 0.733 (19.8 %).
+    CHECK(multiplePart > 0.8);
+    CHECK(multiplePart < 1.2);
+    CHECK(error < 0.15);
     gl.requireNoErrors();
 }
 

@@ -34,7 +34,7 @@ TransferFunction twoBlobsTf() {
                              {0.55f, {0.3f, 0.6f, 0.9f}, 0.8f}, {1.0f, {0.3f, 0.6f, 0.9f}, 0.8f}});
 }
 
-const SweepCase kSweepCases[4] = {{DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 1.0f},
+const SweepCase kSweepCases[4] = {{DirectionalLight{.direction = {0.8f, -0.7f, 0.35f}}, 1.0f},
                                   {DirectionalLight{.direction = {0.05f, 1.0f, 0.02f}}, 1.0f},
                                   {PointLight{.position = {0.02f, -0.05f, 0.1f}}, 1.0f},
                                   {DirectionalLight{.direction = {0.8f, -0.5f, 0.35f}}, 0.35f}};

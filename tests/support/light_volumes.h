@@ -41,9 +41,10 @@ struct Skipping {
 Volume twoBlobsVolume();
 TransferFunction twoBlobsTf();
 
-/// Lights that exercise every kind of sweep: a slanted directional light (two blended sweeps,
-/// long slabs), a nearly axial one (one sweep), a point light inside (six sweeps) and, at a
-/// reduced resolution, light-volume voxels that span several data voxels.
+/// Lights that exercise every kind of sweep: a directional light near a diagonal (two blended
+/// sweeps, long slabs), a nearly axial one (one sweep), a point light inside (six sweeps) and, at a
+/// reduced resolution, a slanted light (one sweep) whose light-volume voxels span several data
+/// voxels.
 struct SweepCase {
     Light light;
     float scale;
