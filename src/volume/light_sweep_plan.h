@@ -25,9 +25,9 @@ struct LightSweep {
 /// diagonal where that axis changes, a second sweep along the next axis is blended in, so the light
 /// volume stays continuous as the light turns. `share` is the second axis's excess over the third
 /// relative to both, (a2 - a3) / (a1 + a2 - 2 a3), 0.5 on the diagonal; the second sweep's weight
-/// rises from 0 at kSweepBlendStart to 0.5 there. Below it one sweep is 0.1-0.4 points further from
-/// the reference on real data and takes half
-/// the time (docs/light-volume-sweep.md, "One sweep away from a diagonal").
+/// rises from 0 at kSweepBlendStart to 0.5 there. Below it one sweep is 0.1-0.4 points further
+/// from the reference on real data and takes half the time (docs/light-volume-sweep.md, "One
+/// sweep away from a diagonal").
 inline constexpr float kSweepBlendStart = 0.42f;
 SSS_API float secondSweepWeight(float share);
 
