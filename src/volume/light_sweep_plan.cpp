@@ -82,12 +82,13 @@ std::vector<LightSweep> planLightSweeps(const Light& light, const Bounds& box, g
         return sweeps;
     }
     // Outside: the light travels into the box through the face(s) it is beyond. A second axis
-    // is valid only while the light is beyond that face too; its weight reaches 0 as it stops.
+    // is valid only while the light is beyond that face too; its share reaches 0 as it stops,
+    // and the second sweep runs only near the diagonal, as for a directional light.
     const float floor3 = std::max(1.0f, ranked[2].first);
     const float w1 = ranked[0].first - floor3, w2 = std::max(0.0f, ranked[1].first - floor3);
-    const float sum = w1 + w2;
-    std::vector<LightSweep> sweeps{{ranked[0].second, offset[ranked[0].second] > 0, sum > 0 ? w1 / sum : 1.0f}};
-    if (w2 > 0) sweeps.push_back({ranked[1].second, offset[ranked[1].second] > 0, w2 / sum});
+    const float second = w2 > 0 ? secondSweepWeight(w2 / (w1 + w2)) : 0.0f;
+    std::vector<LightSweep> sweeps{{ranked[0].second, offset[ranked[0].second] > 0, 1.0f - second}};
+    if (second > 0) sweeps.push_back({ranked[1].second, offset[ranked[1].second] > 0, second});
     return sweeps;
 }
 

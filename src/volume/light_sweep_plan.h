@@ -32,7 +32,8 @@ inline constexpr float kSweepBlendStart = 0.42f;
 SSS_API float secondSweepWeight(float share);
 
 /// The sweeps for `light` (already in the volume's model space) over a volume of `box` whose
-/// light volume has `dims` voxels.
+/// light volume has `dims` voxels. A point or spot light outside the box takes the same band,
+/// with the axes ranked by how far beyond each face it is; one inside takes six sweeps.
 SSS_API std::vector<LightSweep> planLightSweeps(const Light& modelSpaceLight, const Bounds& box, glm::ivec3 dims);
 
 /// The light volume's size for a volume of `volumeDims` at `scale` (each side at least 1).
