@@ -375,10 +375,11 @@ PathTracedTruth cachedPathTraced(BenchmarkContext& bench, const std::string& nam
             traced = sss::renderVolumePathTraced(volume, tf, 256, glm::mat4(1.0f), {light}, camera, width, height, options);
         return *traced;
     };
+    const std::string tagged = name + "-" + viewAndLightTag(camera, light);
     PathTracedTruth truth;
-    truth.image = cachedReference(bench.options(), name + ".exr", [&] { return trace().image; });
+    truth.image = cachedReference(bench.options(), tagged + ".exr", [&] { return trace().image; });
     truth.relativeRmseEstimate = relativeNoise(
-        truth.image, cachedReference(bench.options(), name + "-stderr.exr", [&] { return trace().standardError; }));
+        truth.image, cachedReference(bench.options(), tagged + "-stderr.exr", [&] { return trace().standardError; }));
     return truth;
 }
 
@@ -812,7 +813,8 @@ AccuracyReport runLightVolumeAccuracy(BenchmarkContext& bench, const AccuracyOpt
                 const std::string coneName = cone ? "-cone" + std::to_string(coneWalks) : "";
                 return cachedReference(bench.options(),
                                        "light-volume-reference-" + scene.name + "-" + modelName + coneName + "-" +
-                                           std::to_string(width) + "x" + std::to_string(height) + ".exr",
+                                           std::to_string(width) + "x" + std::to_string(height) + "-" +
+                                           viewAndLightTag(camera, light) + ".exr",
                                        [&] {
                                            sss::VolumeReferenceOptions ro;
                                            ro.shading = sss::ReferenceShading::Scattering;

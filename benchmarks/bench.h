@@ -297,6 +297,10 @@ void forEachShownVolume(BenchmarkContext& bench, const std::string& table, const
 /// (timed on stderr) and kept there.
 sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render);
 
+/// Eight hex digits that change with the camera and the light a reference is rendered for. Cache
+/// names end in it, so a reference kept for another view or light is rendered anew, not reused.
+std::string viewAndLightTag(const sss::Camera& camera, const sss::DirectionalLight& light);
+
 // ---- reports ----------------------------------------------------------------------------------
 
 /// v with `digits` decimals, for the tables.

@@ -5,6 +5,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <map>
 
@@ -79,6 +82,24 @@ void forEachShownVolume(BenchmarkContext& bench, const std::string& table, const
         showVolume(renderer, *scene);
         measure(model, *scene, renderer);
     }
+}
+
+std::string viewAndLightTag(const sss::Camera& camera, const sss::DirectionalLight& light) {
+    std::vector<float> values;
+    for (const glm::mat4& m : {camera.view(), camera.projection(1.0f)})
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) values.push_back(m[c][r]);
+    for (const glm::vec3& v : {light.direction, light.color}) values.insert(values.end(), {v.x, v.y, v.z});
+    values.push_back(light.intensity);
+    std::uint32_t hash = 2166136261u;  // FNV-1a over the values' bytes
+    for (const float value : values) {
+        unsigned char bytes[sizeof(float)];
+        std::memcpy(bytes, &value, sizeof(float));
+        for (const unsigned char b : bytes) hash = (hash ^ b) * 16777619u;
+    }
+    char text[9];
+    std::snprintf(text, sizeof(text), "%08x", static_cast<unsigned>(hash));
+    return text;
 }
 
 sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render) {

@@ -43,7 +43,7 @@ void realMeshRows(BenchmarkContext& bench, PlotSpec* plot) {
         const sss::Camera camera = framedCamera(mesh->bounds());
         const sss::DirectionalLight key = keyLight(camera);
         const std::string name = "mesh-reference-" + model + "-marble-" + std::to_string(kWidth) + "x" +
-                                 std::to_string(kHeight) + ".exr";
+                                 std::to_string(kHeight) + "-" + viewAndLightTag(camera, key) + ".exr";
         const sss::Image reference = cachedReference(o, name, [&] {
             sss::MeshReferenceOptions ro;
             ro.targetRelativeError = 0.02;
@@ -282,7 +282,9 @@ void lightVolumeArtefactRows(BenchmarkContext& bench) {
         const sss::DirectionalLight light{.direction = c.lightDirection};
         const std::string refName = c.name.substr(0, c.name.find("-lv"));
         const sss::Image reference = cachedReference(
-            o, "volume-reference-" + refName + "-" + std::to_string(kWidth) + "x" + std::to_string(kHeight) + ".exr", [&] {
+            o, "volume-reference-" + refName + "-" + std::to_string(kWidth) + "x" + std::to_string(kHeight) + "-" +
+                   viewAndLightTag(camera, light) + ".exr",
+            [&] {
                 sss::VolumeReferenceOptions ro;
                 ro.shading = sss::ReferenceShading::Scattering;
                 ro.background = glm::dvec4(background);

@@ -248,7 +248,8 @@ void meshScaleSweep(BenchmarkContext& bench, PlotSpec* plot) {
         const std::string scene = s.model + "-" + s.material + "-" + std::to_string(static_cast<int>(s.sizeMm)) + "mm";
         if (!bench.wanted(s.model) && !bench.wanted(scene)) continue;
         const std::string referenceName =
-            "mesh-scale-reference-" + scene + "-target" + std::to_string(static_cast<int>(kReferenceTarget * 1000)) + "permille";
+            "mesh-scale-reference-" + scene + "-target" + std::to_string(static_cast<int>(kReferenceTarget * 1000)) +
+            "permille-" + viewAndLightTag(camera, key);
         auto renderReference = [&](std::uint64_t seed) {
             sss::MeshReferenceOptions ro;
             ro.millimetresPerUnit = s.millimetresPerUnit;
