@@ -5,11 +5,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <chrono>
-#include <cstdint>
 #include <cstdio>
-#include <cstring>
+#include <functional>
 #include <iostream>
 #include <map>
+#include <string_view>
 
 std::optional<sss::Mesh> loadThesisMesh(BenchmarkContext& bench, const std::string& table, const std::string& model) {
     static const std::map<std::string, std::string> files = {
@@ -85,21 +85,16 @@ void forEachShownVolume(BenchmarkContext& bench, const std::string& table, const
 }
 
 std::string viewAndLightTag(const sss::Camera& camera, const sss::DirectionalLight& light) {
-    std::vector<float> values;
-    for (const glm::mat4& m : {camera.view(), camera.projection(1.0f)})
-        for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) values.push_back(m[c][r]);
-    for (const glm::vec3& v : {light.direction, light.color}) values.insert(values.end(), {v.x, v.y, v.z});
-    values.push_back(light.intensity);
-    std::uint32_t hash = 2166136261u;  // FNV-1a over the values' bytes
-    for (const float value : values) {
-        unsigned char bytes[sizeof(float)];
-        std::memcpy(bytes, &value, sizeof(float));
-        for (const unsigned char b : bytes) hash = (hash ^ b) * 16777619u;
-    }
-    char text[9];
-    std::snprintf(text, sizeof(text), "%08x", static_cast<unsigned>(hash));
-    return text;
+    std::string bytes;
+    auto add = [&](const auto& value) { bytes.append(reinterpret_cast<const char*>(&value), sizeof(value)); };
+    add(camera.view());
+    add(camera.projection(1.0f));
+    add(light.direction);
+    add(light.color);
+    add(light.intensity);
+    char text[17];
+    std::snprintf(text, sizeof(text), "%016zx", std::hash<std::string_view>{}(bytes));
+    return std::string(text, 8);
 }
 
 sss::Image cachedReference(const Options& o, const std::string& name, const std::function<sss::Image()>& render) {
